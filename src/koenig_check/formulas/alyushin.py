@@ -1,0 +1,200 @@
+"""The paper's corrected formulas: eq. (30)/(34) with the translational terms of (37)/(38).
+
+Notation (the paper's): axial moments ``J^x, J^y, J^z`` (eq. 28/35) are the diagonal of
+the inertia tensor in world-parallel axes; centrifugal moments ``I_xy, I_yz, I_zx``
+(eq. 27) are the *second-moment* products ``∫(x-x_P)(y-y_P) dm`` etc., i.e. the negated
+off-diagonal entries of the inertia tensor.  ``θ_{i,t}`` are read as the world
+components of the angular velocity (rotations about axes "parallel to the axes of the
+observer's coordinate system", section 1).
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+
+from koenig_check.formulas.angles import Convention, paper_angles
+from koenig_check.formulas.exact import translational
+from koenig_check.segments import SegmentStates, second_moments
+
+Recipe = Literal["current", "paper"]
+RECIPES: tuple[str, ...] = ("current", "paper")
+
+
+def rotational_energy_30(omega: np.ndarray, axial: np.ndarray, centrifugal: np.ndarray) -> np.ndarray:
+    """Evaluate the rotational part of eq. (30)/(34).
+
+    ``½(θ_z² J^z + θ_y² J^y + θ_x² J^x) − θ_y θ_z I_yz − θ_x θ_z I_xz − θ_y θ_x I_xy``.
+
+    Parameters
+    ----------
+    omega : ndarray, shape (..., 3)
+        ``(θ_x,t, θ_y,t, θ_z,t)``.
+    axial : ndarray, shape (..., 3)
+        ``(J^x, J^y, J^z)``.
+    centrifugal : ndarray, shape (..., 3)
+        ``(I_yz, I_zx, I_xy)``.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    wx, wy, wz = omega[..., 0], omega[..., 1], omega[..., 2]
+    i_yz, i_zx, i_xy = centrifugal[..., 0], centrifugal[..., 1], centrifugal[..., 2]
+    return (
+        0.5 * np.einsum("...i,...i->...", omega**2, axial) - wy * wz * i_yz - wx * wz * i_zx - wy * wx * i_xy
+    )
+
+
+def centrifugal_of(S: np.ndarray) -> np.ndarray:
+    """Return ``(I_yz, I_zx, I_xy)`` of eq. (27) from second-moment matrices.
+
+    Parameters
+    ----------
+    S : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    return np.stack([S[..., 1, 2], S[..., 0, 2], S[..., 0, 1]], axis=-1)
+
+
+def centrifugal_update_33(S_ref: np.ndarray, dtheta: np.ndarray) -> np.ndarray:
+    """Centrifugal moments updated from the initial state by eq. (33)/(36).
+
+    ``I_xy = ½ sin(2Δθ_z)(I_α − I_β) + cos(2Δθ_z) I_αβ``,
+    ``I_yz = ½ sin(2Δθ_x)(I_β − I_γ) + cos(2Δθ_x) I_βγ``,
+    ``I_zx = ½ sin(2Δθ_y)(I_γ − I_α) + cos(2Δθ_y) I_αγ``.
+
+    Parameters
+    ----------
+    S_ref : ndarray, shape (B, 3, 3)
+        Second moments at the initial configuration, eq. (32).
+    dtheta : ndarray, shape (P, B, 3)
+        ``(Δθ_x, Δθ_y, Δθ_z)``.
+
+    Returns
+    -------
+    ndarray, shape (P, B, 3)
+        ``(I_yz, I_zx, I_xy)``.
+    """
+    ia, ib, ig = S_ref[:, 0, 0], S_ref[:, 1, 1], S_ref[:, 2, 2]
+    iab, ibg, iag = S_ref[:, 0, 1], S_ref[:, 1, 2], S_ref[:, 0, 2]
+    tx, ty, tz = dtheta[..., 0], dtheta[..., 1], dtheta[..., 2]
+    i_xy = 0.5 * np.sin(2 * tz) * (ia - ib) + np.cos(2 * tz) * iab
+    i_yz = 0.5 * np.sin(2 * tx) * (ib - ig) + np.cos(2 * tx) * ibg
+    i_zx = 0.5 * np.sin(2 * ty) * (ig - ia) + np.cos(2 * ty) * iag
+    return np.stack([i_yz, i_zx, i_xy], axis=-1)
+
+
+def shift_inertia(mass: np.ndarray, inertia_c: np.ndarray, offset: np.ndarray) -> np.ndarray:
+    """Parallel-axis theorem: inertia about a point at ``-offset`` from the centre of mass.
+
+    Parameters
+    ----------
+    mass : ndarray, shape (B,)
+    inertia_c : ndarray, shape (..., B, 3, 3)
+        Central inertia, world axes.
+    offset : ndarray, shape (..., B, 3)
+        ``C − P``.
+
+    Returns
+    -------
+    ndarray, shape (..., B, 3, 3)
+        ``I_C + m(|d|² 1 − d dᵀ)``.
+    """
+    d2 = np.einsum("...i,...i->...", offset, offset)
+    outer = offset[..., :, None] * offset[..., None, :]
+    return inertia_c + mass[..., None, None] * (d2[..., None, None] * np.eye(3) - outer)
+
+
+def _moments(inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Axial moments (diagonal) and centrifugal moments (second-moment products)."""
+    return np.diagonal(inertia, axis1=-2, axis2=-1), centrifugal_of(second_moments(inertia))
+
+
+def alyushin_current(states: SegmentStates) -> np.ndarray:
+    """Eq. (38) with the axial (35) and centrifugal (27) moments of the current configuration.
+
+    Parameters
+    ----------
+    states : SegmentStates
+
+    Returns
+    -------
+    ndarray, shape (P, B)
+    """
+    axial, centrifugal = _moments(states.inertia_world())
+    return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
+
+
+def alyushin_paper(
+    states: SegmentStates, convention: Convention = "rotvec", angles: np.ndarray | None = None
+) -> np.ndarray:
+    """Eq. (38) as the paper prescribes it.
+
+    Axial moments (35) are taken from the initial configuration, which eq. (29) claims
+    invariant; centrifugal moments are the initial ones (32) updated by eq. (36) with
+    the angles Δθ_x, Δθ_y, Δθ_z read under ``convention``.
+
+    Parameters
+    ----------
+    states : SegmentStates
+    convention : {"rotvec", "euler_xyz", "integrated"}
+        How Δθ is read for a general rotation (see :mod:`koenig_check.formulas.angles`).
+    angles : ndarray, shape (P, B, 3), optional
+        Path integrals of ω, required for ``integrated``.
+
+    Returns
+    -------
+    ndarray, shape (P, B)
+    """
+    dtheta = paper_angles(states, convention, angles)
+    I_ref = states.inertia_world_ref()
+    axial = np.broadcast_to(np.diagonal(I_ref, axis1=-2, axis2=-1), states.omega.shape)
+    centrifugal = centrifugal_update_33(second_moments(I_ref), dtheta)
+    return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
+
+
+def alyushin_pole(
+    states: SegmentStates,
+    recipe: Recipe = "current",
+    convention: Convention = "rotvec",
+    angles: np.ndarray | None = None,
+) -> np.ndarray:
+    """Eq. (37): energy about the pole P (the joint anchor), moments (28) and (27)/(33).
+
+    ``E = ½ m v_P² + ½ Σ θ_i² J_P^i − θ_y θ_z I_yz − θ_x θ_z I_xz − θ_y θ_x I_xy`` with the
+    moments taken about P.  As written, eq. (37) has no term coupling ``v_P`` with the
+    rotation about P (the paper assumes the pole's coordinates vanish, section 2), so it
+    is exact only when P is the centre of mass or does not move.
+
+    Parameters
+    ----------
+    states : SegmentStates
+    recipe : {"current", "paper"}
+        ``current``: moments of the current configuration; ``paper``: axial moments
+        from the initial configuration (29) and centrifugal moments by eq. (33).
+    convention : {"rotvec", "euler_xyz", "integrated"}
+        Angle convention of eq. (33), used by the ``paper`` recipe only.
+    angles : ndarray, shape (P, B, 3), optional
+        Path integrals of ω for ``integrated``.
+
+    Returns
+    -------
+    ndarray, shape (P, B)
+    """
+    trans = 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_pole, states.v_pole)
+    if recipe == "current":
+        I_P = shift_inertia(states.mass, states.inertia_world(), states.com - states.pole)
+        axial, centrifugal = _moments(I_P)
+    elif recipe == "paper":
+        dtheta = paper_angles(states, convention, angles)
+        I_P_ref = shift_inertia(states.mass, states.inertia_world_ref(), states.com_ref - states.pole_ref)
+        axial = np.broadcast_to(np.diagonal(I_P_ref, axis1=-2, axis2=-1), states.omega.shape)
+        centrifugal = centrifugal_update_33(second_moments(I_P_ref), dtheta)
+    else:
+        raise ValueError(f"unknown recipe {recipe!r}; choose one of {RECIPES}")
+    return trans + rotational_energy_30(states.omega, axial, centrifugal)
