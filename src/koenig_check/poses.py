@@ -1,0 +1,309 @@
+"""Pose and trajectory samplers, in the canonical state convention (MuJoCo ``qpos``/``qvel``).
+
+Every sampler is seeded and returns a :class:`PoseSet`.  Random poses respect joint
+limits; unlimited hinges are drawn over [-π, π]; free and ball joints get uniformly
+random orientations.  Trajectories are simulated by MuJoCo itself, with gravity and
+contacts off unless asked for, so that the ``integrated`` angle convention of eq. (36)
+has a real path to integrate along.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+_FREE, _BALL, _SLIDE, _HINGE = (
+    int(mujoco.mjtJoint.mjJNT_FREE),
+    int(mujoco.mjtJoint.mjJNT_BALL),
+    int(mujoco.mjtJoint.mjJNT_SLIDE),
+    int(mujoco.mjtJoint.mjJNT_HINGE),
+)
+
+
+@dataclass(frozen=True)
+class PoseSet:
+    """A batch of canonical states.
+
+    Attributes
+    ----------
+    qpos : ndarray, shape (P, nq)
+    qvel : ndarray, shape (P, nv)
+    ids : tuple of str
+        One label per pose, e.g. ``"random-3"``, ``"key:home"``, ``"grid-12"``, ``"traj-40"``.
+    kind : str
+        ``random``, ``keyframes``, ``grid``, ``trajectory`` or ``file``.
+    times : ndarray, shape (P,), optional
+        Sample times when the poses form a path (trajectories), else ``None``.
+    grid : dict, optional
+        For grid sweeps: the two joint names and the swept values.
+    notes : tuple of str
+        Anything the sampler had to decide (e.g. keyframes without velocities).
+    """
+
+    qpos: np.ndarray
+    qvel: np.ndarray
+    ids: tuple[str, ...]
+    kind: str
+    times: np.ndarray | None = None
+    grid: dict | None = None
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    def __post_init__(self) -> None:
+        if self.qpos.shape[0] != self.qvel.shape[0] or self.qpos.shape[0] != len(self.ids):
+            raise ValueError(
+                f"PoseSet: {self.qpos.shape[0]} qpos rows, {self.qvel.shape[0]} qvel rows, "
+                f"{len(self.ids)} ids"
+            )
+
+    @property
+    def n_poses(self) -> int:
+        """Number of poses ``P``."""
+        return self.qpos.shape[0]
+
+
+def _random_quaternions(rng: np.random.Generator, n: int) -> np.ndarray:
+    q = rng.normal(size=(n, 4))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    return q * np.where(q[:, :1] < 0, -1.0, 1.0)  # w >= 0, (w, x, y, z)
+
+
+def random_qpos(model: mujoco.MjModel, n: int, rng: np.random.Generator) -> np.ndarray:
+    """Random configurations within the joint limits.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    n : int
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    ndarray, shape (n, nq)
+        Limited hinges and slides uniform in their range; unlimited hinges uniform over
+        [-π, π]; unlimited slides normal about ``qpos0`` (unit scale); free joints: position
+        normal about ``qpos0``, orientation uniform; ball joints: orientation uniform.
+    """
+    qpos = np.tile(model.qpos0, (n, 1))
+    for j in range(model.njnt):
+        adr, jtype = model.jnt_qposadr[j], int(model.jnt_type[j])
+        limited = bool(model.jnt_limited[j])
+        lo, hi = model.jnt_range[j]
+        if jtype == _FREE:
+            qpos[:, adr : adr + 3] += rng.normal(size=(n, 3))
+            qpos[:, adr + 3 : adr + 7] = _random_quaternions(rng, n)
+        elif jtype == _BALL:
+            qpos[:, adr : adr + 4] = _random_quaternions(rng, n)
+        elif limited and hi > lo:
+            qpos[:, adr] = rng.uniform(lo, hi, size=n)
+        elif jtype == _HINGE:
+            qpos[:, adr] = rng.uniform(-np.pi, np.pi, size=n)
+        else:
+            qpos[:, adr] += rng.normal(size=n)
+    return qpos
+
+
+def random_poses(model: mujoco.MjModel, n: int, seed: int = 0, velocity_scale: float = 1.0) -> PoseSet:
+    """Random poses within joint limits and normal random velocities.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    n : int
+        Number of poses, >= 1.
+    seed : int
+    velocity_scale : float
+        Standard deviation of every ``qvel`` component (rad/s or m/s); must be > 0.
+
+    Returns
+    -------
+    PoseSet
+    """
+    _check_count(n)
+    _check_scale(velocity_scale)
+    rng = np.random.default_rng(seed)
+    qpos = random_qpos(model, n, rng)
+    qvel = velocity_scale * rng.normal(size=(n, model.nv))
+    return PoseSet(qpos, qvel, tuple(f"random-{i}" for i in range(n)), "random")
+
+
+def keyframe_poses(model: mujoco.MjModel, seed: int = 0, velocity_scale: float = 1.0) -> PoseSet:
+    """The model's keyframes; keyframes at rest get seeded random velocities (noted).
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    seed : int
+    velocity_scale : float
+
+    Returns
+    -------
+    PoseSet
+        Empty (zero poses) when the model has no keyframe.
+    """
+    _check_scale(velocity_scale)
+    rng = np.random.default_rng(seed)
+    qpos = np.array(model.key_qpos, dtype=float).reshape(model.nkey, model.nq)
+    qvel = np.array(model.key_qvel, dtype=float).reshape(model.nkey, model.nv)
+    notes = []
+    ids = []
+    for k in range(model.nkey):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_KEY, k) or str(k)
+        ids.append(f"key:{name}")
+        if not np.any(qvel[k]):
+            qvel[k] = velocity_scale * rng.normal(size=model.nv)
+            notes.append(f"keyframe {name!r} is at rest: random velocities (seed {seed}) were drawn for it")
+    return PoseSet(qpos, qvel, tuple(ids), "keyframes", notes=tuple(notes))
+
+
+def _joint(model: mujoco.MjModel, name: str) -> int:
+    j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+    if j < 0:
+        names = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, i) for i in range(model.njnt)]
+        raise ValueError(f"no joint named {name!r}; joints: {names}")
+    if int(model.jnt_type[j]) not in (_HINGE, _SLIDE):
+        raise ValueError(f"joint {name!r} is not a hinge or slide joint: a grid sweeps scalar joints only")
+    return j
+
+
+def grid_poses(
+    model: mujoco.MjModel,
+    joint_a: str,
+    joint_b: str,
+    n: int = 25,
+    rate_a: float = 1.0,
+    rate_b: float = 1.0,
+) -> PoseSet:
+    """A grid sweep over two joints (the paper's section-3 map), all other joints at ``qpos0``.
+
+    Each joint is swept over its range if limited, else over [-π, π] (hinges) or
+    ``qpos0 ± 1`` (slides); the two joints move at ``rate_a``, ``rate_b``, the others rest.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    joint_a, joint_b : str
+        Joint names.
+    n : int
+        Samples per joint; the grid has ``n²`` poses, joint_a varying slowest.
+    rate_a, rate_b : float
+        Joint velocities.
+
+    Returns
+    -------
+    PoseSet
+        With ``grid = {"joints": (a, b), "values": (values_a, values_b), "shape": (n, n)}``.
+    """
+    _check_count(n)
+    values = []
+    joints = [_joint(model, joint_a), _joint(model, joint_b)]
+    for j in joints:
+        lo, hi = model.jnt_range[j]
+        if model.jnt_limited[j] and hi > lo:
+            values.append(np.linspace(lo, hi, n))
+        elif int(model.jnt_type[j]) == _HINGE:
+            values.append(np.linspace(-np.pi, np.pi, n))
+        else:
+            q0 = model.qpos0[model.jnt_qposadr[j]]
+            values.append(np.linspace(q0 - 1, q0 + 1, n))
+    A, B = np.meshgrid(values[0], values[1], indexing="ij")
+    qpos = np.tile(model.qpos0, (n * n, 1))
+    qvel = np.zeros((n * n, model.nv))
+    for j, vals, rate in zip(joints, (A, B), (rate_a, rate_b), strict=True):
+        qpos[:, model.jnt_qposadr[j]] = vals.ravel()
+        qvel[:, model.jnt_dofadr[j]] = rate
+    return PoseSet(
+        qpos,
+        qvel,
+        tuple(f"grid-{i}" for i in range(n * n)),
+        "grid",
+        grid={"joints": (joint_a, joint_b), "values": tuple(values), "shape": (n, n)},
+    )
+
+
+def trajectory_poses(
+    model: mujoco.MjModel,
+    duration: float = 1.0,
+    samples: int = 200,
+    seed: int = 0,
+    velocity_scale: float = 1.0,
+    gravity: bool = False,
+    contacts: bool = False,
+    free_motion: bool = True,
+) -> PoseSet:
+    """A trajectory simulated by MuJoCo from a seeded random state.
+
+    The model is copied; gravity and contacts are switched off unless requested, and
+    with ``free_motion`` joint limits, equality constraints, friction loss, springs,
+    dampers and actuators are switched off too, so by default the motion is the
+    torque-free motion of the mechanism (its kinetic energy is conserved).  Every
+    simulation step is kept internally and ``samples`` evenly spaced states are
+    returned with their times.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    duration : float
+        Simulated time in seconds, > 0.
+    samples : int
+        Number of returned states (>= 2), including the initial one.
+    seed : int
+    velocity_scale : float
+    gravity, contacts : bool
+    free_motion : bool
+
+    Returns
+    -------
+    PoseSet
+        With ``times``.
+    """
+    if samples < 2:
+        raise ValueError(f"a trajectory needs at least 2 samples, got {samples}")
+    if not duration > 0:
+        raise ValueError(f"trajectory duration must be > 0, got {duration}")
+    _check_scale(velocity_scale)
+    sim = copy.deepcopy(model)
+    if not gravity:
+        sim.opt.gravity[:] = 0.0
+    if not contacts:
+        sim.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+    if free_motion:
+        for flag in ("LIMIT", "EQUALITY", "FRICTIONLOSS", "SPRING", "DAMPER", "ACTUATION"):
+            sim.opt.disableflags |= int(getattr(mujoco.mjtDisableBit, f"mjDSBL_{flag}"))
+    data = mujoco.MjData(sim)
+    start = random_poses(model, 1, seed=seed, velocity_scale=velocity_scale)
+    data.qpos[:] = start.qpos[0]
+    data.qvel[:] = start.qvel[0]
+    steps = max(int(np.ceil(duration / sim.opt.timestep)), samples - 1)
+    keep = np.unique(np.round(np.linspace(0, steps, samples)).astype(int))
+    qpos = np.empty((keep.size, model.nq))
+    qvel = np.empty((keep.size, model.nv))
+    times = np.empty(keep.size)
+    k = 0
+    for step in range(steps + 1):
+        if step == keep[k]:
+            qpos[k], qvel[k], times[k] = data.qpos, data.qvel, data.time
+            k += 1
+            if k == keep.size:
+                break
+        mujoco.mj_step(sim, data)
+    if not np.all(np.isfinite(qpos)) or not np.all(np.isfinite(qvel)):
+        raise ValueError(
+            "the simulated trajectory diverged (non-finite state): shorten it or lower the velocity"
+        )
+    return PoseSet(qpos, qvel, tuple(f"traj-{i}" for i in range(keep.size)), "trajectory", times=times)
+
+
+def _check_count(n: int) -> None:
+    if int(n) < 1:
+        raise ValueError(f"number of poses must be >= 1, got {n}")
+
+
+def _check_scale(scale: float) -> None:
+    if not np.isfinite(scale) or scale <= 0:
+        raise ValueError(
+            f"velocity scale must be a finite number > 0, got {scale}: with zero velocity every energy "
+            "is zero and no relative error is defined"
+        )
