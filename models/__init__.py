@@ -1,0 +1,1 @@
+"""The project model files (MJCF and URDF), shipped as package data."""

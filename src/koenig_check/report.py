@@ -1,0 +1,342 @@
+"""Markdown, CSV, JSON and PNG out of the comparison records."""
+
+from __future__ import annotations
+
+import csv
+import json
+from collections.abc import Sequence
+from dataclasses import asdict
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from koenig_check.formulas import FORMULAS
+from koenig_check.grid import RECORD_FIELDS, EngineParity, FormulaSummary, ModelComparison, relative_error
+
+#: Smallest relative error drawn on a log axis (exact agreement is drawn here).
+LOG_FLOOR = 1e-17
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.2e}" if np.isfinite(x) else str(x)
+
+
+def summary_markdown(
+    comparisons: Sequence[ModelComparison],
+    summaries: Sequence[FormulaSummary],
+    parities: Sequence[EngineParity],
+    failures: Sequence[tuple[str, str]] = (),
+    rtol: float = 1e-9,
+) -> str:
+    """The Markdown summary: per model, engine parity then one line per formula, one column per engine.
+
+    Parameters
+    ----------
+    comparisons : sequence of ModelComparison
+    summaries : sequence of FormulaSummary
+    parities : sequence of EngineParity
+    failures : sequence of (model, reason)
+        Models that could not be compared.
+    rtol : float
+
+    Returns
+    -------
+    str
+    """
+    lines = [
+        "# koenig-check report",
+        "",
+        f"Tolerance: relative {rtol:g}. Each cell: max relative error of the formula's total energy, "
+        "evaluated on that engine's segment states, against that engine's own rigid-body kinetic energy "
+        "(armature excluded); then the median, and the fraction of poses where the formula over- / "
+        "under-estimates.",
+        "",
+    ]
+    by_model: dict[str, list[FormulaSummary]] = {}
+    for s in summaries:
+        by_model.setdefault(s.model, []).append(s)
+    parity = {p.model: p for p in parities}
+    for comp in comparisons:
+        p = parity.get(comp.model)
+        lines.append(f"## {comp.model}")
+        lines.append("")
+        lines.append(f"{comp.poses.n_poses} poses ({comp.poses.kind}).")
+        if p is not None:
+            verdict = "engines agree" if p.agrees else f"ENGINES DISAGREE: {p.reason}"
+            lines.append(
+                f"Engine parity: {verdict}. MuJoCo vs Pinocchio rigid energy max relative difference "
+                f"{_fmt(p.rigid_max_rel)}; armature energy max difference {_fmt(p.armature_max_abs)} J; "
+                + "; ".join(
+                    f"exact on {k} states vs {k} energy {_fmt(v)}" for k, v in p.exact_vs_engine.items()
+                )
+                + "."
+            )
+        lines.append("")
+        engines = list(comp.runs)
+        lines.append("| formula | equations | " + " | ".join(engines) + " |")
+        lines.append("| --- | --- | " + " | ".join("---" for _ in engines) + " |")
+        cells: dict[tuple[str, str], FormulaSummary] = {
+            (s.formula, s.source): s for s in by_model.get(comp.model, []) if s.source == s.reference
+        }
+        for formula in dict.fromkeys(s.formula for s in by_model.get(comp.model, [])):
+            row = [formula, FORMULAS[formula].equations]
+            for e in engines:
+                s = cells.get((formula, e))
+                if s is None:
+                    row.append("—")
+                    continue
+                mark = "agrees" if s.agrees else "differs"
+                row.append(
+                    f"{mark}: max {_fmt(s.max_rel_error)}, median {_fmt(s.median_rel_error)}, "
+                    f"over {s.over_fraction:.0%} / under {s.under_fraction:.0%}; worst {s.worst_pose}"
+                    + (f", segment {s.worst_segment}" if s.worst_segment and not s.agrees else "")
+                )
+            lines.append("| " + " | ".join(row) + " |")
+        for r in comp.refusals:
+            lines.append(f"\n- `{r['formula']}` refused on {r['source']} states: {r['reason']}")
+        for note in comp.notes:
+            lines.append(f"- note: {note}")
+        lines.append("")
+    if failures:
+        lines.append("## Models that could not be compared")
+        lines.append("")
+        lines += [f"- {model}: {reason}" for model, reason in failures]
+        lines.append("")
+    return "\n".join(lines)
+
+
+def write_records_csv(path: Path, records: Sequence[dict[str, Any]]) -> Path:
+    """Write tidy records as CSV with the columns of :data:`RECORD_FIELDS`.
+
+    Parameters
+    ----------
+    path : Path
+    records : sequence of dict
+
+    Returns
+    -------
+    Path
+    """
+    with open(path, "w", newline="", encoding="utf-8") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(RECORD_FIELDS))
+        writer.writeheader()
+        writer.writerows(records)
+    return path
+
+
+def _jsonable(x: Any) -> Any:
+    if isinstance(x, float) and not np.isfinite(x):
+        return str(x)
+    if isinstance(x, dict):
+        return {k: _jsonable(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, np.generic):
+        return _jsonable(x.item())
+    return x
+
+
+def write_json(
+    path: Path,
+    records: Sequence[dict[str, Any]],
+    summaries: Sequence[FormulaSummary],
+    parities: Sequence[EngineParity],
+    failures: Sequence[tuple[str, str]] = (),
+    extra: dict[str, Any] | None = None,
+) -> Path:
+    """Write records, summaries, parity and failures as one JSON document.
+
+    Parameters
+    ----------
+    path : Path
+    records : sequence of dict
+    summaries : sequence of FormulaSummary
+    parities : sequence of EngineParity
+    failures : sequence of (model, reason)
+    extra : dict, optional
+        Anything else to store (e.g. load notes).
+
+    Returns
+    -------
+    Path
+    """
+    doc = {
+        "records": list(records),
+        "summaries": [asdict(s) for s in summaries],
+        "parity": [asdict(p) for p in parities],
+        "failures": [{"model": m, "reason": r} for m, r in failures],
+        **(extra or {}),
+    }
+    path.write_text(json.dumps(_jsonable(doc), indent=1), encoding="utf-8")
+    return path
+
+
+def error_distribution_figure(records: Sequence[dict[str, Any]], path: Path) -> Path:
+    """Distribution of relative error per formula (totals, each engine against itself), log scale.
+
+    Parameters
+    ----------
+    records : sequence of dict
+    path : Path
+
+    Returns
+    -------
+    Path
+    """
+    rows = [r for r in records if r["scope"] == "total" and r["source"] == r["reference"]]
+    formulas = list(dict.fromkeys(r["formula"] for r in rows))
+    engines = list(dict.fromkeys(r["source"] for r in rows))
+    fig = Figure(figsize=(10, 0.45 * max(len(formulas), 4) + 1.5), layout="constrained")
+    ax = fig.add_subplot()
+    colors = {"mujoco": "tab:blue", "pinocchio": "tab:orange"}
+    for k, engine in enumerate(engines):
+        data = [
+            np.log10(
+                np.maximum(
+                    [r["rel_error"] for r in rows if r["formula"] == f and r["source"] == engine], LOG_FLOOR
+                )
+            )
+            for f in formulas
+        ]
+        positions = np.arange(len(formulas)) + (k - (len(engines) - 1) / 2) * 0.35
+        parts = ax.boxplot(
+            data,
+            positions=positions,
+            widths=0.3,
+            vert=False,
+            patch_artist=True,
+            showfliers=True,
+            manage_ticks=False,
+        )
+        for box in parts["boxes"]:
+            box.set_facecolor(colors.get(engine, "tab:gray"))
+            box.set_alpha(0.6)
+        ax.plot(
+            [],
+            [],
+            color=colors.get(engine, "tab:gray"),
+            linewidth=8,
+            alpha=0.6,
+            label=f"{engine} states vs {engine} energy",
+        )
+    ax.set_yticks(np.arange(len(formulas)), formulas)
+    ax.invert_yaxis()
+    ax.set_xlabel(
+        "log10 relative error of total kinetic energy (dimensionless; "
+        f"exact agreement drawn at {LOG_FLOOR:g})"
+    )
+    ax.set_title(
+        "Relative error of each formula against the engines' own kinetic energy, all models and poses"
+    )
+    ax.legend(loc="lower right")
+    ax.grid(True, axis="x", alpha=0.3)
+    fig.savefig(path, dpi=110)
+    return path
+
+
+def error_map_figure(
+    comparison: ModelComparison, formulas: Sequence[str], path: Path, engine: str = "mujoco"
+) -> Path:
+    """Relative error of formulas over a two-joint grid sweep (the paper's section-3 gimbal).
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+        Built on a grid :class:`~koenig_check.poses.PoseSet`.
+    formulas : sequence of str
+    path : Path
+    engine : str
+        Whose states and energy are used.
+
+    Returns
+    -------
+    Path
+    """
+    grid = comparison.poses.grid
+    if grid is None:
+        raise ValueError(f"{comparison.model}: the poses are not a grid sweep")
+    shape = grid["shape"]
+    va, vb = grid["values"]
+    ja, jb = grid["joints"]
+    fig = Figure(figsize=(4.2 * len(formulas), 4.0), layout="constrained")
+    for k, formula in enumerate(formulas):
+        rows = [
+            r
+            for r in comparison.records
+            if r["formula"] == formula
+            and r["scope"] == "total"
+            and r["source"] == engine
+            and r["reference"] == engine
+        ]
+        signed = np.array(
+            [r["signed_error"] / r["reference_value"] if r["reference_value"] else 0.0 for r in rows]
+        )
+        ax = fig.add_subplot(1, len(formulas), k + 1)
+        lim = max(np.abs(signed).max(), 1e-16)
+        mesh = ax.pcolormesh(
+            np.degrees(vb),
+            np.degrees(va),
+            signed.reshape(shape),
+            cmap="RdBu_r",
+            vmin=-lim,
+            vmax=lim,
+            shading="auto",
+        )
+        fig.colorbar(mesh, ax=ax, label="signed relative error (formula − engine) / engine")
+        ax.set_xlabel(f"{jb} angle (deg)")
+        ax.set_ylabel(f"{ja} angle (deg)")
+        ax.set_title(formula)
+    fig.suptitle(f"{comparison.model}: error over the two joint angles ({engine}, joint rates fixed)")
+    fig.savefig(path, dpi=110)
+    return path
+
+
+def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path: Path) -> Path:
+    """Kinetic energy along a simulated trajectory for each formula against both engines.
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+        Built on a trajectory :class:`~koenig_check.poses.PoseSet`.
+    formulas : sequence of str
+    path : Path
+
+    Returns
+    -------
+    Path
+    """
+    times = comparison.poses.times
+    if times is None:
+        raise ValueError(f"{comparison.model}: the poses are not a trajectory")
+    fig = Figure(figsize=(10, 7), layout="constrained")
+    ax, ax_err = fig.add_subplot(2, 1, 1), fig.add_subplot(2, 1, 2, sharex=None)
+    for engine, run in comparison.runs.items():
+        ax.plot(times, run.rigid, linewidth=3, alpha=0.5, label=f"{engine} (engine energy)")
+    mj = comparison.runs["mujoco"].rigid
+    for formula in formulas:
+        rows = [
+            r
+            for r in comparison.records
+            if r["formula"] == formula
+            and r["scope"] == "total"
+            and r["source"] == "mujoco"
+            and r["reference"] == "mujoco"
+        ]
+        if not rows:
+            continue
+        value = np.array([r["value"] for r in rows])
+        ax.plot(times, value, linewidth=1.2, label=formula)
+        ax_err.plot(times, relative_error(value, mj), linewidth=1.2, label=formula)
+    ax.set_ylabel("kinetic energy (J)")
+    ax.set_title(f"{comparison.model}: kinetic energy along a torque-free MuJoCo trajectory")
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(True, alpha=0.3)
+    ax_err.set_xlabel("time (s)")
+    ax_err.set_ylabel("relative error vs MuJoCo (dimensionless)")
+    ax_err.set_title("formula − engine, relative")
+    ax_err.legend(fontsize=7, ncol=2)
+    ax_err.grid(True, alpha=0.3)
+    fig.savefig(path, dpi=110)
+    return path

@@ -1,0 +1,108 @@
+"""The comparison grid on synthetic engine runs (no engine needed): records, summaries, parity."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from koenig_check.analytic import random_states
+from koenig_check.formulas import FORMULAS
+from koenig_check.formulas.point_masses import equimomental_points, rigid_point_velocities
+from koenig_check.grid import EngineRun, compare_runs, engine_parity, relative_error, summarize
+from koenig_check.poses import PoseSet
+
+
+def _run(engine: str, states, rigid_scale: float = 1.0, armature: float = 0.0) -> EngineRun:
+    offsets, _ = equimomental_points(states.mass, states.inertia_body)
+    rigid = FORMULAS["exact"](states).sum(axis=1) * rigid_scale
+    return EngineRun(
+        engine, states, rigid, np.full(states.n_poses, armature), rigid_point_velocities(states, offsets)
+    )
+
+
+@pytest.fixture
+def synthetic(rng: np.random.Generator):
+    states = random_states(rng, 12, 3)
+    poses = PoseSet(np.zeros((12, 1)), np.zeros((12, 1)), tuple(f"random-{i}" for i in range(12)), "random")
+    return states, poses
+
+
+def test_records_equal_formulas_on_the_same_states(synthetic) -> None:
+    states, poses = synthetic
+    comp = compare_runs(
+        "toy", poses, {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states)}
+    )
+    exact_total = FORMULAS["exact"](states).sum(axis=1)
+    for name in ["koenig_world", "alyushin_paper:rotvec", "point_masses"]:
+        direct = FORMULAS[name](states)
+        rows = [r for r in comp.records if r["formula"] == name and r["source"] == "mujoco"]
+        totals = [r for r in rows if r["scope"] == "total" and r["reference"] == "mujoco"]
+        np.testing.assert_allclose([r["value"] for r in totals], direct.sum(axis=1), rtol=1e-15)
+        np.testing.assert_allclose([r["reference_value"] for r in totals], exact_total, rtol=1e-15)
+        np.testing.assert_allclose(
+            [r["signed_error"] for r in totals], direct.sum(axis=1) - exact_total, rtol=1e-12, atol=1e-15
+        )
+        segs = [r for r in rows if r["scope"] == "segment1"]
+        np.testing.assert_allclose([r["value"] for r in segs], direct[:, 1], rtol=1e-15)
+    assert any("alyushin_paper:integrated: skipped" in n for n in comp.notes)
+    assert comp.refusals and comp.refusals[0]["formula"] == "planar"
+
+
+def test_summaries_report_sign_fractions_and_worst_pose(synthetic) -> None:
+    states, poses = synthetic
+    comp = compare_runs(
+        "toy",
+        poses,
+        {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states)},
+        formulas=["exact", "koenig_world"],
+    )
+    summaries = {(s.formula, s.source, s.reference): s for s in summarize(comp, rtol=1e-9)}
+    exact = summaries[("exact", "mujoco", "mujoco")]
+    assert exact.agrees and exact.max_rel_error < 1e-12 and exact.over_fraction == 0 == exact.under_fraction
+    kw = summaries[("koenig_world", "mujoco", "mujoco")]
+    rel = relative_error(FORMULAS["koenig_world"](states).sum(axis=1), FORMULAS["exact"](states).sum(axis=1))
+    assert kw.max_rel_error == pytest.approx(np.abs(rel).max(), rel=1e-12)
+    assert kw.over_fraction == pytest.approx(np.mean(rel > 1e-9))
+    assert kw.under_fraction == pytest.approx(np.mean(rel < -1e-9))
+    assert kw.worst_pose == poses.ids[int(np.argmax(np.abs(rel)))]
+    assert not kw.agrees and kw.worst_segment is not None
+
+
+def test_engine_parity_detects_disagreement(synthetic) -> None:
+    states, poses = synthetic
+    same = compare_runs(
+        "toy",
+        poses,
+        {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states)},
+        formulas=["exact"],
+    )
+    assert engine_parity(same).agrees
+    off = compare_runs(
+        "toy",
+        poses,
+        {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states, 1.001)},
+        formulas=["exact"],
+    )
+    parity = engine_parity(off)
+    assert not parity.agrees
+    assert "rigid-body energies differ by 0.001" in parity.reason and "pinocchio: exact" in parity.reason
+    arm = compare_runs(
+        "toy",
+        poses,
+        {"mujoco": _run("mujoco", states, armature=0.5), "pinocchio": _run("pinocchio", states)},
+        formulas=["exact"],
+    )
+    assert "armature energies differ by 0.5 J" in engine_parity(arm).reason
+
+
+def test_relative_error_edge_cases() -> None:
+    np.testing.assert_array_equal(
+        relative_error(np.array([0.0, 1.0, -1.0, 3.0]), np.array([0.0, 0.0, 0.0, 2.0])),
+        [0, np.inf, -np.inf, 0.5],
+    )
+
+
+def test_unknown_formula_is_refused(synthetic) -> None:
+    states, poses = synthetic
+    with pytest.raises(ValueError, match="unknown formulas"):
+        compare_runs("toy", poses, {"mujoco": _run("mujoco", states)}, formulas=["koenig"])
