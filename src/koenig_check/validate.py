@@ -1,0 +1,98 @@
+"""Pre-flight checks of a model file before any engine parses it.
+
+The engines' XML parsers are not hardened against hostile input; this module reads the
+file once with bounded size, refuses document type declarations (so no entity can be
+expanded: no "billion laughs"), bounds the nesting depth, and tells MJCF from URDF by
+the root element.  Every failure is a :class:`ModelFileError` whose one-line message
+names the file and the element or line.
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+#: Largest model file read (bytes).
+MAX_FILE_BYTES = 64 * 1024 * 1024
+#: Deepest element nesting accepted.
+MAX_DEPTH = 256
+
+_DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.IGNORECASE)
+
+
+class ModelFileError(ValueError):
+    """A model file cannot be read as MJCF or URDF; the message names the file and the element."""
+
+
+def preflight(path: str | Path) -> str:
+    """Check a model file and return its format, ``"mjcf"`` or ``"urdf"``.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ModelFileError
+        Missing, unreadable, empty, oversized, not XML, truncated, with a DOCTYPE or
+        entity declaration, nested deeper than :data:`MAX_DEPTH`, or neither MJCF
+        (root ``<mujoco>``) nor URDF (root ``<robot>``).
+    """
+    path = Path(path)
+    if not path.exists():
+        raise ModelFileError(f"{path}: file not found")
+    if path.is_dir():
+        raise ModelFileError(f"{path}: is a directory, not a model file")
+    try:
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise ModelFileError(f"{path}: {size} bytes, larger than the {MAX_FILE_BYTES} bytes accepted")
+        data = path.read_bytes()
+    except OSError as err:
+        raise ModelFileError(f"{path}: cannot be read ({err.strerror or err})") from None
+    if not data.strip():
+        raise ModelFileError(f"{path}: file is empty")
+    match = _DOCTYPE.search(data)
+    if match:
+        line = data.count(b"\n", 0, match.start()) + 1
+        raise ModelFileError(
+            f"{path}: line {line}: DOCTYPE/ENTITY declarations are refused (entity expansion is not allowed)"
+        )
+    return _root_format(path, data)
+
+
+def _root_format(path: Path, data: bytes) -> str:
+    parser = ET.XMLPullParser(events=("start", "end"))
+    depth = 0
+    root_tag = None
+    try:
+        # Feed in chunks so that a pathological depth is caught before the tree is built.
+        for i in range(0, len(data), 1 << 16):
+            parser.feed(data[i : i + (1 << 16)])
+            for event, elem in parser.read_events():
+                if event == "start":
+                    depth += 1
+                    if root_tag is None:
+                        root_tag = elem.tag
+                    if depth > MAX_DEPTH:
+                        raise ModelFileError(
+                            f"{path}: element <{elem.tag}> nested deeper than {MAX_DEPTH} levels"
+                        )
+                else:
+                    depth -= 1
+                    elem.clear()
+        parser.close()
+    except ET.ParseError as err:
+        line, col = err.position
+        reason = str(err).split(":")[0]
+        raise ModelFileError(f"{path}: not well-formed XML at line {line}, column {col} ({reason})") from None
+    if root_tag == "mujoco":
+        return "mjcf"
+    if root_tag == "robot":
+        return "urdf"
+    raise ModelFileError(f"{path}: root element <{root_tag}> is neither <mujoco> (MJCF) nor <robot> (URDF)")
