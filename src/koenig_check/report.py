@@ -7,13 +7,16 @@ import json
 from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from matplotlib.figure import Figure
 
 from koenig_check.formulas import FORMULAS
 from koenig_check.grid import RECORD_FIELDS, EngineParity, FormulaSummary, ModelComparison, relative_error
+
+if TYPE_CHECKING:
+    from koenig_check.api import CrossCheck
 
 #: Smallest relative error drawn on a log axis (exact agreement is drawn here).
 LOG_FLOOR = 1e-17
@@ -339,4 +342,75 @@ def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path
     ax_err.legend(fontsize=7, ncol=2)
     ax_err.grid(True, alpha=0.3)
     fig.savefig(path, dpi=110)
+    return path
+
+
+def write_report(
+    out: Path,
+    check: CrossCheck,
+    grid_comparison: ModelComparison | None = None,
+    trajectory_comparison: ModelComparison | None = None,
+    map_formulas: Sequence[str] = ("koenig_world", "alyushin_paper:rotvec", "alyushin_paper:euler_xyz"),
+    trajectory_formulas: Sequence[str] = (
+        "exact",
+        "koenig_world",
+        "alyushin_paper:rotvec",
+        "alyushin_paper:euler_xyz",
+        "alyushin_paper:integrated",
+    ),
+) -> list[Path]:
+    """Write the report directory: summary.md, records.csv, records.json and the figures.
+
+    Parameters
+    ----------
+    out : Path
+        Created if missing.
+    check : CrossCheck
+    grid_comparison : ModelComparison, optional
+        A two-joint grid sweep: adds ``error_map.png``.
+    trajectory_comparison : ModelComparison, optional
+        A simulated trajectory: adds ``trajectory_energy.png``.
+    map_formulas, trajectory_formulas : sequence of str
+        Formulas drawn in those figures.
+
+    Returns
+    -------
+    list of Path
+        Every file written.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    records = check.records
+    written = [
+        _write_text(
+            out / "summary.md",
+            summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol),
+        ),
+        write_records_csv(out / "records.csv", records),
+        write_json(
+            out / "records.json",
+            records,
+            check.summaries,
+            check.parities,
+            check.failures,
+            extra={
+                "rtol": check.rtol,
+                "notes": {c.model: c.notes for c in check.comparisons},
+                "refusals": [r for c in check.comparisons for r in c.refusals],
+            },
+        ),
+    ]
+    if records:
+        written.append(error_distribution_figure(records, out / "error_distribution.png"))
+    if grid_comparison is not None:
+        written.append(error_map_figure(grid_comparison, map_formulas, out / "error_map.png"))
+    if trajectory_comparison is not None:
+        written.append(
+            trajectory_figure(trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png")
+        )
+    return written
+
+
+def _write_text(path: Path, text: str) -> Path:
+    path.write_text(text, encoding="utf-8")
     return path

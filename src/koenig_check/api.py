@@ -1,0 +1,229 @@
+"""The Python API: ``koenig_check.compare(...)`` with the reach of the command line."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from koenig_check import grid, poses
+from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
+
+POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
+
+
+@dataclass
+class CrossCheck:
+    """Result of :func:`compare` over one or several models.
+
+    Attributes
+    ----------
+    comparisons : list of ModelComparison
+    summaries : list of FormulaSummary
+    parities : list of EngineParity
+    failures : list of (str, str)
+        Models that could not be compared, with a one-line reason each.
+    rtol : float
+    """
+
+    comparisons: list[ModelComparison] = field(default_factory=list)
+    summaries: list[FormulaSummary] = field(default_factory=list)
+    parities: list[EngineParity] = field(default_factory=list)
+    failures: list[tuple[str, str]] = field(default_factory=list)
+    rtol: float = DEFAULT_RTOL
+
+    @property
+    def records(self) -> list[dict[str, Any]]:
+        """All tidy records of all models."""
+        return grid.records_for(self.comparisons)
+
+    @property
+    def ok(self) -> bool:
+        """True when every model loaded and both engines agree with each other and with ``exact``."""
+        return not self.failures and all(p.agrees for p in self.parities)
+
+    def reason(self) -> str:
+        """One line saying why :attr:`ok` is False (empty when it is True)."""
+        parts = [f"{m}: {r}" for m, r in self.failures]
+        parts += [f"{p.model}: {p.reason}" for p in self.parities if not p.agrees]
+        return "; ".join(parts)
+
+
+def _label(model: str | Path, floating: bool) -> str:
+    text = Path(model).name if Path(str(model)).suffix else str(model)
+    return f"{text} (floating)" if floating else text
+
+
+def make_poses(
+    mj_model: Any,
+    kind: str = "random",
+    n_poses: int = 20,
+    seed: int = 0,
+    velocity_scale: float = 1.0,
+    grid_joints: Sequence[str] | None = None,
+    duration: float = 1.0,
+) -> poses.PoseSet:
+    """Draw a pose set of a given kind for a MuJoCo model.
+
+    Parameters
+    ----------
+    mj_model : mujoco.MjModel
+    kind : {"random", "keyframes", "grid", "trajectory"}
+    n_poses : int
+        Poses (random), samples per joint (grid) or samples along the path (trajectory).
+    seed : int
+    velocity_scale : float
+    grid_joints : sequence of two str, optional
+        Required for ``grid``.
+    duration : float
+        Trajectory duration in seconds.
+
+    Returns
+    -------
+    PoseSet
+    """
+    if kind == "random":
+        return poses.random_poses(mj_model, n_poses, seed=seed, velocity_scale=velocity_scale)
+    if kind == "keyframes":
+        keys = poses.keyframe_poses(mj_model, seed=seed, velocity_scale=velocity_scale)
+        if keys.n_poses == 0:
+            raise ValueError("the model has no keyframe")
+        return keys
+    if kind == "grid":
+        if not grid_joints or len(grid_joints) != 2:
+            raise ValueError("a grid sweep needs exactly two joint names")
+        return poses.grid_poses(mj_model, grid_joints[0], grid_joints[1], n=n_poses)
+    if kind == "trajectory":
+        return poses.trajectory_poses(
+            mj_model, duration=duration, samples=max(n_poses, 2), seed=seed, velocity_scale=velocity_scale
+        )
+    raise ValueError(f"unknown pose kind {kind!r}; choose one of {POSE_KINDS}")
+
+
+def compare_model(
+    model: str | Path,
+    *,
+    pose_kind: str = "random",
+    n_poses: int = 20,
+    seed: int = 0,
+    formulas: Sequence[str] | None = None,
+    floating: bool = False,
+    balance_inertia: bool = False,
+    velocity_scale: float = 1.0,
+    grid_joints: Sequence[str] | None = None,
+    duration: float = 1.0,
+    pose_set: poses.PoseSet | None = None,
+    label: str | None = None,
+) -> ModelComparison:
+    """Load one model into both engines and run the comparison grid on it.
+
+    Parameters
+    ----------
+    model : str or Path
+        A model file or a known model name (``koenig-check models``).
+    pose_kind, n_poses, seed, velocity_scale, grid_joints, duration
+        See :func:`make_poses`.
+    formulas : sequence of str, optional
+    floating : bool
+        Free-floating base (URDF).
+    balance_inertia : bool
+        Let MuJoCo balance inertias that violate the triangle inequality (noted).
+    pose_set : PoseSet, optional
+        Use these canonical states instead of drawing poses.
+    label : str, optional
+
+    Returns
+    -------
+    ModelComparison
+
+    Raises
+    ------
+    Exception
+        Any load or comparison failure, with a one-line message.
+    """
+    from koenig_check.engines import load_model
+
+    pair = load_model(model, floating=floating, balance_inertia=balance_inertia)
+    ps = pose_set or make_poses(
+        pair.mujoco.model,
+        pose_kind,
+        n_poses=n_poses,
+        seed=seed,
+        velocity_scale=velocity_scale,
+        grid_joints=grid_joints,
+        duration=duration,
+    )
+    runs = {"mujoco": grid.run_engine(pair.mujoco, ps), "pinocchio": grid.run_engine(pair.pinocchio, ps)}
+    comp = grid.compare_runs(label or _label(model, floating), ps, runs, formulas)
+    comp.notes = list(pair.notes) + list(ps.notes) + comp.notes
+    return comp
+
+
+def compare(
+    models: str | Path | Sequence[str | Path],
+    *,
+    rtol: float = DEFAULT_RTOL,
+    progress: Callable[[str], None] | None = None,
+    **options: Any,
+) -> CrossCheck:
+    """Cross-check kinetic energy for one or several models; a failing model never loses the others.
+
+    Parameters
+    ----------
+    models : str, Path or sequence of them
+        Model files or names.
+    rtol : float
+        Tolerance of "agrees" (engines with each other and with ``exact``; formulas).
+    progress : callable, optional
+        Called with a short message as each model starts.
+    **options
+        Passed to :func:`compare_model` (``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
+        ``floating``, ``balance_inertia``, ``velocity_scale``, ``grid_joints``, ``duration``).
+
+    Returns
+    -------
+    CrossCheck
+    """
+    if isinstance(models, str | Path):
+        models = [models]
+    result = CrossCheck(rtol=rtol)
+    for model in models:
+        label = _label(model, bool(options.get("floating")))
+        if progress:
+            progress(label)
+        try:
+            comp = compare_model(model, label=label, **options)
+        except Exception as err:  # recorded with its reason; the batch goes on
+            result.failures.append((label, one_line(err)))
+            continue
+        result.comparisons.append(comp)
+        result.summaries += grid.summarize(comp, rtol)
+        result.parities.append(grid.engine_parity(comp, rtol))
+    return result
+
+
+def one_line(err: BaseException) -> str:
+    """A one-line description of an exception (its type when it has no message).
+
+    Parameters
+    ----------
+    err : BaseException
+
+    Returns
+    -------
+    str
+    """
+    text = " ".join(str(err).split())
+    return text or type(err).__name__
+
+
+def stderr_progress(message: str) -> None:
+    """Print a progress line on standard error.
+
+    Parameters
+    ----------
+    message : str
+    """
+    print(f"  … {message}", file=sys.stderr, flush=True)

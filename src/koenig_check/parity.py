@@ -1,0 +1,365 @@
+"""Import parity: whether MuJoCo and Pinocchio see the same robot in the same file.
+
+Everything is measured through the engines' own answers at the canonical reference
+configuration (MuJoCo ``qpos0``): segment mass, centre of mass, inertia tensor and pole
+from :meth:`segment_states`; joint axes and anchors as the segment velocities produced
+by a unit rate of each degree of freedom (the columns of each engine's Jacobians);
+armature as the diagonal of the engine's mass matrix minus the rigid-body mass matrix
+rebuilt from those Jacobians.  Model-level findings come from the load notes and from
+the file's own compiler options.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from koenig_check.segments import SegmentStates
+
+#: Default relative tolerance of parity comparisons.
+PARITY_RTOL = 1e-9
+
+
+@dataclass(frozen=True)
+class SegmentParity:
+    """Engine A (MuJoCo) versus engine B (Pinocchio) for one segment.
+
+    Attributes
+    ----------
+    name : str
+    mass : tuple of float
+        (MuJoCo, Pinocchio) mass in kg.
+    com_distance : float
+        Distance between the two centres of mass at the reference pose (m).
+    inertia_frobenius : float
+        Frobenius norm of the difference of the world-axis central inertias (kg m²).
+    principal_moments : tuple of ndarray
+        (MuJoCo, Pinocchio) principal central moments, ascending.
+    pole_distance : float
+        Distance between the two joint anchors (m).
+    causes : tuple of str
+        Which quantities differ beyond tolerance (``mass``, ``com``, ``inertia``, ``anchor``).
+    """
+
+    name: str
+    mass: tuple[float, float]
+    com_distance: float
+    inertia_frobenius: float
+    principal_moments: tuple[np.ndarray, np.ndarray]
+    pole_distance: float
+    causes: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class DofParity:
+    """Engine A versus engine B for one degree of freedom.
+
+    Attributes
+    ----------
+    dof : int
+        Canonical (MuJoCo) dof index.
+    joint : str
+    armature : tuple of float
+        (MuJoCo, Pinocchio) rotor inertia on this dof.
+    jacobian_difference : float
+        Largest difference of segment angular (rad/s) or COM linear (m/s) velocity produced by
+        a unit rate of this dof: a different joint axis or anchor.
+    causes : tuple of str
+        ``axis`` and/or ``armature`` when they differ.
+    """
+
+    dof: int
+    joint: str
+    armature: tuple[float, float]
+    jacobian_difference: float
+    causes: tuple[str, ...]
+
+
+@dataclass
+class ParityReport:
+    """Import parity of one model.
+
+    Attributes
+    ----------
+    model : str
+    segments : list of SegmentParity
+    dofs : list of DofParity
+    only_in_mujoco, only_in_pinocchio : list of str
+        Segments one engine has and the other does not (fused or dropped bodies).
+    total_mass : tuple of float
+    findings : list of str
+        Model-level findings (compiler options, inertia from geometry, load notes).
+    mass_matrix_max_rel : float
+        Largest relative difference of the two mass matrices over the checked poses.
+    rtol : float
+    """
+
+    model: str
+    segments: list[SegmentParity] = field(default_factory=list)
+    dofs: list[DofParity] = field(default_factory=list)
+    only_in_mujoco: list[str] = field(default_factory=list)
+    only_in_pinocchio: list[str] = field(default_factory=list)
+    total_mass: tuple[float, float] = (0.0, 0.0)
+    findings: list[str] = field(default_factory=list)
+    mass_matrix_max_rel: float = 0.0
+    rtol: float = PARITY_RTOL
+
+    @property
+    def differing_segments(self) -> list[SegmentParity]:
+        """Segments with at least one cause."""
+        return [s for s in self.segments if s.causes]
+
+    @property
+    def differing_dofs(self) -> list[DofParity]:
+        """Dofs with at least one cause."""
+        return [d for d in self.dofs if d.causes]
+
+    @property
+    def clean(self) -> bool:
+        """True when no import difference was found."""
+        return not (
+            self.differing_segments or self.differing_dofs or self.only_in_mujoco or self.only_in_pinocchio
+        )
+
+    def causes_for(self, segment: str) -> tuple[str, ...]:
+        """The causes found for one segment (empty when it matches).
+
+        Parameters
+        ----------
+        segment : str
+
+        Returns
+        -------
+        tuple of str
+        """
+        for s in self.segments:
+            if s.name == segment:
+                return s.causes
+        return ()
+
+    def headline(self) -> str:
+        """One line naming every difference found."""
+        parts = [f"segment {s.name}: {', '.join(s.causes)}" for s in self.differing_segments]
+        parts += [f"dof {d.joint}: {', '.join(d.causes)}" for d in self.differing_dofs]
+        if self.only_in_mujoco:
+            parts.append(f"segments only in MuJoCo: {self.only_in_mujoco}")
+        if self.only_in_pinocchio:
+            parts.append(f"segments only in Pinocchio: {self.only_in_pinocchio}")
+        return "; ".join(parts) or "no import difference"
+
+
+def _unit_rate_states(engine: Any, qpos0: np.ndarray, nv: int) -> SegmentStates:
+    """Segment states at ``qpos0`` for a unit rate of each dof in turn (one pose per dof)."""
+    return engine.segment_states(np.tile(qpos0, (max(nv, 1), 1)), np.eye(max(nv, 1))[:, :nv])
+
+
+def _rigid_mass_matrix(states: SegmentStates) -> np.ndarray:
+    """Σ_b m J_vᵀ J_v + J_ωᵀ I J_ω from the unit-rate states (pose axis = dof)."""
+    Jv = states.v_com  # (nv, B, 3)
+    Jw = states.omega
+    I_world = states.inertia_world()[0]  # same configuration for every row
+    return np.einsum("b,ibk,jbk->ij", states.mass, Jv, Jv) + np.einsum("ibk,bkl,jbl->ij", Jw, I_world, Jw)
+
+
+def _dof_joint_names(mj_model: mujoco.MjModel) -> list[str]:
+    names = []
+    for d in range(mj_model.nv):
+        j = int(mj_model.dof_jntid[d])
+        name = mujoco.mj_id2name(mj_model, mujoco.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
+        count = int(np.sum(mj_model.dof_jntid[:d] == j))
+        names.append(name if np.sum(mj_model.dof_jntid == j) == 1 else f"{name}[{count}]")
+    return names
+
+
+def compiler_findings(path: Path) -> list[str]:
+    """Compiler options and inertial gaps in an MJCF file that make the engines import it differently.
+
+    Parameters
+    ----------
+    path : Path
+
+    Returns
+    -------
+    list of str
+    """
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError):
+        return []
+    if root.tag != "mujoco":
+        return []
+    out = []
+    for comp in root.iter("compiler"):
+        for attr in (
+            "settotalmass",
+            "boundmass",
+            "boundinertia",
+            "balanceinertia",
+            "inertiafromgeom",
+            "inertiagrouprange",
+        ):
+            value = comp.get(attr)
+            if value is None:
+                continue
+            if attr == "settotalmass" and float(value) > 0:
+                out.append(
+                    f"compiler settotalmass={value}: MuJoCo rescales every mass and inertia to this total; "
+                    "check whether Pinocchio's MJCF parser does the same (total masses below)"
+                )
+            elif attr in ("boundmass", "boundinertia") and float(value) > 0:
+                out.append(f"compiler {attr}={value}: MuJoCo raises smaller masses/inertias to this bound")
+            elif attr == "balanceinertia" and value == "true":
+                out.append("compiler balanceinertia=true: MuJoCo alters inertias that violate A + B >= C")
+            elif attr == "inertiafromgeom" and value == "true":
+                out.append(
+                    "compiler inertiafromgeom=true: MuJoCo computes every body's inertia from its geoms"
+                )
+    for body in root.iter("body"):
+        if body.find("inertial") is None and body.find("geom") is not None:
+            kinds = sorted({g.get("type", "sphere") for g in body.findall("geom")})
+            out.append(
+                f"body {body.get('name', '?')!r} has no <inertial>: its inertia comes from geoms of type "
+                f"{kinds}; a parser that ignores a geom type (e.g. mesh) gets a different inertia"
+            )
+    return out
+
+
+def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, seed: int = 0) -> ParityReport:
+    """Compare what MuJoCo and Pinocchio imported from the same model.
+
+    Parameters
+    ----------
+    pair : ModelPair
+        From :func:`koenig_check.engines.load_model`.
+    rtol : float
+        Relative tolerance; lengths are compared with ``rtol`` × the model's size,
+        inertias with ``rtol`` × the largest principal moment.
+    extra_poses : int
+        Random poses (besides ``qpos0``) at which the mass matrices are compared.
+    seed : int
+
+    Returns
+    -------
+    ParityReport
+    """
+    from koenig_check.poses import random_qpos
+
+    mj, pn = pair.mujoco, pair.pinocchio
+    mj_model = mj.model
+    qpos0 = np.array(mj_model.qpos0, dtype=float)
+    nv = mj_model.nv
+    report = ParityReport(model=str(getattr(pair, "path", getattr(mj, "path", "?"))), rtol=rtol)
+    sa = _unit_rate_states(mj, qpos0, nv)
+    sb = _unit_rate_states(pn, qpos0, nv)
+    report.total_mass = (float(sa.mass.sum()), float(sb.mass.sum()))
+    names_a, names_b = list(sa.names), list(sb.names)
+    report.only_in_mujoco = [n for n in names_a if n not in names_b]
+    report.only_in_pinocchio = [n for n in names_b if n not in names_a]
+    common = [n for n in names_a if n in names_b]
+    A, B = sa.select(segments=common), sb.select(segments=common)
+    size = max(float(np.abs(A.com[0]).max(initial=0.0)), float(np.abs(A.pole[0]).max(initial=0.0)), 1.0)
+    Ia, Ib = A.inertia_world()[0], B.inertia_world()[0]
+    for k, name in enumerate(common):
+        ma, mb = float(A.mass[k]), float(B.mass[k])
+        com_d = float(np.linalg.norm(A.com[0, k] - B.com[0, k]))
+        pole_d = float(np.linalg.norm(A.pole[0, k] - B.pole[0, k]))
+        fro = float(np.linalg.norm(Ia[k] - Ib[k]))
+        moments = (np.linalg.eigvalsh(Ia[k]), np.linalg.eigvalsh(Ib[k]))
+        scale_I = max(float(np.abs(moments[0]).max()), float(np.abs(moments[1]).max()), 1e-300)
+        causes = []
+        if abs(ma - mb) > rtol * max(ma, mb):
+            causes.append("mass")
+        if com_d > rtol * size:
+            causes.append("com")
+        if fro > rtol * scale_I:
+            causes.append("inertia")
+        if pole_d > rtol * size:
+            causes.append("anchor")
+        report.segments.append(SegmentParity(name, (ma, mb), com_d, fro, moments, pole_d, tuple(causes)))
+    # Dofs: Jacobian columns (unit-rate velocities) and armature.
+    jac_a = np.concatenate([A.omega, A.v_com], axis=-1)  # (nv, B, 6)
+    jac_b = np.concatenate([B.omega, B.v_com], axis=-1)
+    jac_scale = max(float(np.abs(jac_a).max(initial=0.0)), 1.0)
+    rng = np.random.default_rng(seed)
+    q_check = np.vstack([qpos0, random_qpos(mj_model, extra_poses, rng)])
+    Ma, Mb = mj.mass_matrix(q_check), pn.mass_matrix(q_check)
+    denom = max(float(np.abs(Ma).max(initial=0.0)), 1e-300)
+    report.mass_matrix_max_rel = float(np.abs(Ma - Mb).max(initial=0.0) / denom)
+    arm_a = np.diag(Ma[0]) - np.diag(_rigid_mass_matrix(sa))
+    arm_b = np.diag(Mb[0]) - np.diag(_rigid_mass_matrix(sb))
+    m_scale = max(float(np.abs(np.diag(Ma[0])).max(initial=0.0)), 1e-300)
+    for d, joint in enumerate(_dof_joint_names(mj_model)):
+        diff = float(np.abs(jac_a[d] - jac_b[d]).max(initial=0.0))
+        causes = []
+        if diff > rtol * jac_scale * size:
+            causes.append("axis")
+        if abs(arm_a[d] - arm_b[d]) > rtol * m_scale:
+            causes.append("armature")
+        report.dofs.append(DofParity(d, joint, (float(arm_a[d]), float(arm_b[d])), diff, tuple(causes)))
+    report.findings = list(getattr(pair, "notes", [])) + compiler_findings(Path(str(mj.path)))
+    masses_a = A.mass
+    masses_b = B.mass
+    if len(common) > 1 and np.all(masses_b > 0):
+        ratio = masses_a / masses_b
+        if np.ptp(ratio) <= rtol * ratio.max() and abs(ratio[0] - 1) > rtol:
+            report.findings.append(
+                f"every segment mass differs by the same factor {ratio[0]:.9g} (MuJoCo / Pinocchio): "
+                "a total-mass rescaling honoured by one engine only"
+            )
+    return report
+
+
+def format_parity(report: ParityReport) -> str:
+    """Render a parity report for the terminal.
+
+    Parameters
+    ----------
+    report : ParityReport
+
+    Returns
+    -------
+    str
+    """
+    lines = [
+        f"Import parity of {report.model} (relative tolerance {report.rtol:g})",
+        f"total mass: MuJoCo {report.total_mass[0]:.9g} kg, Pinocchio {report.total_mass[1]:.9g} kg; "
+        f"mass matrices differ by at most {report.mass_matrix_max_rel:.2e} relative",
+        "",
+        f"{'segment':28s} {'mass MuJoCo':>13s} {'mass Pin.':>13s} {'|ΔCOM| m':>10s} {'|ΔI|_F':>10s} "
+        f"{'|Δanchor| m':>11s}  principal moments MuJoCo / Pinocchio   verdict",
+    ]
+    for s in report.segments:
+        pm = (
+            " ".join(f"{v:.4g}" for v in s.principal_moments[0])
+            + " / "
+            + " ".join(f"{v:.4g}" for v in s.principal_moments[1])
+        )
+        verdict = "same" if not s.causes else "DIFFERS: " + ", ".join(s.causes)
+        lines.append(
+            f"{s.name[:28]:28s} {s.mass[0]:13.6g} {s.mass[1]:13.6g} {s.com_distance:10.2e} "
+            f"{s.inertia_frobenius:10.2e} {s.pole_distance:11.2e}  {pm:38s} {verdict}"
+        )
+    lines += [
+        "",
+        f"{'dof':24s} {'armature MuJoCo':>16s} {'armature Pin.':>14s} {'|ΔJacobian|':>12s}  verdict",
+    ]
+    for d in report.dofs:
+        verdict = "same" if not d.causes else "DIFFERS: " + ", ".join(d.causes)
+        lines.append(
+            f"{d.joint[:24]:24s} {d.armature[0]:16.6g} {d.armature[1]:14.6g} "
+            f"{d.jacobian_difference:12.2e}  {verdict}"
+        )
+    if report.only_in_mujoco:
+        lines.append(f"\nsegments only in MuJoCo: {report.only_in_mujoco}")
+    if report.only_in_pinocchio:
+        lines.append(f"segments only in Pinocchio: {report.only_in_pinocchio}")
+    if report.findings:
+        lines.append("\nfindings:")
+        lines += [f"  - {f}" for f in report.findings]
+    lines.append("\nverdict: " + ("no import difference" if report.clean else report.headline()))
+    return "\n".join(lines)

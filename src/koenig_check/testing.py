@@ -1,0 +1,100 @@
+"""Helpers for users' own test suites.
+
+>>> from koenig_check.testing import assert_energy_parity
+>>> assert_energy_parity("models/serial7.urdf")  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from koenig_check.formulas import FORMULAS
+from koenig_check.grid import DEFAULT_RTOL, relative_error
+
+
+def assert_energy_parity(
+    model: str | Path,
+    pinocchio_model: str | Path | None = None,
+    *,
+    floating: bool = False,
+    n_poses: int = 20,
+    seed: int = 0,
+    velocity_scale: float = 1.0,
+    rtol: float = DEFAULT_RTOL,
+    include_armature: bool = True,
+) -> None:
+    """Assert that MuJoCo and Pinocchio give the same kinetic energy for a model, segment by segment.
+
+    Parameters
+    ----------
+    model : str or Path
+        Model file or name, loaded into MuJoCo (and into Pinocchio unless
+        ``pinocchio_model`` is given).
+    pinocchio_model : str or Path, optional
+        A different file of the same robot for Pinocchio (e.g. the URDF of an MJCF).
+    floating : bool
+        Free-floating base.
+    n_poses, seed, velocity_scale
+        Seeded random poses within joint limits.
+    rtol : float
+        Relative tolerance on every segment's energy and on the totals.
+    include_armature : bool
+        Also require the engines' armature energies to agree.
+
+    Raises
+    ------
+    AssertionError
+        Naming the segment, the pose and the size of the largest difference, with the
+        import-parity causes found for that segment.
+    """
+    from koenig_check.engines import load_model
+    from koenig_check.parity import import_parity
+    from koenig_check.poses import random_poses
+
+    pair = load_model(model, floating=floating, pinocchio_source=pinocchio_model)
+    poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
+    sa = pair.mujoco.segment_states(poses.qpos, poses.qvel)
+    sb = pair.pinocchio.segment_states(poses.qpos, poses.qvel)
+    only_a = sorted(set(sa.names) - set(sb.names))
+    only_b = sorted(set(sb.names) - set(sa.names))
+    if only_a or only_b:
+        raise AssertionError(
+            f"{model}: segments differ between the engines: only in MuJoCo {only_a}, "
+            f"only in Pinocchio {only_b}"
+        )
+    sb = sb.select(segments=list(sa.names))
+    ea, eb = FORMULAS["exact"](sa), FORMULAS["exact"](sb)
+    scale = np.maximum(np.abs(ea).sum(axis=1, keepdims=True), 1e-300)  # per pose: total energy
+    err = np.abs(eb - ea) / scale
+    p, b = np.unravel_index(int(np.argmax(err)), err.shape)
+    problems = []
+    if err[p, b] > rtol:
+        causes = import_parity(pair, rtol=rtol).causes_for(sa.names[b])
+        problems.append(
+            f"segment {sa.names[b]!r} at pose {poses.ids[p]}: MuJoCo {ea[p, b]:.9g} J, "
+            f"Pinocchio {eb[p, b]:.9g} J, "
+            f"difference {eb[p, b] - ea[p, b]:+.3g} J ({err[p, b]:.3g} of the pose's total energy)"
+            + (f"; import parity: {', '.join(causes)} differ" if causes else "")
+        )
+    ka = pair.mujoco.kinetic_energy(poses.qpos, poses.qvel)
+    kb = pair.pinocchio.kinetic_energy(poses.qpos, poses.qvel)
+    rel = np.abs(relative_error(kb.rigid, ka.rigid))
+    if rel.max() > rtol:
+        k = int(np.argmax(rel))
+        problems.append(
+            f"total rigid-body energy at pose {poses.ids[k]}: MuJoCo {ka.rigid[k]:.9g} J, "
+            f"Pinocchio {kb.rigid[k]:.9g} J ({rel[k]:.3g} relative)"
+        )
+    if include_armature:
+        darm = np.abs(kb.armature - ka.armature)
+        tot = np.maximum(np.abs(ka.rigid) + np.abs(ka.armature), 1e-300)
+        if (darm / tot).max() > rtol:
+            k = int(np.argmax(darm / tot))
+            problems.append(
+                f"armature energy at pose {poses.ids[k]}: MuJoCo {ka.armature[k]:.9g} J, "
+                f"Pinocchio {kb.armature[k]:.9g} J"
+            )
+    if problems:
+        raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))
