@@ -25,7 +25,7 @@ def test_console_script_help_has_an_example() -> None:
         check=False,
     )
     assert proc.returncode == 0
-    assert "example: koenig-check selfcheck" in proc.stdout
+    assert "example:\n  koenig-check selfcheck" in proc.stdout
 
 
 def test_no_command_prints_help_and_fails(capsys: pytest.CaptureFixture[str]) -> None:
