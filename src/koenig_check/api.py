@@ -115,6 +115,7 @@ def compare_model(
     grid_joints: Sequence[str] | None = None,
     duration: float = 1.0,
     pose_set: poses.PoseSet | None = None,
+    pose_file: str | Path | None = None,
     label: str | None = None,
 ) -> ModelComparison:
     """Load one model into both engines and run the comparison grid on it.
@@ -132,6 +133,8 @@ def compare_model(
         Let MuJoCo balance inertias that violate the triangle inequality (noted).
     pose_set : PoseSet, optional
         Use these canonical states instead of drawing poses.
+    pose_file : str or Path, optional
+        Read the canonical states from a file (see :mod:`koenig_check.pose_file`).
     label : str, optional
 
     Returns
@@ -146,6 +149,10 @@ def compare_model(
     from koenig_check.engines import load_model
 
     pair = load_model(model, floating=floating, balance_inertia=balance_inertia)
+    if pose_file is not None:
+        from koenig_check.pose_file import load_pose_file
+
+        pose_set = load_pose_file(pose_file, pair.mujoco.model)
     ps = pose_set or make_poses(
         pair.mujoco.model,
         pose_kind,
@@ -180,7 +187,8 @@ def compare(
         Called with a short message as each model starts.
     **options
         Passed to :func:`compare_model` (``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
-        ``floating``, ``balance_inertia``, ``velocity_scale``, ``grid_joints``, ``duration``).
+        ``floating``, ``balance_inertia``, ``velocity_scale``, ``grid_joints``, ``duration``,
+        ``pose_set``, ``pose_file``).
 
     Returns
     -------

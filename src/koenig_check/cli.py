@@ -183,6 +183,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             velocity_scale=args.velocity_scale,
             grid_joints=args.grid_joints,
             duration=args.duration,
+            pose_file=args.pose_file,
         )
     return _finish(check, args.out)
 

@@ -46,7 +46,7 @@ def run_demo(
     grid_samples : int
         Samples per gimbal angle.
     trajectory_samples : int
-        Samples along the simulated gimbal trajectory (1 s).
+        Samples along the simulated gimbal trajectory (2 s from the reference pose).
 
     Returns
     -------
@@ -58,8 +58,7 @@ def run_demo(
     by_name = {p.name: p for p in models}
     gimbal_path, gimbal_joints = by_name[GIMBAL[0]], GIMBAL[1]
     jobs = [
-        (p.name, {"model": p, "n_poses": n_poses, "seed": seed, "floating": p.name in FLOATING_MODELS})
-        for p in models
+        (p.name, {"model": p, "n_poses": n_poses, "seed": seed, "floating": p.name in FLOATING_MODELS}) for p in models
     ]
     jobs.append(
         (
@@ -75,7 +74,14 @@ def run_demo(
     jobs.append(
         (
             f"{GIMBAL[0]} trajectory",
-            {"model": gimbal_path, "pose_kind": "trajectory", "n_poses": trajectory_samples, "seed": seed},
+            {
+                "model": gimbal_path,
+                "pose_kind": "trajectory",
+                "n_poses": trajectory_samples,
+                "seed": seed,
+                "duration": 2.0,
+                "velocity_scale": 2.0,
+            },
         )
     )
     check = CrossCheck(rtol=rtol)

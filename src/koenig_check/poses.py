@@ -54,8 +54,7 @@ class PoseSet:
     def __post_init__(self) -> None:
         if self.qpos.shape[0] != self.qvel.shape[0] or self.qpos.shape[0] != len(self.ids):
             raise ValueError(
-                f"PoseSet: {self.qpos.shape[0]} qpos rows, {self.qvel.shape[0]} qvel rows, "
-                f"{len(self.ids)} ids"
+                f"PoseSet: {self.qpos.shape[0]} qpos rows, {self.qvel.shape[0]} qvel rows, {len(self.ids)} ids"
             )
 
     @property
@@ -232,13 +231,17 @@ def trajectory_poses(
     gravity: bool = False,
     contacts: bool = False,
     free_motion: bool = True,
+    from_reference: bool = True,
 ) -> PoseSet:
     """A trajectory simulated by MuJoCo from a seeded random state.
 
     The model is copied; gravity and contacts are switched off unless requested, and
     with ``free_motion`` joint limits, equality constraints, friction loss, springs,
     dampers and actuators are switched off too, so by default the motion is the
-    torque-free motion of the mechanism (its kinetic energy is conserved).  Every
+    torque-free motion of the mechanism (its kinetic energy is conserved).  By default the
+    path starts at the reference configuration ``qpos0`` (the paper's initial state, where
+    every Δθ is zero) with seeded random velocities, so that the path integrals of ω
+    measure the rotation from the reference.  Every
     simulation step is kept internally and ``samples`` evenly spaced states are
     returned with their times.
 
@@ -253,6 +256,8 @@ def trajectory_poses(
     velocity_scale : float
     gravity, contacts : bool
     free_motion : bool
+    from_reference : bool
+        Start at ``qpos0``; otherwise at a seeded random configuration.
 
     Returns
     -------
@@ -274,7 +279,7 @@ def trajectory_poses(
             sim.opt.disableflags |= int(getattr(mujoco.mjtDisableBit, f"mjDSBL_{flag}"))
     data = mujoco.MjData(sim)
     start = random_poses(model, 1, seed=seed, velocity_scale=velocity_scale)
-    data.qpos[:] = start.qpos[0]
+    data.qpos[:] = model.qpos0 if from_reference else start.qpos[0]
     data.qvel[:] = start.qvel[0]
     steps = max(int(np.ceil(duration / sim.opt.timestep)), samples - 1)
     keep = np.unique(np.round(np.linspace(0, steps, samples)).astype(int))
@@ -290,9 +295,7 @@ def trajectory_poses(
                 break
         mujoco.mj_step(sim, data)
     if not np.all(np.isfinite(qpos)) or not np.all(np.isfinite(qvel)):
-        raise ValueError(
-            "the simulated trajectory diverged (non-finite state): shorten it or lower the velocity"
-        )
+        raise ValueError("the simulated trajectory diverged (non-finite state): shorten it or lower the velocity")
     return PoseSet(qpos, qvel, tuple(f"traj-{i}" for i in range(keep.size)), "trajectory", times=times)
 
 

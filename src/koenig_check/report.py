@@ -71,9 +71,7 @@ def summary_markdown(
             lines.append(
                 f"Engine parity: {verdict}. MuJoCo vs Pinocchio rigid energy max relative difference "
                 f"{_fmt(p.rigid_max_rel)}; armature energy max difference {_fmt(p.armature_max_abs)} J; "
-                + "; ".join(
-                    f"exact on {k} states vs {k} energy {_fmt(v)}" for k, v in p.exact_vs_engine.items()
-                )
+                + "; ".join(f"exact on {k} states vs {k} energy {_fmt(v)}" for k, v in p.exact_vs_engine.items())
                 + "."
             )
         lines.append("")
@@ -151,6 +149,9 @@ def write_json(
 ) -> Path:
     """Write records, summaries, parity and failures as one JSON document.
 
+    Records are stored as rows (lists) in the order of ``record_fields``, to keep the
+    file small; summaries, parity and failures are objects.
+
     Parameters
     ----------
     path : Path
@@ -166,13 +167,14 @@ def write_json(
     Path
     """
     doc = {
-        "records": list(records),
+        "record_fields": list(RECORD_FIELDS),
+        "records": [[r[k] for k in RECORD_FIELDS] for r in records],
         "summaries": [asdict(s) for s in summaries],
         "parity": [asdict(p) for p in parities],
         "failures": [{"model": m, "reason": r} for m, r in failures],
         **(extra or {}),
     }
-    path.write_text(json.dumps(_jsonable(doc), indent=1), encoding="utf-8")
+    path.write_text(json.dumps(_jsonable(doc), separators=(",", ":")), encoding="utf-8")
     return path
 
 
@@ -197,9 +199,7 @@ def error_distribution_figure(records: Sequence[dict[str, Any]], path: Path) -> 
     for k, engine in enumerate(engines):
         data = [
             np.log10(
-                np.maximum(
-                    [r["rel_error"] for r in rows if r["formula"] == f and r["source"] == engine], LOG_FLOOR
-                )
+                np.maximum([r["rel_error"] for r in rows if r["formula"] == f and r["source"] == engine], LOG_FLOOR)
             )
             for f in formulas
         ]
@@ -227,21 +227,16 @@ def error_distribution_figure(records: Sequence[dict[str, Any]], path: Path) -> 
     ax.set_yticks(np.arange(len(formulas)), formulas)
     ax.invert_yaxis()
     ax.set_xlabel(
-        "log10 relative error of total kinetic energy (dimensionless; "
-        f"exact agreement drawn at {LOG_FLOOR:g})"
+        f"log10 relative error of total kinetic energy (dimensionless; exact agreement drawn at {LOG_FLOOR:g})"
     )
-    ax.set_title(
-        "Relative error of each formula against the engines' own kinetic energy, all models and poses"
-    )
+    ax.set_title("Relative error of each formula against the engines' own kinetic energy, all models and poses")
     ax.legend(loc="lower right")
     ax.grid(True, axis="x", alpha=0.3)
     fig.savefig(path, dpi=110)
     return path
 
 
-def error_map_figure(
-    comparison: ModelComparison, formulas: Sequence[str], path: Path, engine: str = "mujoco"
-) -> Path:
+def error_map_figure(comparison: ModelComparison, formulas: Sequence[str], path: Path, engine: str = "mujoco") -> Path:
     """Relative error of formulas over a two-joint grid sweep (the paper's section-3 gimbal).
 
     Parameters
@@ -268,14 +263,9 @@ def error_map_figure(
         rows = [
             r
             for r in comparison.records
-            if r["formula"] == formula
-            and r["scope"] == "total"
-            and r["source"] == engine
-            and r["reference"] == engine
+            if r["formula"] == formula and r["scope"] == "total" and r["source"] == engine and r["reference"] == engine
         ]
-        signed = np.array(
-            [r["signed_error"] / r["reference_value"] if r["reference_value"] else 0.0 for r in rows]
-        )
+        signed = np.array([r["signed_error"] / r["reference_value"] if r["reference_value"] else 0.0 for r in rows])
         ax = fig.add_subplot(1, len(formulas), k + 1)
         lim = max(np.abs(signed).max(), 1e-16)
         mesh = ax.pcolormesh(
@@ -316,8 +306,16 @@ def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path
     fig = Figure(figsize=(10, 7), layout="constrained")
     ax, ax_err = fig.add_subplot(2, 1, 1), fig.add_subplot(2, 1, 2, sharex=None)
     for engine, run in comparison.runs.items():
-        ax.plot(times, run.rigid, linewidth=3, alpha=0.5, label=f"{engine} (engine energy)")
+        ax.plot(
+            times,
+            run.rigid,
+            linewidth=4,
+            alpha=0.4,
+            color="k" if engine == "mujoco" else "0.6",
+            label=f"{engine} (engine energy)",
+        )
     mj = comparison.runs["mujoco"].rigid
+    palette = dict(zip(formulas, (f"C{k}" for k in range(10)), strict=False))
     for formula in formulas:
         rows = [
             r
@@ -330,10 +328,10 @@ def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path
         if not rows:
             continue
         value = np.array([r["value"] for r in rows])
-        ax.plot(times, value, linewidth=1.2, label=formula)
-        ax_err.plot(times, relative_error(value, mj), linewidth=1.2, label=formula)
+        ax.plot(times, value, linewidth=1.2, color=palette.get(formula), label=formula)
+        ax_err.plot(times, relative_error(value, mj), linewidth=1.2, color=palette.get(formula), label=formula)
     ax.set_ylabel("kinetic energy (J)")
-    ax.set_title(f"{comparison.model}: kinetic energy along a torque-free MuJoCo trajectory")
+    ax.set_title(f"{comparison.model}: kinetic energy along a torque-free MuJoCo trajectory from the reference pose")
     ax.legend(fontsize=7, ncol=2)
     ax.grid(True, alpha=0.3)
     ax_err.set_xlabel("time (s)")
@@ -405,9 +403,7 @@ def write_report(
     if grid_comparison is not None:
         written.append(error_map_figure(grid_comparison, map_formulas, out / "error_map.png"))
     if trajectory_comparison is not None:
-        written.append(
-            trajectory_figure(trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png")
-        )
+        written.append(trajectory_figure(trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png"))
     return written
 
 
