@@ -30,9 +30,7 @@ def _formatter(prog: str) -> argparse.HelpFormatter:
 
 
 def _add(sub: argparse._SubParsersAction, name: str, help_: str, example: str) -> argparse.ArgumentParser:
-    p = sub.add_parser(
-        name, help=help_, description=help_, epilog=f"example:\n  {example}", formatter_class=_formatter
-    )
+    p = sub.add_parser(name, help=help_, description=help_, epilog=f"example:\n  {example}", formatter_class=_formatter)
     p.add_argument("--debug", action="store_true", help="show Python tracebacks on errors")
     return p
 
@@ -66,9 +64,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=DEFAULT_OUT, help=f"report directory (default {DEFAULT_OUT})")
     p.add_argument("--poses", type=int, default=20, help="random poses per model (default 20)")
     p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
-    p.add_argument(
-        "--rtol", type=float, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})"
-    )
+    p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})")
     p.set_defaults(func=_cmd_demo)
 
     p = _add(
@@ -79,15 +75,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("models", nargs="+", metavar="MODEL", help="model file or name")
     p.add_argument("--floating", action="store_true", help="free-floating base (URDF)")
-    p.add_argument(
-        "--poses", type=int, default=20, help="number of poses / grid samples per joint (default 20)"
-    )
+    p.add_argument("--poses", type=int, default=20, help="number of poses / grid samples per joint (default 20)")
     p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
     p.add_argument("--formulas", nargs="+", metavar="NAME", help="formulas to evaluate (default: all)")
     p.add_argument("--out", help="write a report directory here")
-    p.add_argument(
-        "--rtol", type=float, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})"
-    )
+    p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})")
     p.add_argument(
         "--pose-kind",
         choices=("random", "keyframes", "grid", "trajectory"),
@@ -96,12 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--grid-joints", nargs=2, metavar=("A", "B"), help="the two joints of a grid sweep")
     p.add_argument("--duration", type=float, default=1.0, help="trajectory duration in seconds (default 1)")
-    p.add_argument(
-        "--velocity-scale", type=float, default=1.0, help="std of random joint velocities (default 1)"
-    )
-    p.add_argument(
-        "--balance-inertia", action="store_true", help="let MuJoCo balance non-physical inertias (noted)"
-    )
+    p.add_argument("--velocity-scale", type=float, default=1.0, help="std of random joint velocities (default 1)")
+    p.add_argument("--balance-inertia", action="store_true", help="let MuJoCo balance non-physical inertias (noted)")
+    p.add_argument("--pose-file", help="canonical poses from a .npz (qpos, qvel) or .csv (qpos then qvel per row)")
     p.set_defaults(func=_cmd_compare)
 
     p = _add(
@@ -112,14 +101,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("model", metavar="MODEL", help="model file or name")
     p.add_argument("--floating", action="store_true", help="free-floating base (URDF)")
-    p.add_argument(
-        "--balance-inertia", action="store_true", help="let MuJoCo balance non-physical inertias (noted)"
-    )
+    p.add_argument("--balance-inertia", action="store_true", help="let MuJoCo balance non-physical inertias (noted)")
     p.set_defaults(func=_cmd_parity)
 
-    p = _add(
-        sub, "models", "list every model name koenig-check can load, with its format", "koenig-check models"
-    )
+    p = _add(sub, "models", "list every model name koenig-check can load, with its format", "koenig-check models")
     p.set_defaults(func=_cmd_models)
 
     p = _add(

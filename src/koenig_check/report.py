@@ -208,7 +208,7 @@ def error_distribution_figure(records: Sequence[dict[str, Any]], path: Path) -> 
             data,
             positions=positions,
             widths=0.3,
-            vert=False,
+            orientation="horizontal",
             patch_artist=True,
             showfliers=True,
             manage_ticks=False,

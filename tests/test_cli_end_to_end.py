@@ -1,0 +1,126 @@
+"""The CLI end to end on the built-in models: exit codes, every promised file, valid figures."""
+
+from __future__ import annotations
+
+import csv
+import json
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from koenig_check.cli import main
+from koenig_check.formulas import FORMULAS
+from koenig_check.grid import RECORD_FIELDS
+
+MODELS = Path(__file__).resolve().parents[1] / "models"
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def _png_size(path: Path) -> tuple[int, int]:
+    data = path.read_bytes()
+    assert data[:8] == PNG_SIGNATURE, f"{path} is not a PNG"
+    assert data[12:16] == b"IHDR"
+    return struct.unpack(">II", data[16:24])
+
+
+@pytest.fixture(scope="module")
+def demo_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, Path, str]:
+    out = tmp_path_factory.mktemp("demo") / "report"
+    proc = subprocess.run(
+        [sys.executable, "-m", "koenig_check.cli", "demo", "--out", str(out), "--poses", "8"],
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=600,
+    )
+    return proc.returncode, out, proc.stdout + proc.stderr
+
+
+def test_demo_exits_zero_and_prints_the_verdict(demo_report: tuple[int, Path, str]) -> None:
+    code, _, output = demo_report
+    assert code == 0, output
+    assert "Engines (tolerance 1e-09)" in output
+    for model in ["gimbal.xml", "serial7.urdf", "free_body.urdf", "double_pendulum.xml", "armature_chain.xml"]:
+        assert model in output
+    for name in FORMULAS:
+        assert name in output
+    assert "Traceback" not in output
+
+
+def test_demo_writes_every_promised_file(demo_report: tuple[int, Path, str]) -> None:
+    _, out, _ = demo_report
+    summary = (out / "summary.md").read_text()
+    assert summary.startswith("# koenig-check report") and "| formula | equations | mujoco | pinocchio |" in summary
+    with open(out / "records.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows and tuple(rows[0]) == RECORD_FIELDS
+    doc = json.loads((out / "records.json").read_text())
+    assert doc["record_fields"] == list(RECORD_FIELDS) and len(doc["records"]) == len(rows)
+    assert doc["parity"] and all(p["agrees"] for p in doc["parity"])
+    for name in ["error_distribution.png", "error_map.png", "trajectory_energy.png"]:
+        width, height = _png_size(out / name)
+        assert width >= 400 and height >= 300 and (out / name).stat().st_size > 20_000
+
+
+def test_compare_several_models_with_options(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(
+        [
+            "compare",
+            str(MODELS / "gimbal.xml"),
+            str(MODELS / "double_pendulum.urdf"),
+            "--poses",
+            "5",
+            "--seed",
+            "3",
+            "--formulas",
+            "exact",
+            "koenig_world",
+            "planar",
+            "--out",
+            str(tmp_path / "r"),
+        ]
+    )
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "gimbal.xml" in out and "double_pendulum.urdf" in out and "alyushin_current" not in out
+    rows = list(csv.DictReader(open(tmp_path / "r" / "records.csv", newline="")))
+    assert {r["formula"] for r in rows} == {"exact", "koenig_world", "planar"}
+    assert {r["model"] for r in rows} == {"gimbal.xml", "double_pendulum.urdf"}
+
+
+def test_compare_exits_one_with_a_reason_when_a_model_fails(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    missing = tmp_path / "missing.urdf"
+    code = main(["compare", str(MODELS / "gimbal.urdf"), str(missing), "--poses", "3"])
+    captured = capsys.readouterr()
+    assert code == 1
+    assert "gimbal.urdf" in captured.out and "agree" in captured.out  # the good model still reports
+    assert "missing.urdf" in captured.out and "FAILED" in captured.out
+    err_lines = [line for line in captured.err.splitlines() if line.startswith("koenig-check:")]
+    assert len(err_lines) == 1 and "missing.urdf" in err_lines[0]
+
+
+def test_parity_and_models_commands(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["parity", str(MODELS / "serial7.urdf")]) == 0
+    out = capsys.readouterr().out
+    assert "verdict: no import difference" in out and "j3" in out
+    assert main(["models"]) == 0
+    listing = capsys.readouterr().out
+    assert "urdf" in listing and "mjcf" in listing and len(listing.splitlines()) > 20
+
+
+@pytest.mark.parametrize("command", ["demo", "compare", "parity", "models", "selfcheck"])
+def test_every_command_has_help_with_an_example(command: str) -> None:
+    proc = subprocess.run(
+        [sys.executable, "-m", "koenig_check.cli", command, "--help"], capture_output=True, text=True, check=False
+    )
+    assert proc.returncode == 0 and f"example:\n  koenig-check {command}" in proc.stdout
+
+
+def test_bad_usage_is_one_line_and_status_two() -> None:
+    proc = subprocess.run(
+        [sys.executable, "-m", "koenig_check.cli", "compare"], capture_output=True, text=True, check=False
+    )
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and "Traceback" not in proc.stderr
