@@ -10,6 +10,7 @@ from typing import Any
 
 from koenig_check import grid, poses
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
+from koenig_check.records import RecordTable
 
 POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
 
@@ -35,8 +36,8 @@ class CrossCheck:
     rtol: float = DEFAULT_RTOL
 
     @property
-    def records(self) -> list[dict[str, Any]]:
-        """All tidy records of all models."""
+    def records(self) -> RecordTable:
+        """All tidy records of all models (iterate for dicts, index by column name for arrays)."""
         return grid.records_for(self.comparisons)
 
     @property

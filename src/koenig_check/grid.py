@@ -17,24 +17,12 @@ import numpy as np
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.point_masses import equimomental_points
 from koenig_check.poses import PoseSet
+from koenig_check.records import RECORD_FIELDS, RecordTable
 from koenig_check.segments import SegmentStates
 
 #: Default relative tolerance for "agrees".
 DEFAULT_RTOL = 1e-9
 ENGINES = ("mujoco", "pinocchio")
-RECORD_FIELDS = (
-    "model",
-    "pose",
-    "formula",
-    "source",
-    "reference",
-    "scope",
-    "value",
-    "reference_value",
-    "abs_error",
-    "rel_error",
-    "signed_error",
-)
 
 
 class EngineModel(Protocol):
@@ -69,8 +57,8 @@ class ModelComparison:
     model : str
         Model label.
     poses : PoseSet
-    records : list of dict
-        Tidy records with the keys of :data:`RECORD_FIELDS`.
+    records : RecordTable
+        Tidy records with the columns of :data:`RECORD_FIELDS`.
     refusals : list of dict
         Formulas that refused (e.g. ``planar`` on non-plane-parallel motion), with reasons.
     runs : dict
@@ -81,7 +69,7 @@ class ModelComparison:
 
     model: str
     poses: PoseSet
-    records: list[dict[str, Any]] = field(default_factory=list)
+    records: RecordTable = field(default_factory=RecordTable)
     refusals: list[dict[str, Any]] = field(default_factory=list)
     runs: dict[str, EngineRun] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
@@ -164,21 +152,19 @@ def compare_runs(
         if FORMULAS[n].needs_path and poses.times is None:
             result.notes.append(f"{n}: skipped, the poses are not a path (use a trajectory)")
     names = [n for n in names if not (FORMULAS[n].needs_path and poses.times is None)]
-    pose_ids = np.asarray(poses.ids, dtype=object)
+    pose_ids = np.asarray(poses.ids)
     columns: dict[str, list[np.ndarray]] = {k: [] for k in RECORD_FIELDS}
 
-    def emit(
-        formula: str, source: str, reference: str, scope: np.ndarray, ids: np.ndarray, value, ref
-    ) -> None:
+    def emit(formula: str, source: str, reference: str, scope: np.ndarray, ids: np.ndarray, value, ref) -> None:
         value = np.asarray(value, dtype=float).ravel()
         ref = np.asarray(ref, dtype=float).ravel()
         n = value.size
         signed = value - ref
-        columns["model"].append(np.full(n, label, dtype=object))
+        columns["model"].append(np.full(n, label))
         columns["pose"].append(ids)
-        columns["formula"].append(np.full(n, formula, dtype=object))
-        columns["source"].append(np.full(n, source, dtype=object))
-        columns["reference"].append(np.full(n, reference, dtype=object))
+        columns["formula"].append(np.full(n, formula))
+        columns["source"].append(np.full(n, source))
+        columns["reference"].append(np.full(n, reference))
         columns["scope"].append(scope)
         columns["value"].append(value)
         columns["reference_value"].append(ref)
@@ -187,20 +173,16 @@ def compare_runs(
         columns["signed_error"].append(signed)
 
     for source, run in runs.items():
-        angles = (
-            integrate_angular_velocity(run.states.omega, poses.times) if poses.times is not None else None
-        )
+        angles = integrate_angular_velocity(run.states.omega, poses.times) if poses.times is not None else None
         exact_seg = FORMULAS["exact"](run.states)
         B = run.states.n_segments
-        seg_scope = np.tile(np.asarray(run.states.names, dtype=object), poses.n_poses)
+        seg_scope = np.tile(np.asarray(run.states.names), poses.n_poses)
         seg_ids = np.repeat(pose_ids, B)
         for name in names:
             try:
                 per_segment = _evaluate(name, run, angles)
             except NotPlaneParallelError as err:
-                result.refusals.append(
-                    {"model": label, "formula": name, "source": source, "reason": str(err)}
-                )
+                result.refusals.append({"model": label, "formula": name, "source": source, "reason": str(err)})
                 continue
             total = per_segment.sum(axis=1)
             for reference, ref_run in runs.items():
@@ -208,7 +190,7 @@ def compare_runs(
                     name,
                     source,
                     reference,
-                    np.full(poses.n_poses, "total", dtype=object),
+                    np.full(poses.n_poses, "total"),
                     pose_ids,
                     total,
                     ref_run.rigid,
@@ -216,11 +198,7 @@ def compare_runs(
             if segments:
                 emit(name, source, f"exact@{source}", seg_scope, seg_ids, per_segment, exact_seg)
     if columns["model"]:
-        flat = {k: np.concatenate(v) for k, v in columns.items()}
-        keys = list(flat)
-        result.records = [
-            dict(zip(keys, row, strict=True)) for row in zip(*(flat[k].tolist() for k in keys), strict=True)
-        ]
+        result.records = RecordTable({k: np.concatenate(v) for k, v in columns.items()})
     return result
 
 
@@ -256,37 +234,38 @@ def summarize(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> list[F
     list of FormulaSummary
     """
     out = []
-    recs = comparison.records
-    totals: dict[tuple[str, str, str], list[dict]] = {}
-    seg_worst: dict[tuple[str, str], tuple[float, str]] = {}
-    for r in recs:
-        if r["scope"] == "total":
-            totals.setdefault((r["formula"], r["source"], r["reference"]), []).append(r)
-        else:
-            key = (r["formula"], r["source"])
-            if r["abs_error"] > seg_worst.get(key, (-1.0, ""))[0]:
-                seg_worst[key] = (r["abs_error"], f"{r['scope']} @ {r['pose']}")
-    for (formula, source, reference), rows in totals.items():
-        rel = np.array([r["rel_error"] for r in rows])
-        signed = np.array([r["signed_error"] for r in rows])
-        ref = np.array([abs(r["reference_value"]) for r in rows])
-        worst = int(np.argmax(rel))
-        seg = seg_worst.get((formula, source))
-        out.append(
-            FormulaSummary(
-                model=comparison.model,
-                formula=formula,
-                source=source,
-                reference=reference,
-                max_rel_error=float(rel.max()),
-                median_rel_error=float(np.median(rel)),
-                over_fraction=float(np.mean(signed > rtol * ref)),
-                under_fraction=float(np.mean(signed < -rtol * ref)),
-                worst_pose=rows[worst]["pose"],
-                worst_segment=None if seg is None or seg[0] == 0 else seg[1],
-                agrees=bool(rel.max() <= rtol),
-            )
-        )
+    rec = comparison.records
+    total = rec["scope"] == "total"
+    for formula in dict.fromkeys(rec["formula"].tolist()):
+        f_mask = rec["formula"] == formula
+        for source in dict.fromkeys(rec["source"][f_mask].tolist()):
+            fs = f_mask & (rec["source"] == source)
+            seg = fs & ~total
+            worst_segment = None
+            if seg.any():
+                k = int(np.flatnonzero(seg)[np.argmax(rec["abs_error"][seg])])
+                if rec["abs_error"][k] > 0:
+                    worst_segment = f"{rec['scope'][k]} @ {rec['pose'][k]}"
+            for reference in dict.fromkeys(rec["reference"][fs & total].tolist()):
+                rows = np.flatnonzero(fs & total & (rec["reference"] == reference))
+                rel = rec["rel_error"][rows]
+                signed = rec["signed_error"][rows]
+                ref = np.abs(rec["reference_value"][rows])
+                out.append(
+                    FormulaSummary(
+                        model=comparison.model,
+                        formula=formula,
+                        source=source,
+                        reference=reference,
+                        max_rel_error=float(rel.max()),
+                        median_rel_error=float(np.median(rel)),
+                        over_fraction=float(np.mean(signed > rtol * ref)),
+                        under_fraction=float(np.mean(signed < -rtol * ref)),
+                        worst_pose=str(rec["pose"][rows[int(np.argmax(rel))]]),
+                        worst_segment=worst_segment,
+                        agrees=bool(rel.max() <= rtol),
+                    )
+                )
     return out
 
 
@@ -341,9 +320,7 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
         )
     for name, value in self_rel.items():
         if value > rtol:
-            reasons.append(
-                f"{name}: exact on its own segment states differs from its own energy by {value:.3g}"
-            )
+            reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
     return EngineParity(
         comparison.model,
         float(rel.max()),
@@ -355,7 +332,7 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
     )
 
 
-def records_for(comparisons: Iterable[ModelComparison]) -> list[dict[str, Any]]:
+def records_for(comparisons: Iterable[ModelComparison]) -> RecordTable:
     """Concatenate the records of several comparisons.
 
     Parameters
@@ -364,6 +341,6 @@ def records_for(comparisons: Iterable[ModelComparison]) -> list[dict[str, Any]]:
 
     Returns
     -------
-    list of dict
+    RecordTable
     """
-    return [r for c in comparisons for r in c.records]
+    return RecordTable.concat(c.records for c in comparisons)

@@ -13,7 +13,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from koenig_check.formulas import FORMULAS
-from koenig_check.grid import RECORD_FIELDS, EngineParity, FormulaSummary, ModelComparison, relative_error
+from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison, relative_error
+from koenig_check.records import RECORD_FIELDS, RecordTable
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
@@ -108,22 +109,22 @@ def summary_markdown(
     return "\n".join(lines)
 
 
-def write_records_csv(path: Path, records: Sequence[dict[str, Any]]) -> Path:
+def write_records_csv(path: Path, records: RecordTable) -> Path:
     """Write tidy records as CSV with the columns of :data:`RECORD_FIELDS`.
 
     Parameters
     ----------
     path : Path
-    records : sequence of dict
+    records : RecordTable
 
     Returns
     -------
     Path
     """
     with open(path, "w", newline="", encoding="utf-8") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(RECORD_FIELDS))
-        writer.writeheader()
-        writer.writerows(records)
+        writer = csv.writer(fh)
+        writer.writerow(RECORD_FIELDS)
+        writer.writerows(records.rows())
     return path
 
 
@@ -141,7 +142,7 @@ def _jsonable(x: Any) -> Any:
 
 def write_json(
     path: Path,
-    records: Sequence[dict[str, Any]],
+    records: RecordTable,
     summaries: Sequence[FormulaSummary],
     parities: Sequence[EngineParity],
     failures: Sequence[tuple[str, str]] = (),
@@ -155,7 +156,7 @@ def write_json(
     Parameters
     ----------
     path : Path
-    records : sequence of dict
+    records : RecordTable
     summaries : sequence of FormulaSummary
     parities : sequence of EngineParity
     failures : sequence of (model, reason)
@@ -168,7 +169,7 @@ def write_json(
     """
     doc = {
         "record_fields": list(RECORD_FIELDS),
-        "records": [[r[k] for k in RECORD_FIELDS] for r in records],
+        "records": records.rows(),
         "summaries": [asdict(s) for s in summaries],
         "parity": [asdict(p) for p in parities],
         "failures": [{"model": m, "reason": r} for m, r in failures],
@@ -178,31 +179,26 @@ def write_json(
     return path
 
 
-def error_distribution_figure(records: Sequence[dict[str, Any]], path: Path) -> Path:
+def error_distribution_figure(records: RecordTable, path: Path) -> Path:
     """Distribution of relative error per formula (totals, each engine against itself), log scale.
 
     Parameters
     ----------
-    records : sequence of dict
+    records : RecordTable
     path : Path
 
     Returns
     -------
     Path
     """
-    rows = [r for r in records if r["scope"] == "total" and r["source"] == r["reference"]]
-    formulas = list(dict.fromkeys(r["formula"] for r in rows))
-    engines = list(dict.fromkeys(r["source"] for r in rows))
+    rows = records.where(records.mask(scope="total") & (records["source"] == records["reference"]))
+    formulas = list(dict.fromkeys(rows["formula"].tolist()))
+    engines = list(dict.fromkeys(rows["source"].tolist()))
     fig = Figure(figsize=(10, 0.45 * max(len(formulas), 4) + 1.5), layout="constrained")
     ax = fig.add_subplot()
     colors = {"mujoco": "tab:blue", "pinocchio": "tab:orange"}
     for k, engine in enumerate(engines):
-        data = [
-            np.log10(
-                np.maximum([r["rel_error"] for r in rows if r["formula"] == f and r["source"] == engine], LOG_FLOOR)
-            )
-            for f in formulas
-        ]
+        data = [np.log10(np.maximum(rows.where(formula=f, source=engine)["rel_error"], LOG_FLOOR)) for f in formulas]
         positions = np.arange(len(formulas)) + (k - (len(engines) - 1) / 2) * 0.35
         parts = ax.boxplot(
             data,
@@ -260,12 +256,8 @@ def error_map_figure(comparison: ModelComparison, formulas: Sequence[str], path:
     ja, jb = grid["joints"]
     fig = Figure(figsize=(4.2 * len(formulas), 4.0), layout="constrained")
     for k, formula in enumerate(formulas):
-        rows = [
-            r
-            for r in comparison.records
-            if r["formula"] == formula and r["scope"] == "total" and r["source"] == engine and r["reference"] == engine
-        ]
-        signed = np.array([r["signed_error"] / r["reference_value"] if r["reference_value"] else 0.0 for r in rows])
+        rows = comparison.records.where(formula=formula, scope="total", source=engine, reference=engine)
+        signed = relative_error(rows["value"], rows["reference_value"])
         ax = fig.add_subplot(1, len(formulas), k + 1)
         lim = max(np.abs(signed).max(), 1e-16)
         mesh = ax.pcolormesh(
@@ -317,17 +309,10 @@ def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path
     mj = comparison.runs["mujoco"].rigid
     palette = dict(zip(formulas, (f"C{k}" for k in range(10)), strict=False))
     for formula in formulas:
-        rows = [
-            r
-            for r in comparison.records
-            if r["formula"] == formula
-            and r["scope"] == "total"
-            and r["source"] == "mujoco"
-            and r["reference"] == "mujoco"
-        ]
-        if not rows:
+        rows = comparison.records.where(formula=formula, scope="total", source="mujoco", reference="mujoco")
+        if not len(rows):
             continue
-        value = np.array([r["value"] for r in rows])
+        value = rows["value"]
         ax.plot(times, value, linewidth=1.2, color=palette.get(formula), label=formula)
         ax_err.plot(times, relative_error(value, mj), linewidth=1.2, color=palette.get(formula), label=formula)
     ax.set_ylabel("kinetic energy (J)")

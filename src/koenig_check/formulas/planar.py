@@ -27,7 +27,7 @@ def _infer_normals(states: SegmentStates) -> np.ndarray:
     n = np.linalg.norm(w, axis=-1, keepdims=True)
     # Right singular vector of the smallest singular value of the (P, 3) velocity stack.
     v_stack = np.swapaxes(states.v_com, 0, 1)  # (B, P, 3)
-    least = np.linalg.svd(v_stack, full_matrices=True)[2][:, -1, :]  # (B, 3)
+    least = np.linalg.svd(v_stack, full_matrices=False)[2][:, -1, :]  # (B, 3)
     return np.where(n > 0, w / np.where(n > 0, n, 1.0), least)
 
 
