@@ -21,9 +21,7 @@ def _grid(*values: np.ndarray) -> list[np.ndarray]:
     return [np.asarray(v, dtype=float)[..., None] for v in values]
 
 
-def coordinates_39(
-    lagrange: np.ndarray, pole: np.ndarray, dtheta_z: np.ndarray, dtheta_x: np.ndarray
-) -> np.ndarray:
+def coordinates_39(lagrange: np.ndarray, pole: np.ndarray, dtheta_z: np.ndarray, dtheta_x: np.ndarray) -> np.ndarray:
     """Current coordinates of every particle, eq. (39), as written.
 
     Parameters

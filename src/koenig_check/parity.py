@@ -122,9 +122,7 @@ class ParityReport:
     @property
     def clean(self) -> bool:
         """True when no import difference was found."""
-        return not (
-            self.differing_segments or self.differing_dofs or self.only_in_mujoco or self.only_in_pinocchio
-        )
+        return not (self.differing_segments or self.differing_dofs or self.only_in_mujoco or self.only_in_pinocchio)
 
     def causes_for(self, segment: str) -> tuple[str, ...]:
         """The causes found for one segment (empty when it matches).
@@ -216,9 +214,7 @@ def compiler_findings(path: Path) -> list[str]:
             elif attr == "balanceinertia" and value == "true":
                 out.append("compiler balanceinertia=true: MuJoCo alters inertias that violate A + B >= C")
             elif attr == "inertiafromgeom" and value == "true":
-                out.append(
-                    "compiler inertiafromgeom=true: MuJoCo computes every body's inertia from its geoms"
-                )
+                out.append("compiler inertiafromgeom=true: MuJoCo computes every body's inertia from its geoms")
     for body in root.iter("body"):
         if body.find("inertial") is None and body.find("geom") is not None:
             kinds = sorted({g.get("type", "sphere") for g in body.findall("geom")})
@@ -351,8 +347,7 @@ def format_parity(report: ParityReport) -> str:
     for d in report.dofs:
         verdict = "same" if not d.causes else "DIFFERS: " + ", ".join(d.causes)
         lines.append(
-            f"{d.joint[:24]:24s} {d.armature[0]:16.6g} {d.armature[1]:14.6g} "
-            f"{d.jacobian_difference:12.2e}  {verdict}"
+            f"{d.joint[:24]:24s} {d.armature[0]:16.6g} {d.armature[1]:14.6g} {d.jacobian_difference:12.2e}  {verdict}"
         )
     if report.only_in_mujoco:
         lines.append(f"\nsegments only in MuJoCo: {report.only_in_mujoco}")

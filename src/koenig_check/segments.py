@@ -105,18 +105,14 @@ class SegmentStates:
                 idx = np.argwhere(bad)[0]
                 seg = idx[0] if f.name in _PER_SEGMENT else idx[1]
                 where = "" if f.name in _PER_SEGMENT else f" at pose {idx[0]}"
-                raise ValueError(
-                    f"SegmentStates.{f.name}: non-finite value for segment {names[seg]!r}{where}"
-                )
+                raise ValueError(f"SegmentStates.{f.name}: non-finite value for segment {names[seg]!r}{where}")
             arr.setflags(write=False)
             object.__setattr__(self, f.name, arr)
         self._check_physics()
 
     def _check_physics(self) -> None:
         for b in np.flatnonzero(self.mass <= 0.0):
-            raise ValueError(
-                f"SegmentStates.mass: segment {self.names[b]!r} has non-positive mass {self.mass[b]:g}"
-            )
+            raise ValueError(f"SegmentStates.mass: segment {self.names[b]!r} has non-positive mass {self.mass[b]:g}")
         asym = np.abs(self.inertia_body - np.swapaxes(self.inertia_body, -1, -2)).max(axis=(-1, -2))
         scale = np.abs(self.inertia_body).max(axis=(-1, -2))
         for b in np.flatnonzero(asym > SYMMETRY_RTOL * np.maximum(scale, 1e-300)):
@@ -133,9 +129,7 @@ class SegmentStates:
                 idx = np.argwhere(bad)[0]
                 seg = idx[-1]
                 where = f" at pose {idx[0]}" if R.ndim == 4 else ""
-                raise ValueError(
-                    f"SegmentStates.{name}: segment {self.names[seg]!r}{where} is not a proper rotation"
-                )
+                raise ValueError(f"SegmentStates.{name}: segment {self.names[seg]!r}{where} is not a proper rotation")
 
     # ------------------------------------------------------------------ shape
     @property
@@ -171,9 +165,7 @@ class SegmentStates:
         R = self.rotation_ref
         return R @ self.inertia_body @ np.swapaxes(R, -1, -2)
 
-    def select(
-        self, poses: np.ndarray | slice | None = None, segments: list[str] | None = None
-    ) -> SegmentStates:
+    def select(self, poses: np.ndarray | slice | None = None, segments: list[str] | None = None) -> SegmentStates:
         """Return a subset of poses and/or segments.
 
         Parameters

@@ -72,17 +72,13 @@ def analytic_cases(seed: int = 0) -> list[Case]:
         _path_case(
             "cylinder_translate",
             "solid cylinder translating without rotation (½mv²)",
-            constant_rotation_states(
-                2.0, cylinder_inertia(2.0, 0.1, 0.5), np.zeros(3), t, v_com=[0.3, -1.2, 2.0]
-            ),
+            constant_rotation_states(2.0, cylinder_inertia(2.0, 0.1, 0.5), np.zeros(3), t, v_com=[0.3, -1.2, 2.0]),
             t,
         ),
         _path_case(
             "tilted_box_one_axis",
             "box with tilted principal axes turning about world z from its initial state (eq. 17)",
-            constant_rotation_states(
-                3.0, box, np.array([0.0, 0.0, 2.5]), t, rotation_ref=random_rotations(rng, ())
-            ),
+            constant_rotation_states(3.0, box, np.array([0.0, 0.0, 2.5]), t, rotation_ref=random_rotations(rng, ())),
             t,
         ),
     ]

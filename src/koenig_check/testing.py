@@ -61,8 +61,7 @@ def assert_energy_parity(
     only_b = sorted(set(sb.names) - set(sa.names))
     if only_a or only_b:
         raise AssertionError(
-            f"{model}: segments differ between the engines: only in MuJoCo {only_a}, "
-            f"only in Pinocchio {only_b}"
+            f"{model}: segments differ between the engines: only in MuJoCo {only_a}, only in Pinocchio {only_b}"
         )
     sb = sb.select(segments=list(sa.names))
     ea, eb = FORMULAS["exact"](sa), FORMULAS["exact"](sb)

@@ -80,9 +80,7 @@ def _root_format(path: Path, data: bytes) -> str:
                     if root_tag is None:
                         root_tag = elem.tag
                     if depth > MAX_DEPTH:
-                        raise ModelFileError(
-                            f"{path}: element <{elem.tag}> nested deeper than {MAX_DEPTH} levels"
-                        )
+                        raise ModelFileError(f"{path}: element <{elem.tag}> nested deeper than {MAX_DEPTH} levels")
                 else:
                     depth -= 1
                     elem.clear()

@@ -66,9 +66,7 @@ def _registry() -> dict[str, Formula]:
                 needs_path=conv == "integrated",
             )
         )
-    entries.append(
-        Formula("alyushin_pole:current", "(37) with (28), (27)", partial(alyushin_pole, recipe="current"))
-    )
+    entries.append(Formula("alyushin_pole:current", "(37) with (28), (27)", partial(alyushin_pole, recipe="current")))
     for conv in CONVENTIONS:
         entries.append(
             Formula(

@@ -101,9 +101,7 @@ def integrate_angular_velocity(omega: np.ndarray, times: np.ndarray) -> np.ndarr
     return np.concatenate([np.zeros_like(omega[:1]), np.cumsum(steps, axis=0)], axis=0)
 
 
-def paper_angles(
-    states: SegmentStates, convention: Convention, angles: np.ndarray | None = None
-) -> np.ndarray:
+def paper_angles(states: SegmentStates, convention: Convention, angles: np.ndarray | None = None) -> np.ndarray:
     """Return Δθ (P, B, 3) for a convention, validating a caller-supplied path integral.
 
     Parameters
