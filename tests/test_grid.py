@@ -15,9 +15,7 @@ from koenig_check.poses import PoseSet
 def _run(engine: str, states, rigid_scale: float = 1.0, armature: float = 0.0) -> EngineRun:
     offsets, _ = equimomental_points(states.mass, states.inertia_body)
     rigid = FORMULAS["exact"](states).sum(axis=1) * rigid_scale
-    return EngineRun(
-        engine, states, rigid, np.full(states.n_poses, armature), rigid_point_velocities(states, offsets)
-    )
+    return EngineRun(engine, states, rigid, np.full(states.n_poses, armature), rigid_point_velocities(states, offsets))
 
 
 @pytest.fixture
@@ -29,9 +27,7 @@ def synthetic(rng: np.random.Generator):
 
 def test_records_equal_formulas_on_the_same_states(synthetic) -> None:
     states, poses = synthetic
-    comp = compare_runs(
-        "toy", poses, {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states)}
-    )
+    comp = compare_runs("toy", poses, {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states)})
     exact_total = FORMULAS["exact"](states).sum(axis=1)
     for name in ["koenig_world", "alyushin_paper:rotvec", "point_masses"]:
         direct = FORMULAS[name](states)

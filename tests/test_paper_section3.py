@@ -77,9 +77,7 @@ def _exact_on_grid() -> tuple[np.ndarray, np.ndarray]:
     R = rotation_39(TZ, TX).reshape(-1, 1, 3, 3)
     omega = angular_velocity_39(TZ, RATE_Z, RATE_X).reshape(-1, 1, 3)
     arm = np.einsum("pbij,j->pbi", R, COM_OFFSET)
-    states = rigid_states(
-        np.array([MASS]), INERTIA[None], R, omega, v_com=np.cross(omega, arm), com=POLE + arm
-    )
+    states = rigid_states(np.array([MASS]), INERTIA[None], R, omega, v_com=np.cross(omega, arm), com=POLE + arm)
     return integrated, FORMULAS["exact"](states).reshape(TZ.shape)
 
 

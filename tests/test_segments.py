@@ -41,9 +41,7 @@ def test_valid_states_are_frozen_and_read_only(random_batch: SegmentStates) -> N
         ),
         (
             "inertia_body",
-            lambda a: (
-                a + np.where(np.arange(a.shape[0])[:, None, None] == 5, np.triu(np.ones((3, 3)), 1), 0.0)
-            ),
+            lambda a: a + np.where(np.arange(a.shape[0])[:, None, None] == 5, np.triu(np.ones((3, 3)), 1), 0.0),
             r"'segment5' is not symmetric",
         ),
         (
@@ -54,9 +52,7 @@ def test_valid_states_are_frozen_and_read_only(random_batch: SegmentStates) -> N
         ("rotation_ref", lambda a: -a, r"rotation_ref: segment 'segment0' is not a proper rotation"),
     ],
 )
-def test_invalid_states_name_field_and_segment(
-    random_batch: SegmentStates, field: str, mutate, message: str
-) -> None:
+def test_invalid_states_name_field_and_segment(random_batch: SegmentStates, field: str, mutate, message: str) -> None:
     kwargs = _fields(random_batch)
     kwargs["names"] = random_batch.names
     kwargs[field] = mutate(kwargs[field])

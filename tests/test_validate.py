@@ -20,9 +20,7 @@ BILLION_LAUGHS = """<?xml version="1.0"?>
 """
 
 
-@pytest.mark.parametrize(
-    "path", sorted(MODELS.glob("*.xml")) + sorted(MODELS.glob("*.urdf")), ids=lambda p: p.name
-)
+@pytest.mark.parametrize("path", sorted(MODELS.glob("*.xml")) + sorted(MODELS.glob("*.urdf")), ids=lambda p: p.name)
 def test_project_models_pass(path: Path) -> None:
     assert preflight(path) == ("mjcf" if path.suffix == ".xml" else "urdf")
 

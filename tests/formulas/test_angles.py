@@ -29,9 +29,7 @@ def test_rotvec_of_a_turn_about_a_world_axis(rng: np.random.Generator) -> None:
     R_ref = random_rotations(rng, ())
     axis = np.array([0.6, 0.0, 0.8])
     states = constant_rotation_states(1.0, np.eye(3), 0.9 * axis, np.linspace(0, 2, 5), rotation_ref=R_ref)
-    np.testing.assert_allclose(
-        rotvec_angles(states)[:, 0], np.linspace(0, 2, 5)[:, None] * 0.9 * axis, atol=1e-12
-    )
+    np.testing.assert_allclose(rotvec_angles(states)[:, 0], np.linspace(0, 2, 5)[:, None] * 0.9 * axis, atol=1e-12)
 
 
 def test_euler_xyz_is_extrinsic_x_then_y_then_z() -> None:

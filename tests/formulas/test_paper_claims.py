@@ -40,9 +40,7 @@ def test_rotation_about_one_world_axis_from_initial_state_matches_exact(
     if formula == "planar":
         states = states.with_motion(v_com=np.where(np.array(axis) == 1, 0.0, states.v_com))
     angles = integrate_angular_velocity(states.omega, times)
-    np.testing.assert_allclose(
-        FORMULAS[formula](states, angles=angles), FORMULAS["exact"](states), rtol=1e-12
-    )
+    np.testing.assert_allclose(FORMULAS[formula](states, angles=angles), FORMULAS["exact"](states), rtol=1e-12)
 
 
 @pytest.mark.parametrize("convention", CONVENTIONS)

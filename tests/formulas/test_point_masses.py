@@ -23,9 +23,7 @@ def test_equimomental_set_reproduces_mass_com_and_inertia(rng: np.random.Generat
         masses,
         r2[..., None, None] * np.eye(3) - offsets[..., :, None] * offsets[..., None, :],
     )
-    np.testing.assert_allclose(
-        inertia, states.inertia_body, rtol=1e-12, atol=1e-12 * np.abs(states.inertia_body).max()
-    )
+    np.testing.assert_allclose(inertia, states.inertia_body, rtol=1e-12, atol=1e-12 * np.abs(states.inertia_body).max())
 
 
 def test_non_physical_inertia_is_refused_by_name() -> None:

@@ -54,14 +54,10 @@ def test_exact_is_invariant_under_change_of_world_frame(seed: int, n_poses: int,
 
 
 @PROPERTY_SETTINGS
-@given(
-    seed=seeds, alpha=st.floats(min_value=-50, max_value=50, allow_nan=False).filter(lambda a: abs(a) > 1e-3)
-)
+@given(seed=seeds, alpha=st.floats(min_value=-50, max_value=50, allow_nan=False).filter(lambda a: abs(a) > 1e-3))
 def test_exact_scales_as_alpha_squared(seed: int, alpha: float) -> None:
     states = random_states(np.random.default_rng(seed), 3, 4)
-    scaled = states.with_motion(
-        v_com=alpha * states.v_com, omega=alpha * states.omega, v_pole=alpha * states.v_pole
-    )
+    scaled = states.with_motion(v_com=alpha * states.v_com, omega=alpha * states.omega, v_pole=alpha * states.v_pole)
     np.testing.assert_allclose(FORMULAS["exact"](scaled), alpha**2 * FORMULAS["exact"](states), rtol=1e-12)
 
 

@@ -1,0 +1,132 @@
+"""The interface both engine adapters implement, and helpers they share."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Protocol
+
+import numpy as np
+
+from koenig_check.engines.energy import EnergyParts
+from koenig_check.segments import SegmentStates
+
+
+class EngineModel(Protocol):
+    """A model loaded in one engine, answering for batches of canonical states.
+
+    Every method takes canonical (MuJoCo-layout) states: ``qpos`` (P, nq), ``qvel``/``qacc`` (P, nv).
+    """
+
+    engine: str
+    path: Path
+    notes: list[str]
+    segment_names: tuple[str, ...]
+    nq: int
+    nv: int
+
+    def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
+        """Return the engine's segment states."""
+        ...
+
+    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """Return world velocities (P, B, K, 3) of points (B, K, 3) fixed in the segments."""
+        ...
+
+    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
+        """Return the engine's kinetic energy, armature separate."""
+        ...
+
+    def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return the mass matrix (P, nv, nv) in canonical velocity coordinates."""
+        ...
+
+    def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return generalized forces (P, nv), gravity off, canonical coordinates."""
+        ...
+
+    def dofs_by_kind(self) -> dict[str, np.ndarray]:
+        """Return canonical dof indices grouped by joint kind."""
+        ...
+
+
+def as_batch(x: np.ndarray, n: int, what: str) -> np.ndarray:
+    """Return ``x`` as a float array of shape (P, n).
+
+    Parameters
+    ----------
+    x : array_like, shape (P, n) or (n,)
+    n : int
+    what : str
+        Name for the error message.
+
+    Returns
+    -------
+    ndarray, shape (P, n)
+
+    Raises
+    ------
+    ValueError
+        On a wrong shape.
+    """
+    arr = np.atleast_2d(np.asarray(x, dtype=float))
+    if arr.ndim != 2 or arr.shape[1] != n:
+        raise ValueError(f"{what}: expected shape (P, {n}), got {np.shape(x)}")
+    return arr
+
+
+def as_batches(qpos: np.ndarray, nq: int, *vels: tuple[np.ndarray, str], nv: int) -> list[np.ndarray]:
+    """Validate a position batch and velocity-like batches with the same number of poses.
+
+    Parameters
+    ----------
+    qpos : array_like, shape (P, nq)
+    nq : int
+    *vels : (array_like, name)
+        Velocity-like arrays of shape (P, nv).
+    nv : int
+
+    Returns
+    -------
+    list of ndarray
+        ``[qpos, *vels]`` as 2-D float arrays.
+    """
+    q = as_batch(qpos, nq, "qpos")
+    out = [q]
+    for arr, what in vels:
+        a = as_batch(arr, nv, what)
+        if a.shape[0] != q.shape[0]:
+            raise ValueError(f"{what} has {a.shape[0]} poses, qpos has {q.shape[0]}")
+        out.append(a)
+    return out
+
+
+def check_points(points: np.ndarray, n_segments: int) -> np.ndarray:
+    """Validate a (B, K, 3) array of points, one set per segment.
+
+    Parameters
+    ----------
+    points : array_like, shape (B, K, 3)
+    n_segments : int
+
+    Returns
+    -------
+    ndarray, shape (B, K, 3)
+    """
+    pts = np.asarray(points, dtype=float)
+    if pts.ndim != 3 or pts.shape[0] != n_segments or pts.shape[2] != 3:
+        raise ValueError(f"points: expected shape ({n_segments}, K, 3), got {pts.shape}")
+    return pts
+
+
+def symmetrize(inertia: np.ndarray) -> np.ndarray:
+    """Return ``½ (I + Iᵀ)`` over the last two axes.
+
+    Parameters
+    ----------
+    inertia : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+    """
+    return 0.5 * (inertia + np.swapaxes(inertia, -1, -2))

@@ -1,0 +1,337 @@
+"""MuJoCo adapter: segment states, point velocities, energy, mass matrix, inverse dynamics.
+
+Segments
+--------
+A segment is a body carrying at least one joint, together with every jointless descendant body
+welded to it (MuJoCo keeps those as separate bodies unless ``fusestatic`` fused them); bodies
+welded to the world are not segments.  The lumped mass, COM and central inertia (parallel-axis
+theorem) are expressed in the segment body's frame (``xpos``/``xmat``), computed once from the
+compiled ``body_mass``, ``xipos``, ``ximat`` and ``body_inertia`` at ``qpos0``.  The segment is named
+after the body's last joint; its pole is that joint's anchor as a point of the segment,
+``xpos + xmat · jnt_pos``.  That is MuJoCo's ``xanchor`` for hinge, ball and free joints; for a slide
+joint ``xanchor`` stays on the parent (it is computed before the displacement) while the pole here
+moves with the segment, like Pinocchio's joint origin.
+
+Velocities come from ``cvel``: the body's spatial velocity ``(ω, v)`` in world orientation,
+referred to the ``subtree_com`` of the body's root (verified against ``mj_objectVelocity`` in
+MuJoCo 4.0), so a point ``p`` of the body moves with ``v + ω × (p - subtree_com[root])``.
+
+What MuJoCo 4.0 includes (verified, see ``self_consistency``): ``mj_energyVel`` (with
+``mjENBL_ENERGY``, after ``mj_makeM``) is ``½ q̇ᵀ M q̇`` where ``M`` (``mj_fullM``) carries
+``dof_armature`` on its diagonal, so the reported energy includes the armature; ``mj_rne`` excludes
+the armature, ``mj_inverse`` includes it.  Inverse dynamics here is ``mj_inverse`` on a copy with
+gravity zero and constraints, springs, dampers and fluid forces disabled.
+"""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from koenig_check.engines.base import as_batches, check_points, symmetrize
+from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.state_map import mujoco_joint_names
+from koenig_check.segments import SegmentStates
+
+_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
+
+
+class MujocoEngine:
+    """A model loaded in MuJoCo.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    path : Path
+        The model file.
+    notes : list of str
+        Load notes (extended here with segment notes).
+    import_differences : list of (str, str), optional
+        ``(body, reason)`` from the loader: bodies whose mass properties MuJoCo changed.
+
+    Attributes
+    ----------
+    import_differences : dict
+        Segment name -> reasons its mass properties differ from the file's.
+    """
+
+    engine = "mujoco"
+
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        path: Path,
+        notes: list[str] | None = None,
+        import_differences: list[tuple[str, str]] | None = None,
+    ) -> None:
+        self.model = model
+        self.path = Path(path)
+        self.notes = list(notes or [])
+        self.nq, self.nv = int(model.nq), int(model.nv)
+        self.joint_names = tuple(mujoco_joint_names(model))
+        self._data = mujoco.MjData(model)
+        self._m_energy = copy.copy(model)
+        self._m_energy.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
+        self._m_rigid = copy.copy(self._m_energy)
+        self._m_rigid.dof_armature[:] = 0.0
+        self._m_dyn = copy.copy(model)
+        self._m_dyn.opt.gravity[:] = 0.0
+        self._m_dyn.opt.density = 0.0
+        self._m_dyn.opt.viscosity = 0.0
+        off = mujoco.mjtDisableBit
+        self._m_dyn.opt.disableflags |= int(off.mjDSBL_CONSTRAINT | off.mjDSBL_SPRING | off.mjDSBL_DAMPER)
+        self._build_segments()
+        self.import_differences: dict[str, list[str]] = {}
+        for body, reason in import_differences or []:
+            bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body)
+            seg = self._segment_of[bid] if bid >= 0 else ""
+            self.import_differences.setdefault(seg or "(static)", []).append(reason)
+
+    # -------------------------------------------------------------- segments
+    def _build_segments(self) -> None:
+        m = self.model
+        seg_of = np.full(m.nbody, -1, dtype=int)
+        for b in range(1, m.nbody):  # parents come before children
+            if m.body_jntnum[b] > 0:
+                seg_of[b] = b
+            else:
+                seg_of[b] = seg_of[m.body_parentid[b]]
+        heads = np.flatnonzero(m.body_jntnum > 0)
+        last = m.body_jntadr + m.body_jntnum - 1
+        self._segment_of = [self.joint_names[last[s]] if s > 0 else "" for s in seg_of]
+        d = mujoco.MjData(m)
+        d.qpos[:] = m.qpos0
+        mujoco.mj_kinematics(m, d)
+        members = np.flatnonzero(seg_of > 0)
+        head_of = seg_of[members]
+        R_s = d.xmat[head_of].reshape(-1, 3, 3)
+        mass_b = m.body_mass[members]
+        r_b = np.einsum("bji,bj->bi", R_s, d.xipos[members] - d.xpos[head_of])
+        Ri = np.einsum("bji,bjk->bik", R_s, d.ximat[members].reshape(-1, 3, 3))  # segment <- inertial
+        I_b = Ri @ (m.body_inertia[members][:, :, None] * np.swapaxes(Ri, -1, -2))
+        slot = np.searchsorted(heads, head_of)
+        mass = np.zeros(len(heads))
+        np.add.at(mass, slot, mass_b)
+        first = np.zeros((len(heads), 3))
+        np.add.at(first, slot, mass_b[:, None] * r_b)
+        com = first / np.where(mass > 0, mass, 1.0)[:, None]
+        dvec = r_b - com[slot]
+        shift = mass_b[:, None, None] * (
+            np.einsum("bi,bi->b", dvec, dvec)[:, None, None] * np.eye(3) - dvec[:, :, None] * dvec[:, None, :]
+        )
+        inertia = np.zeros((len(heads), 3, 3))
+        np.add.at(inertia, slot, I_b + shift)
+        last_joint = m.body_jntadr[heads] + m.body_jntnum[heads] - 1
+        names = [self.joint_names[j] for j in last_joint]
+        keep = mass > 0
+        if not keep.all():
+            dropped = [n for n, k in zip(names, keep, strict=True) if not k]
+            self.notes.append(f"mujoco: massless segments left out (no kinetic energy): {dropped}")
+        self._seg_body = heads[keep]
+        self._seg_root = m.body_rootid[self._seg_body]
+        self._seg_joint = last_joint[keep]
+        self._anchor_local = np.asarray(m.jnt_pos[self._seg_joint], dtype=float).reshape(-1, 3)
+        self.segment_names = tuple(n for n, k in zip(names, keep, strict=True) if k)
+        self._mass = mass[keep]
+        self._com_local = com[keep]
+        self._inertia = symmetrize(inertia[keep])
+        self._ref = self._sweep(m.qpos0[None], np.zeros((1, m.nv)))
+
+    def _sweep(self, qpos: np.ndarray, qvel: np.ndarray) -> dict[str, np.ndarray]:
+        """Run the engine pose by pose, copy its body arrays whole, then pick the segments (vectorized)."""
+        m, d = self.model, self._data
+        P, nb = qpos.shape[0], m.nbody
+        xpos, xmat = np.empty((P, nb, 3)), np.empty((P, nb, 9))
+        cvel, sub = np.empty((P, nb, 6)), np.empty((P, nb, 3))
+        for p in range(P):
+            d.qpos[:] = qpos[p]
+            d.qvel[:] = qvel[p]
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            mujoco.mj_comVel(m, d)
+            xpos[p], xmat[p], cvel[p], sub[p] = d.xpos, d.xmat, d.cvel, d.subtree_com
+        idx = self._seg_body
+        out = {
+            "xpos": xpos[:, idx],
+            "xmat": xmat[:, idx].reshape(P, len(idx), 3, 3),
+            "cvel": cvel[:, idx],
+            "ref": sub[:, self._seg_root],
+        }
+        out["anchor"] = out["xpos"] + np.einsum("pbij,bj->pbi", out["xmat"], self._anchor_local)
+        return out
+
+    def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
+        """Return MuJoCo's segment states for a batch of canonical states.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        SegmentStates
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        s = self._sweep(qpos, qvel)
+        R = s["xmat"]
+        com = s["xpos"] + np.einsum("pbij,bj->pbi", R, self._com_local)
+        omega, v_ref = s["cvel"][..., :3], s["cvel"][..., 3:]
+        ref = self._ref
+        return SegmentStates(
+            names=self.segment_names,
+            mass=self._mass,
+            inertia_body=self._inertia,
+            com=com,
+            v_com=v_ref + np.cross(omega, com - s["ref"]),
+            rotation=R,
+            omega=omega,
+            pole=s["anchor"],
+            v_pole=v_ref + np.cross(omega, s["anchor"] - s["ref"]),
+            rotation_ref=ref["xmat"][0],
+            com_ref=ref["xpos"][0] + np.einsum("bij,bj->bi", ref["xmat"][0], self._com_local),
+            pole_ref=ref["anchor"][0],
+        )
+
+    def point_velocities(
+        self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray, method: str = "spatial"
+    ) -> np.ndarray:
+        """Return the world velocity of points fixed in the segments.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+        points : ndarray, shape (B, K, 3)
+            Offsets from each segment's COM, in the segment's axes.
+        method : {"spatial", "jacobian"}
+            ``"spatial"``: the body spatial velocity ``cvel`` applied to the points (vectorized);
+            ``"jacobian"``: ``mj_jac`` of every point times ``qvel`` (one engine call per point).
+
+        Returns
+        -------
+        ndarray, shape (P, B, K, 3)
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        pts = check_points(points, len(self.segment_names))
+        local = self._com_local[:, None, :] + pts
+        if method == "spatial":
+            s = self._sweep(qpos, qvel)
+            world = s["xpos"][:, :, None, :] + np.einsum("pbij,bkj->pbki", s["xmat"], local)
+            omega, v_ref = s["cvel"][:, :, None, :3], s["cvel"][:, :, None, 3:]
+            return v_ref + np.cross(omega, world - s["ref"][:, :, None, :])
+        if method != "jacobian":
+            raise ValueError(f"method must be 'spatial' or 'jacobian', got {method!r}")
+        m, d = self.model, self._data
+        P, (B, K, _) = qpos.shape[0], pts.shape
+        out = np.empty((P, B, K, 3))
+        jacp = np.zeros((3, self.nv))
+        for p in range(P):
+            d.qpos[:] = qpos[p]
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            world = d.xpos[self._seg_body][:, None, :] + np.einsum(
+                "bij,bkj->bki", d.xmat[self._seg_body].reshape(-1, 3, 3), local
+            )
+            for b, body in enumerate(self._seg_body):
+                for k in range(K):
+                    mujoco.mj_jac(m, d, jacp, None, world[b, k], int(body))
+                    out[p, b, k] = jacp @ qvel[p]
+        return out
+
+    # ------------------------------------------------------------- dynamics
+    def _energy(self, model: mujoco.MjModel, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
+        d = mujoco.MjData(model)
+        out = np.empty(qpos.shape[0])
+        for p in range(qpos.shape[0]):
+            d.qpos[:] = qpos[p]
+            d.qvel[:] = qvel[p]
+            mujoco.mj_kinematics(model, d)
+            mujoco.mj_comPos(model, d)
+            mujoco.mj_makeM(model, d)
+            mujoco.mj_energyVel(model, d)
+            out[p] = d.energy[1]
+        return out
+
+    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
+        """Return ``mj_energyVel`` with and without armature, and the armature term.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        EnergyParts
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        return EnergyParts(
+            rigid=self._energy(self._m_rigid, qpos, qvel),
+            armature=0.5 * (qvel**2) @ self.model.dof_armature,
+            reported=self._energy(self._m_energy, qpos, qvel),
+        )
+
+    def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return ``mj_fullM`` (armature included) for a batch of poses.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
+        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
+        m, d = self.model, self._data
+        out = np.zeros((qpos.shape[0], self.nv, self.nv))
+        for p in range(qpos.shape[0]):
+            d.qpos[:] = qpos[p]
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            mujoco.mj_makeM(m, d)
+            mujoco.mj_fullM(m, d, out[p])
+        return out
+
+    def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return ``mj_inverse`` forces with gravity, constraints and passive forces off.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel, qacc : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
+        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
+        m = self._m_dyn
+        d = mujoco.MjData(m)
+        out = np.empty_like(qvel)
+        for p in range(qpos.shape[0]):
+            d.qpos[:] = qpos[p]
+            d.qvel[:] = qvel[p]
+            d.qacc[:] = qacc[p]
+            mujoco.mj_inverse(m, d)
+            out[p] = d.qfrc_inverse
+        return out
+
+    def dofs_by_kind(self) -> dict[str, np.ndarray]:
+        """Return canonical dof indices grouped by MuJoCo joint type.
+
+        Returns
+        -------
+        dict
+            ``{"hinge": array([...]), ...}``
+        """
+        m = self.model
+        groups: dict[str, list[int]] = {}
+        for j in range(m.njnt):
+            n = {0: 6, 1: 3}.get(int(m.jnt_type[j]), 1)
+            groups.setdefault(_KIND[int(m.jnt_type[j])], []).extend(range(m.jnt_dofadr[j], m.jnt_dofadr[j] + n))
+        return {k: np.array(v, dtype=int) for k, v in groups.items()}

@@ -1,0 +1,352 @@
+"""Build a MuJoCo ``MjModel`` from an MJCF or URDF file through ``MjSpec``.
+
+What this module changes in the spec, and records in the load notes:
+
+* URDF: ``compiler.inertiafromgeom`` is set to *false*.  The importer's default (*auto*) gives a
+  link without ``<inertial>`` a mass computed from its collision geometry, whereas Pinocchio gives
+  it none; links with an ``<inertial>`` keep it either way.
+* Mesh files: ``package://`` and ``file://`` URIs are resolved to absolute paths.  A mesh that is
+  missing, that MuJoCo has no decoder for (``.dae``) or that MuJoCo refuses to compile (ASCII STL,
+  degenerate volume) is dropped together with its geoms: the model loads inertia-only for those
+  geoms.  A mesh never makes a model fail.
+* ``floating=True`` adds a free joint named :data:`ROOT_JOINT_NAME` to the single top-level body.
+* Inertia rejected by MuJoCo raises :class:`InertiaError` naming the link and its principal
+  moments, unless ``balance_inertia=True`` (MuJoCo's ``compiler.balanceinertia``), in which case the
+  notes record by how much each offending link's principal moments were changed.
+* Static bodies that the compiler fused into their parent (``compiler.fusestatic``, on by default
+  for URDF) are listed.
+"""
+
+from __future__ import annotations
+
+import re
+import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from koenig_check.engines.errors import InertiaError, ModelLoadError
+from koenig_check.engines.sources import ModelSource, resolve_uri
+from koenig_check.segments import check_physical_inertia
+
+#: Name given to the free joint added for a floating base, in both engines (Pinocchio's default).
+ROOT_JOINT_NAME = "root_joint"
+#: Mesh formats MuJoCo 4.0 has no decoder for ("no decoder found for mesh file").
+UNDECODABLE_MESH_SUFFIXES = frozenset({".dae"})
+_ELEMENT = re.compile(r"Element name '([^']*)'")
+
+
+@contextmanager
+def _captured_warnings(notes: list[str]) -> Iterator[None]:
+    """Route MuJoCo's warnings (printed and written to MUJOCO_LOG.TXT by default) into the notes."""
+    previous = mujoco.get_mju_user_warning()
+    seen: list[str] = []
+    mujoco.set_mju_user_warning(seen.append)
+    try:
+        yield
+    finally:
+        mujoco.set_mju_user_warning(previous)
+        notes.extend(f"mujoco warning: {m}" for m in dict.fromkeys(seen))
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    if text.startswith("Error:"):
+        text = text[len("Error:") :].strip()
+    return text.splitlines()[0] if text else type(exc).__name__
+
+
+def _spec_inertia(body: mujoco.MjsBody) -> np.ndarray:
+    """Return the inertia tensor a spec body declares, in its inertial frame."""
+    full = np.asarray(body.fullinertia, dtype=float)
+    if not np.isnan(full[0]):
+        xx, yy, zz, xy, xz, yz = full
+        return np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+    return np.diag(np.asarray(body.inertia, dtype=float))
+
+
+def _moments(inertia: np.ndarray) -> str:
+    return ", ".join(f"{v:.6g}" for v in np.linalg.eigvalsh(0.5 * (inertia + inertia.T)))
+
+
+def _drop_mesh(spec: mujoco.MjSpec, mesh: mujoco.MjsMesh) -> list[str]:
+    """Delete a mesh and the geoms using it; return the names of the bodies that lost a geom."""
+    bodies = []
+    for geom in list(spec.geoms):
+        if geom.meshname == mesh.name:
+            parent = geom.parent
+            bodies.append(parent.name if parent is not None else "")
+            spec.delete(geom)
+    spec.delete(mesh)
+    return bodies
+
+
+def _fix_meshes(spec: mujoco.MjSpec, source: ModelSource, notes: list[str]) -> None:
+    meshdir = spec.compiler.meshdir or spec.meshdir or ""
+    base = source.path.parent / meshdir
+    dropped: dict[str, list[str]] = {}
+    rewritten = False
+    for mesh in list(spec.meshes):
+        if not mesh.file:
+            continue
+        resolved = resolve_uri(mesh.file, base, source.package_dirs)
+        if resolved is None:
+            reason = "missing file"
+        elif resolved.suffix.lower() in UNDECODABLE_MESH_SUFFIXES:
+            reason = f"no MuJoCo decoder for {resolved.suffix}"
+        else:
+            if str(resolved) != mesh.file:
+                mesh.file = str(resolved)
+                rewritten = True
+            continue
+        dropped.setdefault(reason, []).append(mesh.file)
+        _drop_mesh(spec, mesh)
+    if rewritten:
+        spec.strippath = False
+    for reason, names in dropped.items():
+        notes.append(f"mujoco: inertia-only for {len(names)} mesh file(s) ({reason}), geoms dropped: {names}")
+
+
+def _inertia_error(
+    source: ModelSource, element: str, message: str, file_inertia: dict[str, tuple[float, np.ndarray]]
+) -> InertiaError:
+    what = "link" if source.format == "urdf" else "body"
+    head = f"{source.path}: {what} {element!r}: MuJoCo rejects its inertia ({message})"
+    if element in file_inertia:
+        mass, inertia = file_inertia[element]
+        reason = check_physical_inertia(mass, inertia)
+        if reason is None:
+            reason = f"principal moments {_moments(inertia)}, MuJoCo requires them strictly positive"
+        head += f"; {reason}"
+    if "A + B >= C" in message:
+        head += "; pass balance_inertia=True to load it with MuJoCo's balanceinertia"
+    return InertiaError(head)
+
+
+def _compile(
+    spec: mujoco.MjSpec, source: ModelSource, notes: list[str], file_inertia: dict[str, tuple[float, np.ndarray]]
+) -> tuple[mujoco.MjModel, list[str]]:
+    """Compile, dropping meshes MuJoCo refuses one by one; raise clear errors otherwise.
+
+    Returns the model and the names of the meshes dropped on the way.
+    """
+    refused: list[str] = []
+    reasons: list[str] = []
+    while True:
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                model = spec.compile()
+            notes.extend(f"mujoco warning: {w.message}" for w in caught)
+        except ValueError as exc:
+            message = _first_line(exc)
+            match = _ELEMENT.search(str(exc))
+            element = match.group(1) if match else ""
+            mesh = next(
+                (m for m in spec.meshes if (element and m.name == element) or (m.file and m.file in str(exc))),
+                None,
+            )
+            if mesh is not None:
+                refused.append(mesh.name)
+                reasons.append(f"{mesh.file} ({message})")
+                _drop_mesh(spec, mesh)
+                continue
+            if "inertia" in message or "mass" in message:
+                if "moving bodies" in message:
+                    what = "link" if source.format == "urdf" else "body"
+                    raise InertiaError(
+                        f"{source.path}: {what} {element!r}: MuJoCo rejects a moving body without mass or "
+                        f"inertia ({message}); Pinocchio accepts it"
+                    ) from exc
+                raise _inertia_error(source, element, message, file_inertia) from exc
+            where = f" at element {element!r}" if element else ""
+            raise ModelLoadError(f"{source.path}: MuJoCo cannot compile the model{where}: {message}") from exc
+        if refused:
+            notes.append(f"mujoco: inertia-only for {len(refused)} mesh(es) MuJoCo refused: {reasons}")
+        return model, refused
+
+
+def _balance_notes(
+    spec_before: mujoco.MjSpec,
+    refused: list[str],
+    model: mujoco.MjModel,
+    source: ModelSource,
+    file_inertia: dict[str, tuple[float, np.ndarray]],
+    notes: list[str],
+) -> list[str]:
+    """Record, per link whose inertia MuJoCo would reject, how balanceinertia changed it; return those links."""
+    bad = {}
+    for name, (mass, inertia) in file_inertia.items():
+        lam = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
+        if mass > 0 and (check_physical_inertia(mass, inertia) is not None or lam[0] <= 0):
+            bad[name] = lam
+    if not bad:
+        return []
+    compiled = model
+    if any(mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n) < 0 for n in bad):
+        spec_before.compiler.fusestatic = False
+        for mesh in list(spec_before.meshes):
+            if mesh.name in refused:
+                _drop_mesh(spec_before, mesh)
+        compiled = spec_before.compile()
+    what = "link" if source.format == "urdf" else "body"
+    for name, lam in bad.items():
+        bid = mujoco.mj_name2id(compiled, mujoco.mjtObj.mjOBJ_BODY, name)
+        new = np.sort(compiled.body_inertia[bid])
+        change = np.abs(new - lam).max() / max(np.abs(lam).max(), 1e-300)
+        notes.append(
+            f"mujoco: balanceinertia changed {what} {name!r}: principal moments "
+            f"[{', '.join(f'{v:.6g}' for v in lam)}] -> [{', '.join(f'{v:.6g}' for v in new)}] "
+            f"(max change {change:.3g} relative); Pinocchio keeps the file's values"
+        )
+    return list(bad)
+
+
+def load_mujoco(
+    source: ModelSource, floating: bool = False, balance_inertia: bool = False
+) -> tuple[mujoco.MjModel, list[str], list[tuple[str, str]]]:
+    """Compile a model file into MuJoCo.
+
+    Parameters
+    ----------
+    source : ModelSource
+        The file and the directories its ``package://`` URIs refer to.
+    floating : bool
+        Add a free joint named :data:`ROOT_JOINT_NAME` on the single top-level body (unless that
+        body already has one).
+    balance_inertia : bool
+        Load inertias violating ``A + B >= C`` with MuJoCo's ``balanceinertia``.
+
+    Returns
+    -------
+    model : mujoco.MjModel
+    notes : list of str
+        What was changed or noticed while loading.
+    import_differences : list of (str, str)
+        ``(body, reason)``: a compiled body whose mass properties MuJoCo changed with respect to
+        the file (so Pinocchio, which keeps the file's values, will differ there).
+
+    Raises
+    ------
+    ModelLoadError, InertiaError
+        With a one-line message naming the file and the element.
+    """
+    notes: list[str] = []
+    with _captured_warnings(notes):
+        return _load(source, floating, balance_inertia, notes)
+
+
+def _load(
+    source: ModelSource, floating: bool, balance_inertia: bool, notes: list[str]
+) -> tuple[mujoco.MjModel, list[str], list[tuple[str, str]]]:
+    path = Path(source.path)
+    try:
+        spec = mujoco.MjSpec.from_file(str(path))
+    except ValueError as exc:
+        raise ModelLoadError(f"{path}: MuJoCo cannot parse the file: {_first_line(exc)}") from exc
+    what = "link" if source.format == "urdf" else "body"
+    if source.format == "urdf":
+        spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+        without = [b.name for b in spec.bodies if b.name != "world" and not b.explicitinertial]
+        if without:
+            notes.append(
+                f"mujoco: {len(without)} link(s) without <inertial> get no mass (inertiafromgeom=false; "
+                f"MuJoCo's default would derive one from collision geometry): {without}"
+            )
+    elif spec.compiler.inertiafromgeom == mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE:
+        notes.append("mujoco: the MJCF sets inertiafromgeom=true: every body's inertia comes from its geoms")
+    file_inertia = {
+        b.name: (float(b.mass), _spec_inertia(b)) for b in spec.bodies if b.name != "world" and b.explicitinertial
+    }
+    _fix_meshes(spec, source, notes)
+    if floating:
+        tops = list(spec.worldbody.bodies)
+        joints = list(tops[0].joints) if len(tops) == 1 else []
+        already = len(joints) == 1 and joints[0].type == mujoco.mjtJoint.mjJNT_FREE
+        if len(tops) != 1 or (joints and not already):
+            names = [b.name for b in tops]
+            raise ModelLoadError(
+                f"{path}: floating=True needs exactly one top-level {what} without joints, found {names}"
+            )
+        if already:
+            notes.append(f"mujoco: floating=True: {what} {tops[0].name!r} already has a free joint, none added")
+        else:
+            tops[0].add_freejoint(name=ROOT_JOINT_NAME)
+    spec.compiler.balanceinertia = bool(balance_inertia)
+    names_before = [b.name for b in spec.bodies]
+    parent_of = {b.name: (b.parent.name if b.parent is not None else "") for b in spec.bodies}
+    spec_before = spec.copy() if balance_inertia else None
+    model, refused = _compile(spec, source, notes, file_inertia)
+    fused = [n for n in names_before if n and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n) < 0]
+    if fused:
+        notes.append(f"mujoco: fusestatic fused {len(fused)} static {what}(s) into their parents: {fused}")
+
+    def survivor(name: str) -> str:
+        while name and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name) < 0:
+            name = parent_of.get(name, "")
+        return name or "world"
+
+    diffs: list[tuple[str, str]] = []
+    ghost = [n for n in fused if n in file_inertia and file_inertia[n][0] == 0 and np.any(file_inertia[n][1])]
+    if ghost:
+        notes.append(
+            f"mujoco: fusestatic dropped the rotational inertia of massless {what}(s) {ghost} "
+            "(mass 0, inertia non-zero); Pinocchio keeps it"
+        )
+        diffs += [(survivor(n), f"fusestatic dropped the inertia of massless {what} {n!r}") for n in ghost]
+    changed: list[str] = []
+    if spec_before is not None:
+        changed = _balance_notes(spec_before, refused, model, source, file_inertia, notes)
+        diffs += [(survivor(n), f"balanceinertia changed {what} {n!r}") for n in changed]
+    hosts = {survivor(parent_of.get(n, "")) for n in fused}
+    altered = [
+        n for n in _altered_by_compiler(model, file_inertia) if n not in changed and n not in hosts and n != "world"
+    ]
+    if altered:
+        options = ", ".join(f"{k}={getattr(spec.compiler, k)}" for k in ("settotalmass", "boundmass", "boundinertia"))
+        notes.append(
+            f"mujoco: compiled mass or inertia differs from the file's for {what}(s) {altered} ({options}); "
+            "Pinocchio keeps the file's values"
+        )
+        diffs += [(n, f"MuJoCo's compiler altered the mass or inertia of {what} {n!r}") for n in altered]
+    return model, notes, diffs
+
+
+def _altered_by_compiler(model: mujoco.MjModel, file_inertia: dict[str, tuple[float, np.ndarray]]) -> list[str]:
+    """Bodies still present after compilation whose mass or principal moments differ from the file's."""
+    out = []
+    for name, (mass, inertia) in file_inertia.items():
+        bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
+        if bid < 0:
+            continue
+        moments = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
+        compiled = np.sort(model.body_inertia[bid])
+        scale = max(np.abs(moments).max(), 1e-300)
+        if abs(model.body_mass[bid] - mass) > 1e-12 * max(mass, 1e-300) or np.abs(compiled - moments).max() > (
+            1e-9 * scale
+        ):
+            out.append(name)
+    return out
+
+
+def root_free_joint(model: mujoco.MjModel) -> str | None:
+    """Return the name of the free joint of the model's single top-level body, or ``None``.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+
+    Returns
+    -------
+    str or None
+    """
+    tops = [b for b in range(1, model.nbody) if model.body_parentid[b] == 0]
+    if len(tops) != 1 or model.body_jntnum[tops[0]] != 1:
+        return None
+    j = int(model.body_jntadr[tops[0]])
+    if model.jnt_type[j] != mujoco.mjtJoint.mjJNT_FREE:
+        return None
+    return model.joint(j).name or f"{model.body(tops[0]).name}_free"

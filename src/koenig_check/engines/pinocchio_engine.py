@@ -1,0 +1,246 @@
+"""Pinocchio adapter: segment states, point velocities, energy, mass matrix, inverse dynamics.
+
+Callers pass canonical (MuJoCo-layout) states; the :class:`~koenig_check.engines.state_map.StateMap`
+converts them to Pinocchio's ``(q, v)`` and converts the mass matrix and generalized forces back.
+
+Segments are Pinocchio joints with non-zero mass: ``model.inertias[i]`` already lumps the links
+fixed to the joint (URDF fixed joints, jointless MJCF bodies) and is expressed in the joint frame.
+Segment states come from ``computeJointJacobians(model, data, q)``: ``data.oMi`` (world <- joint)
+and the world-frame joint Jacobians, whose columns over a joint's supporting dofs give its twist;
+point velocities take the other route, ``forwardKinematics(model, data, q, v)`` and ``data.v``
+(spatial velocity in the joint frame).  The pole is the joint frame origin.
+
+What Pinocchio 4.1 includes (verified, see ``self_consistency``): ``computeKineticEnergy`` and
+``crba`` both include ``model.armature`` (diagonal), ``rnea`` adds ``armature * a``;
+``rotorInertia``/``rotorGearRatio`` are used by none of them.  ``crba`` fills the upper triangle only;
+it is symmetrized here.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+from koenig_check.engines.base import as_batches, check_points, symmetrize
+from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.state_map import StateMap
+from koenig_check.segments import SegmentStates
+
+
+class PinocchioEngine:
+    """A model loaded in Pinocchio.
+
+    Parameters
+    ----------
+    model : pinocchio.Model
+    state_map : StateMap
+        Canonical <-> Pinocchio conversion for this model.
+    path : Path
+        The model file.
+    notes : list of str
+        Load notes (extended here with segment notes).
+    """
+
+    engine = "pinocchio"
+
+    def __init__(self, model: pin.Model, state_map: StateMap, path: Path, notes: list[str] | None = None) -> None:
+        self.model = model
+        self.state_map = state_map
+        self.path = Path(path)
+        self.notes = list(notes or [])
+        self.nq, self.nv = state_map.nq, state_map.nv
+        self._data = model.createData()
+        self._m_rigid = pin.Model(model)
+        self._m_rigid.armature[:] = 0.0
+        self._d_rigid = self._m_rigid.createData()
+        self._m_dyn = pin.Model(model)
+        self._m_dyn.gravity = pin.Motion.Zero()
+        self._d_dyn = self._m_dyn.createData()
+        order = {p.name: k for k, p in enumerate(state_map.pairs)}
+        joints = sorted(range(1, model.njoints), key=lambda i: order[state_map.segment_names[i]])
+        massless = [state_map.segment_names[i] for i in joints if model.inertias[i].mass <= 0]
+        if massless:
+            self.notes.append(f"pinocchio: massless segments left out (no kinetic energy): {massless}")
+        self._joints = np.array([i for i in joints if model.inertias[i].mass > 0], dtype=int)
+        self.segment_names = tuple(state_map.segment_names[i] for i in self._joints)
+        inertias = [model.inertias[int(i)] for i in self._joints]
+        self._mass = np.array([Y.mass for Y in inertias], dtype=float)
+        self._lever = np.array([Y.lever for Y in inertias], dtype=float).reshape(-1, 3)
+        self._inertia = symmetrize(np.array([Y.inertia for Y in inertias], dtype=float).reshape(-1, 3, 3))
+        self._support = np.zeros((model.nv, len(self._joints)))  # dof k moves segment b
+        for b, i in enumerate(self._joints):
+            for j in model.supports[int(i)]:
+                if j > 0:
+                    start = model.idx_vs[j]
+                    self._support[start : start + model.nvs[j], b] = 1.0
+        H, _ = self._sweep(pin.neutral(model)[None], None)
+        self._ref = H[0]
+
+    def _sweep(self, q: np.ndarray, v: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
+        """Run forward kinematics pose by pose; return oMi (P, B, 4, 4) and data.v (P, B, 6)."""
+        m, d, idx = self.model, self._data, self._joints
+        P = q.shape[0]
+        H = np.empty((P, m.njoints, 4, 4))
+        V = None if v is None else np.empty((P, m.njoints, 6))
+        for p in range(P):
+            if v is None:
+                pin.forwardKinematics(m, d, q[p])
+            else:
+                pin.forwardKinematics(m, d, q[p], v[p])
+                V[p] = [x.vector for x in d.v.tolist()]
+            H[p] = [M.homogeneous for M in d.oMi.tolist()]
+        return H[:, idx], None if V is None else V[:, idx]
+
+    def _sweep_world(self, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Run ``computeJointJacobians`` pose by pose; return oMi (P, B, 4, 4) and world twists (P, B, 6).
+
+        The twist of joint ``i`` is ``J_world[:, support(i)] v``: ``(v_O, ω)`` with ``v_O`` the
+        velocity of the segment point at the world origin, so a point ``p`` moves with
+        ``v_O + ω × p``.  One engine call and two array copies per pose, the sum over supports
+        is vectorized.
+        """
+        m, d, idx = self.model, self._data, self._joints
+        P = q.shape[0]
+        H = np.empty((P, m.njoints, 4, 4))
+        J = np.empty((P, 6, m.nv))
+        for p in range(P):
+            J[p] = np.reshape(pin.computeJointJacobians(m, d, q[p]), (6, m.nv))
+            H[p] = [M.homogeneous for M in d.oMi.tolist()]
+        twists = np.einsum("pak,pk,kb->pba", J, v, self._support)
+        return H[:, idx], twists
+
+    def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
+        """Return Pinocchio's segment states for a batch of canonical states.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        SegmentStates
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        q, v = self.state_map.to_pinocchio(qpos, qvel)
+        H, T = self._sweep_world(q, v)
+        R, origin = H[..., :3, :3], H[..., :3, 3]
+        v_origin, omega = T[..., :3], T[..., 3:]
+        com = origin + np.einsum("pbij,bj->pbi", R, self._lever)
+        R0 = self._ref[..., :3, :3]
+        return SegmentStates(
+            names=self.segment_names,
+            mass=self._mass,
+            inertia_body=self._inertia,
+            com=com,
+            v_com=v_origin + np.cross(omega, com),
+            rotation=R,
+            omega=omega,
+            pole=origin,
+            v_pole=v_origin + np.cross(omega, origin),
+            rotation_ref=R0,
+            com_ref=self._ref[..., :3, 3] + np.einsum("bij,bj->bi", R0, self._lever),
+            pole_ref=self._ref[..., :3, 3],
+        )
+
+    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+        points : ndarray, shape (B, K, 3)
+            Offsets from each segment's COM, in the segment's axes.
+
+        Returns
+        -------
+        ndarray, shape (P, B, K, 3)
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        pts = check_points(points, len(self.segment_names))
+        q, v = self.state_map.to_pinocchio(qpos, qvel)
+        H, V = self._sweep(q, v)
+        r = self._lever[:, None, :] + pts  # (B, K, 3) from the joint origin, joint axes
+        local = V[:, :, None, :3] + np.cross(V[:, :, None, 3:], r[None])
+        return np.einsum("pbij,pbkj->pbki", H[..., :3, :3], local)
+
+    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
+        """Return ``computeKineticEnergy`` with and without armature, and the armature term.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        EnergyParts
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        q, v = self.state_map.to_pinocchio(qpos, qvel)
+        P = q.shape[0]
+        reported, rigid = np.empty(P), np.empty(P)
+        for p in range(P):
+            reported[p] = pin.computeKineticEnergy(self.model, self._data, q[p], v[p])
+            rigid[p] = pin.computeKineticEnergy(self._m_rigid, self._d_rigid, q[p], v[p])
+        return EnergyParts(rigid=rigid, armature=0.5 * (v**2) @ np.asarray(self.model.armature), reported=reported)
+
+    def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return ``crba`` (armature included), symmetrized, in canonical velocity coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
+        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
+        q = self.state_map.to_pinocchio(qpos)
+        M = np.empty((q.shape[0], self.nv, self.nv))
+        for p in range(q.shape[0]):
+            upper = np.triu(pin.crba(self.model, self._data, q[p]))
+            M[p] = upper + np.triu(upper, 1).T
+        return self.state_map.matrix_to_canonical(qpos, M)
+
+    def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return ``rnea`` with gravity zero, in canonical coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel, qacc : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
+        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
+        q, v = self.state_map.to_pinocchio(qpos, qvel)
+        a = self.state_map.acceleration_to_pinocchio(qpos, qvel, qacc)
+        tau = np.empty_like(v)
+        for p in range(q.shape[0]):
+            tau[p] = pin.rnea(self._m_dyn, self._d_dyn, q[p], v[p], a[p])
+        return self.state_map.force_to_canonical(qpos, tau)
+
+    def dofs_by_kind(self) -> dict[str, np.ndarray]:
+        """Return canonical dof indices grouped by Pinocchio joint model.
+
+        Returns
+        -------
+        dict
+            Keys are Pinocchio joint model names (``"JointModelRevoluteUnaligned"``...), with
+            ``" in composite"`` appended for sub-joints of a composite joint.
+        """
+        width = {"free": 6, "ball": 3}
+        groups: dict[str, list[int]] = {}
+        for p in self.state_map.pairs:
+            joint = self.model.joints[p.pin_joint]
+            leaf = joint.extract().joints[p.pin_sub] if p.pin_sub >= 0 else joint
+            key = leaf.shortname() + (" in composite" if p.pin_sub >= 0 else "")
+            groups.setdefault(key, []).extend(range(p.vadr, p.vadr + width.get(p.kind, 1)))
+        return {k: np.array(v, dtype=int) for k, v in groups.items()}

@@ -1,0 +1,42 @@
+"""Fixtures of the engine tests: every case is loaded once per session, posed at seeded random states."""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import pytest
+from engine_helpers import CASES, N_POSES, SEED, Case
+
+from koenig_check.engines import ModelPair, load_model, random_states
+
+
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    if "case" in metafunc.fixturenames:
+        metafunc.parametrize("case", CASES, ids=[c.id for c in CASES])
+
+
+@cache
+def _load(case: Case) -> ModelPair:
+    return load_model(
+        case.model,
+        floating=case.floating,
+        pinocchio_source=case.pinocchio_source,
+        balance_inertia=case.balance_inertia,
+        allow_coupled=case.allow_coupled,
+    )
+
+
+@pytest.fixture(scope="session")
+def load_pair():
+    return _load
+
+
+@pytest.fixture
+def pair(case: Case, load_pair) -> ModelPair:
+    return load_pair(case)
+
+
+@pytest.fixture
+def pose_batch(pair: ModelPair) -> tuple[np.ndarray, np.ndarray]:
+    return random_states(pair.mujoco.model, N_POSES, seed=SEED)

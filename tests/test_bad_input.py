@@ -1,0 +1,259 @@
+"""Bad input: a clear one-line error naming the file and the element, and nothing else lost."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from koenig_check.api import compare
+from koenig_check.engines import load_model
+from koenig_check.pose_file import PoseFileError, load_pose_file
+
+MODELS = Path(__file__).resolve().parents[1] / "models"
+
+LINK = (
+    '<link name="{name}"><inertial><origin xyz="0.1 0 0"/><mass value="{mass}"/>'
+    '<inertia ixx="{ixx}" iyy="{iyy}" izz="{izz}" ixy="{ixy}" ixz="0" iyz="0"/></inertial></link>'
+)
+JOINT = (
+    '<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
+    '<origin xyz="0.2 0 0"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+)
+
+
+def _urdf(tmp_path: Path, arm: dict, name: str = "robot.urdf") -> Path:
+    good = {"name": "upper", "mass": 1, "ixx": 0.01, "iyy": 0.02, "izz": 0.02, "ixy": 0}
+    links = [LINK.format(**good), LINK.format(**{**good, **arm, "name": "forearm"})]
+    joints = [
+        JOINT.format(name="shoulder", parent="base", child="upper"),
+        JOINT.format(name="elbow", parent="upper", child="forearm"),
+    ]
+    path = tmp_path / name
+    path.write_text(f'<robot name="r"><link name="base"/>{"".join(links)}{"".join(joints)}</robot>')
+    return path
+
+
+def _one_line_naming(err: BaseException, *needles: str) -> str:
+    text = str(err)
+    assert "\n" not in text, text
+    for needle in needles:
+        assert needle in text, (needle, text)
+    return text
+
+
+@pytest.mark.parametrize(
+    ("arm", "needles"),
+    [
+        ({"mass": 0}, ["forearm", "mass"]),
+        ({"mass": -2}, ["forearm", "mass"]),
+        ({"ixx": 0.01, "iyy": 0.01, "izz": 0.05}, ["forearm", "A + B >= C", "principal moments"]),
+        ({"ixx": -0.01}, ["forearm", "principal moments"]),
+    ],
+    ids=["zero-mass", "negative-mass", "triangle-inequality", "not-positive-definite"],
+)
+def test_non_physical_links_are_named_with_their_moments(tmp_path: Path, arm: dict, needles: list[str]) -> None:
+    path = _urdf(tmp_path, arm)
+    with pytest.raises(ValueError) as info:
+        load_model(path)
+    _one_line_naming(info.value, str(path), *needles)
+
+
+def test_balance_inertia_opt_in_loads_and_records_the_change(tmp_path: Path) -> None:
+    path = _urdf(tmp_path, {"ixx": 0.01, "iyy": 0.01, "izz": 0.05})
+    pair = load_model(path, balance_inertia=True)
+    notes = " ".join(pair.notes)
+    assert "forearm" in notes and "balance" in notes
+
+
+def test_moving_link_without_inertial_is_named(tmp_path: Path) -> None:
+    path = tmp_path / "no_inertial.urdf"
+    good = LINK.format(name="upper", mass=1, ixx=0.01, iyy=0.02, izz=0.02, ixy=0)
+    path.write_text(
+        f'<robot name="r"><link name="base"/>{good}<link name="forearm"/>'
+        + JOINT.format(name="shoulder", parent="base", child="upper")
+        + JOINT.format(name="elbow", parent="upper", child="forearm")
+        + "</robot>"
+    )
+    with pytest.raises(ValueError) as info:
+        load_model(path)
+    _one_line_naming(info.value, str(path), "forearm")
+
+
+def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
+    # MJCF fullinertia is symmetric by construction; a non-PD one is the reachable failure.
+    path = tmp_path / "bad_inertia.xml"
+    path.write_text(
+        '<mujoco><compiler inertiafromgeom="false"/><worldbody><body name="arm"><joint name="j" axis="0 0 1"/>'
+        '<inertial pos="0 0 0" mass="1" fullinertia="0.01 0.01 0.01 0.5 0 0"/></body></worldbody></mujoco>'
+    )
+    with pytest.raises(ValueError) as info:
+        load_model(path)
+    _one_line_naming(info.value, str(path), "arm")
+
+
+@pytest.mark.parametrize(
+    ("content", "needles"),
+    [
+        ("", ["file is empty"]),
+        ("plain text", ["not well-formed XML"]),
+        ("<mujoco><worldbody><body name='a'>", ["not well-formed XML"]),
+        ("<sdf version='1.6'/>", ["neither <mujoco> (MJCF) nor <robot> (URDF)"]),
+        ('<!DOCTYPE r [<!ENTITY a "aaaa">]><robot name="&a;"/>', ["DOCTYPE/ENTITY"]),
+    ],
+    ids=["empty", "not-xml", "truncated", "not-mjcf-or-urdf", "entities"],
+)
+def test_unreadable_model_files_fail_before_the_engines(tmp_path: Path, content: str, needles: list[str]) -> None:
+    path = tmp_path / "model.xml"
+    path.write_text(content)
+    with pytest.raises(ValueError) as info:
+        load_model(path)
+    _one_line_naming(info.value, str(path), *needles)
+
+
+def test_missing_file_is_named(tmp_path: Path) -> None:
+    with pytest.raises(ValueError) as info:
+        load_model(tmp_path / "nowhere.urdf")
+    _one_line_naming(info.value, "nowhere.urdf")
+
+
+def test_missing_and_unsupported_meshes_load_inertia_only(tmp_path: Path) -> None:
+    text = (MODELS / "gimbal.urdf").read_text()
+    meshes = (
+        '<visual><geometry><mesh filename="missing_visual.stl"/></geometry></visual>'
+        '<collision><geometry><mesh filename="missing.stl"/></geometry></collision>'
+        '<collision><geometry><mesh filename="shape.dae"/></geometry></collision>'
+    )
+    text = text.replace("</link>", meshes + "</link>", 2)
+    (tmp_path / "shape.dae").write_text("<COLLADA/>")
+    path = tmp_path / "gimbal_meshes.urdf"
+    path.write_text(text)
+    pair = load_model(path)
+    notes = " ".join(pair.notes)
+    assert "missing.stl" in notes and "shape.dae" in notes
+    reference = load_model(MODELS / "gimbal.urdf")
+    q = np.zeros((1, reference.mujoco.nq))
+    v = np.ones((1, reference.mujoco.nv))
+    np.testing.assert_allclose(
+        pair.mujoco.kinetic_energy(q, v).rigid, reference.mujoco.kinetic_energy(q, v).rigid, rtol=1e-12
+    )
+
+
+MIMIC = (
+    '<robot name="m"><link name="base"/>'
+    + LINK.format(name="a", mass=1, ixx=0.01, iyy=0.02, izz=0.02, ixy=0)
+    + LINK.format(name="b", mass=1, ixx=0.01, iyy=0.02, izz=0.02, ixy=0)
+    + JOINT.format(name="j1", parent="base", child="a")
+    + JOINT.format(name="j2", parent="a", child="b").replace("</joint>", '<mimic joint="j1" multiplier="2"/></joint>')
+    + "</robot>"
+)
+LOOP = """<mujoco><compiler inertiafromgeom="false"/><worldbody>
+  <body name="a"><joint name="ja" axis="0 0 1"/><inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/>
+    <body name="b" pos="0.2 0 0"><joint name="jb" axis="0 0 1"/>
+      <inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/></body></body>
+  <body name="c" pos="0.4 0 0"><joint name="jc" axis="0 0 1"/>
+    <inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/></body>
+</worldbody>
+<equality><connect name="close" body1="b" body2="c" anchor="0.2 0 0"/></equality></mujoco>"""
+TENDON = """<mujoco><compiler inertiafromgeom="false"/><worldbody>
+  <body name="a"><joint name="ja" axis="0 0 1"/><inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/>
+    <body name="b" pos="0.2 0 0"><joint name="jb" axis="0 0 1"/>
+      <inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/></body></body>
+</worldbody>
+<tendon><fixed name="couple"><joint joint="ja" coef="1"/><joint joint="jb" coef="-1"/></fixed></tendon>
+<equality><tendon name="tie" tendon1="couple"/></equality></mujoco>"""
+
+
+@pytest.mark.parametrize(
+    ("name", "content", "needles"),
+    [
+        ("mimic.urdf", MIMIC, ["'j2' mimics joint 'j1'"]),
+        ("loop.xml", LOOP, ["'close' closes a kinematic loop", "'b'", "'c'"]),
+        ("tendon.xml", TENDON, ["tendon 'couple'", "coupling its joints"]),
+    ],
+)
+def test_coupled_joints_and_loops_are_refused_by_name(tmp_path: Path, name: str, content: str, needles: list) -> None:
+    path = tmp_path / name
+    path.write_text(content)
+    with pytest.raises(ValueError) as info:
+        load_model(path)
+    _one_line_naming(info.value, str(path), "not supported", *needles)
+
+
+def test_joints_missing_in_one_engine_are_listed(tmp_path: Path) -> None:
+    renamed = tmp_path / "renamed.urdf"
+    renamed.write_text((MODELS / "gimbal.urdf").read_text().replace('"inner_x"', '"inner_tilt"'))
+    with pytest.raises(ValueError) as info:
+        load_model(MODELS / "gimbal.urdf", pinocchio_source=renamed)
+    _one_line_naming(info.value, "inner_x", "inner_tilt")
+
+
+# ------------------------------------------------------------------------- poses
+@pytest.fixture(scope="module")
+def gimbal():
+    return load_model(MODELS / "gimbal.xml").mujoco.model
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_pose_values_are_refused_with_row_and_joint(tmp_path: Path, gimbal, bad: float) -> None:
+    rows = np.zeros((3, 4))
+    rows[1, 3] = bad  # qvel of inner_x on the second row
+    path = tmp_path / "poses.csv"
+    np.savetxt(path, rows, delimiter=",", header="outer_z,inner_x,d_outer_z,d_inner_x")
+    with pytest.raises(PoseFileError) as info:
+        load_pose_file(path, gimbal)
+    _one_line_naming(info.value, str(path), "row 2", "qvel[1] (inner_x)", "finite")
+
+
+def test_npz_pose_file_and_out_of_limit_poses_are_flagged(tmp_path: Path, gimbal) -> None:
+    path = tmp_path / "poses.npz"
+    np.savez(path, qpos=np.array([[0.1, 0.2], [4.0, 0.0]]), qvel=np.ones((2, 2)))
+    poses = load_pose_file(path, gimbal)
+    assert poses.n_poses == 2 and poses.kind == "file"
+    assert any("'outer_z' outside its range" in n and "row 2" in n for n in poses.notes)
+
+
+def test_pose_file_shape_and_text_errors(tmp_path: Path, gimbal) -> None:
+    path = tmp_path / "p.csv"
+    path.write_text("1,2,3\n")
+    with pytest.raises(PoseFileError, match=re.escape("row 1: 3 values, expected nq + nv = 2 + 2")):
+        load_pose_file(path, gimbal)
+    path.write_text("a,b,c,d\n1,2,x,4\n")
+    with pytest.raises(PoseFileError, match="row 2: 'x' is not a number"):
+        load_pose_file(path, gimbal)
+    with pytest.raises(PoseFileError, match="pose file not found"):
+        load_pose_file(tmp_path / "none.csv", gimbal)
+
+
+def test_zero_velocity_scale_is_refused_with_the_reason() -> None:
+    check = compare([MODELS / "gimbal.xml"], n_poses=3, velocity_scale=0.0)
+    assert not check.ok and "velocity scale must be a finite number > 0" in check.failures[0][1]
+
+
+# ------------------------------------------------------------------------- batches and CLI
+def test_a_failing_model_never_loses_the_others(tmp_path: Path) -> None:
+    bad = _urdf(tmp_path, {"mass": -1}, "negative.urdf")
+    check = compare([MODELS / "gimbal.xml", bad, MODELS / "double_pendulum.urdf"], n_poses=3)
+    assert [c.model for c in check.comparisons] == ["gimbal.xml", "double_pendulum.urdf"]
+    assert [m for m, _ in check.failures] == ["negative.urdf"] and "forearm" in check.failures[0][1]
+    assert not check.ok and "negative.urdf" in check.reason()
+
+
+def _cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "koenig_check.cli", *args], capture_output=True, text=True, check=False, timeout=300
+    )
+
+
+def test_cli_never_shows_a_traceback_unless_debug(tmp_path: Path) -> None:
+    path = tmp_path / "broken.urdf"
+    path.write_text("<robot><link name='a'>")
+    proc = _cli("parity", str(path))
+    assert proc.returncode == 1 and "Traceback" not in proc.stderr
+    assert proc.stderr.strip().count("\n") == 0 and str(path) in proc.stderr
+    debug = _cli("parity", str(path), "--debug")
+    assert debug.returncode != 0 and "Traceback" in debug.stderr
