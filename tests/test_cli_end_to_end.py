@@ -124,3 +124,14 @@ def test_bad_usage_is_one_line_and_status_two() -> None:
         [sys.executable, "-m", "koenig_check.cli", "compare"], capture_output=True, text=True, check=False
     )
     assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and "Traceback" not in proc.stderr
+
+
+def test_python_api_has_the_reach_of_the_cli() -> None:
+    import koenig_check
+
+    check = koenig_check.compare([MODELS / "gimbal.xml", MODELS / "nope.xml"], n_poses=4, seed=1)
+    assert not check.ok and check.failures[0][0] == "nope.xml" and "gimbal.xml" in [c.model for c in check.comparisons]
+    totals = check.records.where(scope="total", formula="exact")
+    assert len(totals) == 4 * 2 * 2  # poses × state sources × reference engines
+    assert (totals["rel_error"] < 1e-12).all()
+    assert {s.formula for s in check.summaries} >= {"koenig_world", "alyushin_paper:rotvec"}
