@@ -112,6 +112,7 @@ def compare_model(
     formulas: Sequence[str] | None = None,
     floating: bool = False,
     balance_inertia: bool = False,
+    allow_coupled: bool = False,
     velocity_scale: float = 1.0,
     grid_joints: Sequence[str] | None = None,
     duration: float = 1.0,
@@ -132,6 +133,8 @@ def compare_model(
         Free-floating base (URDF).
     balance_inertia : bool
         Let MuJoCo balance inertias that violate the triangle inequality (noted).
+    allow_coupled : bool
+        Load models with coupled joints (mimic, equalities), treating the joints as independent (noted).
     pose_set : PoseSet, optional
         Use these canonical states instead of drawing poses.
     pose_file : str or Path, optional
@@ -149,7 +152,7 @@ def compare_model(
     """
     from koenig_check.engines import load_model
 
-    pair = load_model(model, floating=floating, balance_inertia=balance_inertia)
+    pair = load_model(model, floating=floating, balance_inertia=balance_inertia, allow_coupled=allow_coupled)
     if pose_file is not None:
         from koenig_check.pose_file import load_pose_file
 
@@ -163,7 +166,10 @@ def compare_model(
         grid_joints=grid_joints,
         duration=duration,
     )
-    runs = {"mujoco": grid.run_engine(pair.mujoco, ps), "pinocchio": grid.run_engine(pair.pinocchio, ps)}
+    try:
+        runs = {"mujoco": grid.run_engine(pair.mujoco, ps), "pinocchio": grid.run_engine(pair.pinocchio, ps)}
+    except ValueError as err:  # an engine produced an invalid state: name the file
+        raise ValueError(f"{pair.path}: {one_line(err)}") from err
     comp = grid.compare_runs(label or _label(model, floating), ps, runs, formulas)
     comp.notes = list(pair.notes) + list(ps.notes) + comp.notes
     return comp
@@ -188,7 +194,7 @@ def compare(
         Called with a short message as each model starts.
     **options
         Passed to :func:`compare_model` (``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
-        ``floating``, ``balance_inertia``, ``velocity_scale``, ``grid_joints``, ``duration``,
+        ``floating``, ``balance_inertia``, ``allow_coupled``, ``velocity_scale``, ``grid_joints``, ``duration``,
         ``pose_set``, ``pose_file``).
 
     Returns

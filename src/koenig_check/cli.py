@@ -90,6 +90,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--duration", type=float, default=1.0, help="trajectory duration in seconds (default 1)")
     p.add_argument("--velocity-scale", type=float, default=1.0, help="std of random joint velocities (default 1)")
     p.add_argument("--balance-inertia", action="store_true", help="let MuJoCo balance non-physical inertias (noted)")
+    p.add_argument(
+        "--allow-coupled", action="store_true", help="load mimic/coupled joints as independent joints (noted)"
+    )
     p.add_argument("--pose-file", help="canonical poses from a .npz (qpos, qvel) or .csv (qpos then qvel per row)")
     p.set_defaults(func=_cmd_compare)
 
@@ -165,6 +168,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             formulas=args.formulas,
             floating=args.floating,
             balance_inertia=args.balance_inertia,
+            allow_coupled=args.allow_coupled,
             velocity_scale=args.velocity_scale,
             grid_joints=args.grid_joints,
             duration=args.duration,

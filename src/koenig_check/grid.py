@@ -107,13 +107,19 @@ def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
     """
     states = engine.segment_states(poses.qpos, poses.qvel)
     energy = engine.kinetic_energy(poses.qpos, poses.qvel)
-    offsets, _ = equimomental_points(states.mass, states.inertia_body, states.names)
-    pv = engine.point_velocities(poses.qpos, poses.qvel, offsets)
+    try:
+        offsets, _ = equimomental_points(states.mass, states.inertia_body, states.names)
+    except ValueError:  # a non-physical inertia has no point set: point_masses will refuse, with the reason
+        pv = None
+    else:
+        pv = engine.point_velocities(poses.qpos, poses.qvel, offsets)
     return EngineRun(engine.engine, states, np.asarray(energy.rigid), np.asarray(energy.armature), pv)
 
 
 def _evaluate(name: str, run: EngineRun, angles: np.ndarray | None) -> np.ndarray:
     if name == "point_masses":
+        if run.point_velocities is None:
+            return FORMULAS[name].func(run.states)  # raises, naming the non-physical segment
         return FORMULAS[name].func(run.states, point_velocities=run.point_velocities)
     return FORMULAS[name](run.states, angles=angles)
 
@@ -182,6 +188,11 @@ def compare_runs(
             try:
                 per_segment = _evaluate(name, run, angles)
             except NotPlaneParallelError as err:
+                result.refusals.append({"model": label, "formula": name, "source": source, "reason": str(err)})
+                continue
+            except ValueError as err:  # only point_masses may refuse otherwise: a non-physical inertia
+                if name != "point_masses":
+                    raise
                 result.refusals.append({"model": label, "formula": name, "source": source, "reason": str(err)})
                 continue
             total = per_segment.sum(axis=1)

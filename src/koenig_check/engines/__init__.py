@@ -23,7 +23,8 @@ import numpy as np
 
 from koenig_check.engines.coupling import coupled_joints
 from koenig_check.engines.energy import EnergyParts, self_consistency
-from koenig_check.engines.errors import InertiaError, JointMismatch, ModelLoadError
+from koenig_check.engines.errors import CoupledJointsError, InertiaError, JointMismatch, ModelLoadError
+from koenig_check.engines.finite import check_finite, check_segments
 from koenig_check.engines.mujoco_engine import MujocoEngine
 from koenig_check.engines.mujoco_loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
 from koenig_check.engines.pinocchio_engine import PinocchioEngine
@@ -35,6 +36,7 @@ from koenig_check.validate import preflight
 
 __all__ = [
     "ROOT_JOINT_NAME",
+    "CoupledJointsError",
     "EnergyParts",
     "InertiaError",
     "JointMismatch",
@@ -195,7 +197,7 @@ def load_model(
     mj_model, mj_notes, mj_diffs = load_mujoco(source, floating=floating, balance_inertia=balance_inertia)
     coupled = coupled_joints(source, mj_model)
     if coupled and not allow_coupled:
-        raise ModelLoadError(
+        raise CoupledJointsError(
             f"{source.path}: coupled joints are not supported: {'; '.join(coupled)} (both engines would treat "
             "the joints as independent; pass allow_coupled=True to load it anyway)"
         )
@@ -204,9 +206,18 @@ def load_model(
     pin_model, pin_notes = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
     if pin_source is not source:
         pin_notes.insert(0, f"pinocchio: loaded from {pin_source.path} (MuJoCo from {source.path})")
+    check_finite(mj_model, pin_model, str(source.path))
+    if mj_model.nv == 0:
+        raise ModelLoadError(
+            f"{source.path}: no joint, so no moving segment to compare (a single free body needs floating=True, "
+            "--floating on the command line)"
+        )
     state_map = build_state_map(mj_model, pin_model, str(source.path))
     mj = MujocoEngine(mj_model, source.path, mj_notes, mj_diffs)
     pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_notes + state_map.notes)
+    pn.notes += check_segments(
+        (mj, pn), mj_model.qpos0, str(source.path), frozenset({"pinocchio"}) if balance_inertia else frozenset()
+    )
     notes = mj.notes + pn.notes + _armature_notes(mj, pn, state_map) + _pose_notes(mj, pn)
     if set(mj.segment_names) != set(pn.segment_names):
         only_mj = sorted(set(mj.segment_names) - set(pn.segment_names))

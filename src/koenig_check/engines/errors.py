@@ -11,6 +11,10 @@ class InertiaError(ModelLoadError):
     """MuJoCo rejects a link's mass or inertia; the message names the link and the reason."""
 
 
+class CoupledJointsError(ModelLoadError):
+    """The model couples joints (mimic, equality constraints) or closes loops; the message names them."""
+
+
 class JointMismatch(ValueError):  # noqa: N818 - the name the design uses
     """The joints of the MuJoCo model and the Pinocchio model cannot be paired by name.
 

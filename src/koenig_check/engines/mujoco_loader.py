@@ -261,6 +261,9 @@ def _load(
     file_inertia = {
         b.name: (float(b.mass), _spec_inertia(b)) for b in spec.bodies if b.name != "world" and b.explicitinertial
     }
+    for name, (mass, inertia) in file_inertia.items():
+        if not (np.isfinite(mass) and np.all(np.isfinite(inertia))):
+            raise InertiaError(f"{path}: {what} {name!r}: non-finite mass or inertia in the file (NaN or inf)")
     _fix_meshes(spec, source, notes)
     if floating:
         tops = list(spec.worldbody.bodies)

@@ -13,7 +13,12 @@ link and its fixed joint are removed from the XML given to Pinocchio.
 
 from __future__ import annotations
 
+import os
+import sys
+import tempfile
 import xml.etree.ElementTree as ET
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import pinocchio as pin
 
@@ -44,28 +49,58 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
     path = str(source.path)
     notes: list[str] = []
     flyer = pin.JointModelFreeFlyer()
+    parser_output: list[str] = []
     try:
-        if source.format == "urdf":
-            stripped = _strip_world_link(source) if root_joint else None
-            if stripped is not None:
-                model = pin.buildModelFromXML(stripped, flyer, root_joint)
-                notes.append(
-                    "pinocchio: URDF root link 'world' (MuJoCo's world body) and its fixed joint removed so "
-                    "that the free joint moves the same link in both engines"
-                )
-            elif root_joint:
-                model = pin.buildModelFromUrdf(path, flyer, root_joint)
-            else:
-                model = pin.buildModelFromUrdf(path)
-        else:
-            model = pin.buildModelFromMJCF(path)
-            has_free = model.njoints > 1 and model.joints[1].shortname() == "JointModelFreeFlyer"
-            if root_joint and not has_free:
-                model = pin.buildModelFromMJCFAndRootJoint(path, flyer, root_joint)
+        with _captured_c_stderr(parser_output):
+            model = _build(source, path, flyer, root_joint, notes)
     except (RuntimeError, ValueError) as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise ModelLoadError(f"{path}: Pinocchio cannot parse the file: {first}") from exc
+        detail = next((line for line in parser_output if line.startswith("Error:")), "")
+        detail = f" ({detail[len('Error:') :].strip()})" if detail else ""
+        raise ModelLoadError(f"{path}: Pinocchio cannot parse the file: {first}{detail}") from exc
+    notes += [f"pinocchio: parser says: {line}" for line in parser_output if line.startswith(("Error:", "Warning:"))]
     return model, notes
+
+
+@contextmanager
+def _captured_c_stderr(lines: list[str]) -> Iterator[None]:
+    """Collect what C++ code (urdfdom's console bridge) prints on file descriptor 2, instead of showing it."""
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile(mode="w+b") as sink:
+        os.dup2(sink.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+            sink.seek(0)
+            text = sink.read().decode("utf-8", errors="replace")
+            lines += [line.strip() for line in text.splitlines() if line.strip() and not line.strip().startswith("at ")]
+
+
+def _build(
+    source: ModelSource, path: str, flyer: pin.JointModelFreeFlyer, root_joint: str | None, notes: list[str]
+) -> pin.Model:
+    """Call the Pinocchio parser that fits the format and the root joint."""
+    if source.format == "urdf":
+        stripped = _strip_world_link(source) if root_joint else None
+        if stripped is not None:
+            model = pin.buildModelFromXML(stripped, flyer, root_joint)
+            notes.append(
+                "pinocchio: URDF root link 'world' (MuJoCo's world body) and its fixed joint removed so "
+                "that the free joint moves the same link in both engines"
+            )
+        elif root_joint:
+            model = pin.buildModelFromUrdf(path, flyer, root_joint)
+        else:
+            model = pin.buildModelFromUrdf(path)
+    else:
+        model = pin.buildModelFromMJCF(path)
+        has_free = model.njoints > 1 and model.joints[1].shortname() == "JointModelFreeFlyer"
+        if root_joint and not has_free:
+            model = pin.buildModelFromMJCFAndRootJoint(path, flyer, root_joint)
+    return model
 
 
 def _link_of(joint: ET.Element, end: str) -> str | None:
