@@ -21,7 +21,7 @@ import pinocchio as pin
 from koenig_check import grid
 from koenig_check.api import CrossCheck, compare_model, one_line
 from koenig_check.demo import FLOATING_MODELS, builtin_models
-from koenig_check.engines import CoupledJointsError, InertiaError, list_models
+from koenig_check.engines import CoupledJointsError, InertiaError, NoMovingSegmentError, list_models
 from koenig_check.formulas import FORMULAS
 
 
@@ -45,6 +45,12 @@ def run(n_poses: int, seed: int) -> CrossCheck:
                     break
                 options["balance_inertia"] = True
                 label = f"{label} (balanced inertia)"
+            except NoMovingSegmentError as err:  # a single body: retried as a free-floating body, labelled
+                if floating:
+                    comp = err
+                    break
+                floating = True
+                label = f"{label} (floating)"
             except CoupledJointsError as err:  # retried with the coupled joints independent, labelled
                 if options.get("allow_coupled"):
                     comp = err

@@ -23,7 +23,13 @@ import numpy as np
 
 from koenig_check.engines.coupling import coupled_joints
 from koenig_check.engines.energy import EnergyParts, self_consistency
-from koenig_check.engines.errors import CoupledJointsError, InertiaError, JointMismatch, ModelLoadError
+from koenig_check.engines.errors import (
+    CoupledJointsError,
+    InertiaError,
+    JointMismatch,
+    ModelLoadError,
+    NoMovingSegmentError,
+)
 from koenig_check.engines.finite import check_finite, check_segments
 from koenig_check.engines.mujoco_engine import MujocoEngine
 from koenig_check.engines.mujoco_loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
@@ -44,6 +50,7 @@ __all__ = [
     "ModelPair",
     "ModelSource",
     "MujocoEngine",
+    "NoMovingSegmentError",
     "PinocchioEngine",
     "StateMap",
     "list_models",
@@ -208,7 +215,7 @@ def load_model(
         pin_notes.insert(0, f"pinocchio: loaded from {pin_source.path} (MuJoCo from {source.path})")
     check_finite(mj_model, pin_model, str(source.path))
     if mj_model.nv == 0:
-        raise ModelLoadError(
+        raise NoMovingSegmentError(
             f"{source.path}: no joint, so no moving segment to compare (a single free body needs floating=True, "
             "--floating on the command line)"
         )

@@ -15,6 +15,10 @@ class CoupledJointsError(ModelLoadError):
     """The model couples joints (mimic, equality constraints) or closes loops; the message names them."""
 
 
+class NoMovingSegmentError(ModelLoadError):
+    """The model has no joint: nothing moves, there is no kinetic energy to compare."""
+
+
 class JointMismatch(ValueError):  # noqa: N818 - the name the design uses
     """The joints of the MuJoCo model and the Pinocchio model cannot be paired by name.
 
