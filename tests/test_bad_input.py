@@ -209,6 +209,40 @@ def test_non_finite_pose_values_are_refused_with_row_and_joint(tmp_path: Path, g
     _one_line_naming(info.value, str(path), "row 2", "qvel[1] (inner_x)", "finite")
 
 
+def test_non_finite_qpos_is_refused_with_row_and_joint(tmp_path: Path, gimbal) -> None:
+    rows = np.zeros((3, 4))
+    rows[2, 0] = np.nan  # qpos of outer_z on the third row
+    path = tmp_path / "poses.csv"
+    np.savetxt(path, rows, delimiter=",")
+    with pytest.raises(PoseFileError) as info:
+        load_pose_file(path, gimbal)
+    _one_line_naming(info.value, str(path), "row 3", "qpos[0] (outer_z)", "finite")
+
+
+def test_non_unit_quaternion_is_refused_with_row_and_joint(tmp_path: Path) -> None:
+    model = load_model(MODELS / "free_body.xml").mujoco.model
+    assert (model.nq, model.nv) == (7, 6)
+    qpos = np.tile([0.1, 0.2, 0.3, 1.0, 0.0, 0.0, 0.0], (3, 1))
+    qpos[1, 3:] = [0.0, 1.1, 0.0, 0.0]  # norm 1.1 on the second row
+    path = tmp_path / "free.npz"
+    np.savez(path, qpos=qpos, qvel=np.ones((3, 6)))
+    with pytest.raises(PoseFileError) as info:
+        load_pose_file(path, model)
+    _one_line_naming(info.value, str(path), "row 2", "quaternion of joint 'root'", "norm 1.1")
+    qpos[1, 3:] = [0.0, 0.6, 0.8, 0.0]  # unit, not identity: accepted
+    np.savez(path, qpos=qpos, qvel=np.ones((3, 6)))
+    assert load_pose_file(path, model).n_poses == 3
+
+
+def test_pose_below_a_lower_joint_limit_is_flagged(tmp_path: Path, gimbal) -> None:
+    path = tmp_path / "low.npz"
+    np.savez(path, qpos=np.array([[0.1, 0.2], [0.0, -0.5], [0.0, -3.5]]), qvel=np.ones((3, 2)))
+    poses = load_pose_file(path, gimbal)
+    assert poses.n_poses == 3
+    assert len(poses.notes) == 1, poses.notes  # only row 3 is outside: inner_x = -3.5 < -π
+    assert "'inner_x' outside its range" in poses.notes[0] and "row 3" in poses.notes[0] and "-3.5" in poses.notes[0]
+
+
 def test_npz_pose_file_and_out_of_limit_poses_are_flagged(tmp_path: Path, gimbal) -> None:
     path = tmp_path / "poses.npz"
     np.savez(path, qpos=np.array([[0.1, 0.2], [4.0, 0.0]]), qvel=np.ones((2, 2)))

@@ -61,7 +61,32 @@ def test_summaries_report_sign_fractions_and_worst_pose(synthetic) -> None:
     assert kw.over_fraction == pytest.approx(np.mean(rel > 1e-9))
     assert kw.under_fraction == pytest.approx(np.mean(rel < -1e-9))
     assert kw.worst_pose == poses.ids[int(np.argmax(np.abs(rel)))]
-    assert not kw.agrees and kw.worst_segment is not None
+    assert kw.median_rel_error == pytest.approx(np.median(np.abs(rel)), rel=1e-12)
+    assert kw.median_rel_error != pytest.approx(np.mean(np.abs(rel)), rel=1e-3)  # the data tell median from mean
+    seg_err = np.abs(FORMULAS["koenig_world"](states) - FORMULAS["exact"](states))  # (P, B)
+    p, b = np.unravel_index(int(np.argmax(seg_err)), seg_err.shape)
+    assert kw.worst_segment == f"{states.names[b]} @ {poses.ids[p]}"
+    assert not kw.agrees
+
+
+def test_a_reference_off_by_one_part_per_million_does_not_agree(synthetic) -> None:
+    """rtol 1e-9 means 1e-9: a reference scaled by (1 + 1e-6) is a disagreement, and an underestimate."""
+    states, poses = synthetic
+    comp = compare_runs(
+        "toy",
+        poses,
+        {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states, 1 + 1e-6)},
+        formulas=["exact"],
+    )
+    summaries = {(s.formula, s.source, s.reference): s for s in summarize(comp, rtol=1e-9)}
+    same = summaries[("exact", "mujoco", "mujoco")]
+    assert same.agrees and same.over_fraction == 0 == same.under_fraction
+    off = summaries[("exact", "mujoco", "pinocchio")]
+    assert not off.agrees
+    assert off.max_rel_error == pytest.approx(1e-6 / (1 + 1e-6), rel=1e-6)
+    assert off.under_fraction == 1 and off.over_fraction == 0
+    loose = {(s.formula, s.source, s.reference): s for s in summarize(comp, rtol=1e-5)}
+    assert loose[("exact", "mujoco", "pinocchio")].agrees  # the same data agree at a looser tolerance
 
 
 def test_engine_parity_detects_disagreement(synthetic) -> None:

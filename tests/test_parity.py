@@ -78,18 +78,73 @@ def test_a_link_changed_in_a_copy_is_named(
     assert segment in report.headline() and cause in report.headline()
 
 
+# serial7: j1 -> link1 -> j2 -> link2 -> j3 -> link3 -> j4 -> link4 (+ welded link4_mount) -> j5 -> link5 -> j6 -> ...
+# The dof check compares, per dof, the angular velocity and pole velocity of the dof's own segment under a unit
+# rate of that dof: the joint axis alone.  A moved COM or a moved joint origin is a segment cause, not an axis one.
+@pytest.mark.parametrize(
+    ("pattern", "replacement", "segments", "dofs"),
+    [
+        (
+            # link3's COM moves 2 cm along link3's z: only segment j3's COM differs; no joint axis changed.
+            r'(<link name="link3">.*?<origin xyz=")-0.02 0.03 0.1(")',
+            r"\g<1>-0.02 0.03 0.12\g<2>",
+            {"j3": ("com",)},
+            {},
+        ),
+        (
+            # j5's origin moves 2 cm: link5 and everything after it (segments j5, j6, j7) moves rigidly with it,
+            # so their anchors and COMs move; the rates of j5..j7 still turn them about the same relative geometry.
+            r'(<joint name="j5".*?<origin xyz=")0 0 0.15(")',
+            r"\g<1>0 0 0.17\g<2>",
+            {"j5": ("com", "anchor"), "j6": ("com", "anchor"), "j7": ("com", "anchor")},
+            {},
+        ),
+        (
+            # j6's axis tilts: at the reference pose (angle 0) nothing has moved, only j6's rate turns differently.
+            r'(<joint name="j6".*?<axis xyz=")0 1 0(")',
+            r"\g<1>0.1 1 0\g<2>",
+            {},
+            {"j6": ("axis",)},
+        ),
+    ],
+    ids=["com", "anchor", "axis"],
+)
+def test_geometry_changed_in_a_copy_is_named_on_exactly_the_affected_segments_and_dofs(
+    tmp_path: Path, pattern: str, replacement: str, segments: dict, dofs: dict
+) -> None:
+    altered = _altered_copy(tmp_path, "serial7.urdf", pattern, replacement)
+    report = import_parity(load_model(MODELS / "serial7.urdf", pinocchio_source=altered))
+    assert not report.clean
+    assert {s.name: s.causes for s in report.differing_segments} == segments, format_parity(report)
+    assert {d.joint: d.causes for d in report.differing_dofs} == dofs, format_parity(report)
+    assert report.total_mass[0] == pytest.approx(report.total_mass[1], rel=1e-12)
+
+
+def test_armature_missing_in_one_file_is_named_per_dof() -> None:
+    """armature_chain.urdf has no armature (URDF cannot carry it); the MJCF twin has 0.02/0.015/0.01/0.005."""
+    report = import_parity(load_model(MODELS / "armature_chain.xml", pinocchio_source=MODELS / "armature_chain.urdf"))
+    assert not report.clean
+    assert report.differing_segments == []
+    assert {d.joint: d.causes for d in report.differing_dofs} == {j: ("armature",) for j in ("j1", "j2", "j3", "j4")}
+    arm = {d.joint: d.armature for d in report.dofs}
+    for joint, expected in {"j1": 0.02, "j2": 0.015, "j3": 0.01, "j4": 0.005}.items():
+        assert arm[joint][0] == pytest.approx(expected, rel=1e-9), joint
+        assert arm[joint][1] == pytest.approx(0.0, abs=1e-9 * expected), joint
+
+
 def test_settotalmass_is_reported(tmp_path: Path) -> None:
+    """MuJoCo applies settotalmass; Pinocchio's MJCF parser keeps the file's masses (0.6 kg + 2 kg)."""
     text = (MODELS / "gimbal.xml").read_text().replace("<compiler ", '<compiler settotalmass="5" ', 1)
     path = tmp_path / "heavier.xml"
     path.write_text(text)
     findings = compiler_findings(path)
     assert any("settotalmass=5" in f for f in findings)
     report = import_parity(load_model(path))
-    # MuJoCo rescales to 5 kg; whatever Pinocchio does, the report must say which segments differ and why.
-    if not report.clean:
-        assert all("mass" in s.causes for s in report.differing_segments)
-        assert any("same factor" in f for f in report.findings)
-    else:
-        assert report.total_mass[1] == pytest.approx(5.0)
+    assert not report.clean
     assert report.total_mass[0] == pytest.approx(5.0)
+    assert report.total_mass[1] == pytest.approx(0.6 + 2.0)
+    assert {s.name for s in report.differing_segments} == {"outer_z", "inner_x"}
+    for s in report.differing_segments:
+        assert "mass" in s.causes and s.mass[0] / s.mass[1] == pytest.approx(5.0 / 2.6, rel=1e-9)
+    assert any("same factor 1.92307692" in f for f in report.findings)
     assert np.isfinite(report.mass_matrix_max_rel)

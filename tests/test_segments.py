@@ -40,6 +40,11 @@ def test_valid_states_are_frozen_and_read_only(random_batch: SegmentStates) -> N
             r"'segment2' has non-positive mass",
         ),
         (
+            "mass",
+            lambda a: np.where(np.arange(a.size) == 4, 0.0, a),
+            r"'segment4' has non-positive mass 0",
+        ),
+        (
             "inertia_body",
             lambda a: a + np.where(np.arange(a.shape[0])[:, None, None] == 5, np.triu(np.ones((3, 3)), 1), 0.0),
             r"'segment5' is not symmetric",

@@ -5,6 +5,7 @@ from pathlib import Path
 
 import pytest
 
+import koenig_check.validate
 from koenig_check.validate import MAX_DEPTH, ModelFileError, preflight
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
@@ -71,4 +72,25 @@ def test_unreadable(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
 
     monkeypatch.setattr(Path, "read_bytes", deny)
     with pytest.raises(ModelFileError, match=r"locked.urdf: cannot be read \(Permission denied\)"):
+        preflight(path)
+
+
+def test_oversized_file_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    path = tmp_path / "big.urdf"
+    path.write_text("<robot name='r'/>")  # 17 bytes
+    assert preflight(path) == "urdf"
+    monkeypatch.setattr(koenig_check.validate, "MAX_FILE_BYTES", 10)
+    with pytest.raises(ModelFileError) as info:
+        preflight(path)
+    text = str(info.value)
+    assert "17 bytes, larger than the 10 bytes accepted" in text and str(path) in text and "\n" not in text
+
+
+def test_nesting_depth_limit_is_exact(tmp_path: Path) -> None:
+    path = tmp_path / "deep.urdf"
+    inner = MAX_DEPTH - 1  # with the root, MAX_DEPTH levels: accepted
+    path.write_text("<robot>" + "<a>" * inner + "</a>" * inner + "</robot>")
+    assert preflight(path) == "urdf"
+    path.write_text("<robot>" + "<a>" * (inner + 1) + "</a>" * (inner + 1) + "</robot>")
+    with pytest.raises(ModelFileError, match=f"nested deeper than {MAX_DEPTH}"):
         preflight(path)

@@ -2,8 +2,8 @@
 
 Everything is measured through the engines' own answers at the canonical reference
 configuration (MuJoCo ``qpos0``): segment mass, centre of mass, inertia tensor and pole
-from :meth:`segment_states`; joint axes and anchors as the segment velocities produced
-by a unit rate of each degree of freedom (the columns of each engine's Jacobians);
+from :meth:`segment_states`; joint axes as the angular velocity and pole velocity of a
+dof's own segment under a unit rate of that dof (a column of each engine's Jacobian);
 armature as the diagonal of the engine's mass matrix minus the rigid-body mass matrix
 rebuilt from those Jacobians.  Model-level findings come from the load notes and from
 the file's own compiler options.
@@ -67,8 +67,9 @@ class DofParity:
     armature : tuple of float
         (MuJoCo, Pinocchio) rotor inertia on this dof.
     jacobian_difference : float
-        Largest difference of segment angular (rad/s) or COM linear (m/s) velocity produced by
-        a unit rate of this dof: a different joint axis or anchor.
+        Largest difference of the angular velocity (rad/s) and pole velocity (m/s) of the dof's
+        own segment under a unit rate of this dof: a different joint axis (NaN when that segment
+        exists in one engine only).
     causes : tuple of str
         ``axis`` and/or ``armature`` when they differ.
     """
@@ -277,10 +278,11 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
         if pole_d > rtol * size:
             causes.append("anchor")
         report.segments.append(SegmentParity(name, (ma, mb), com_d, fro, moments, pole_d, tuple(causes)))
-    # Dofs: Jacobian columns (unit-rate velocities) and armature.
-    jac_a = np.concatenate([A.omega, A.v_com], axis=-1)  # (nv, B, 6)
-    jac_b = np.concatenate([B.omega, B.v_com], axis=-1)
-    jac_scale = max(float(np.abs(jac_a).max(initial=0.0)), 1.0)
+    # Dofs: the joint's own segment under a unit rate of the dof (its angular velocity and its pole's
+    # velocity: the joint axis, free of any difference in COMs or downstream links) and armature.
+    own = {name: k for k, name in enumerate(common)}
+    dof_segment = mj.dof_segments()
+    jac_scale = max(float(np.abs(np.concatenate([A.omega, A.v_pole], axis=-1)).max(initial=0.0)), 1.0)
     rng = np.random.default_rng(seed)
     q_check = np.vstack([qpos0, random_qpos(mj_model, extra_poses, rng)])
     Ma, Mb = mj.mass_matrix(q_check), pn.mass_matrix(q_check)
@@ -290,9 +292,15 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     arm_b = np.diag(Mb[0]) - np.diag(_rigid_mass_matrix(sb))
     m_scale = max(float(np.abs(np.diag(Ma[0])).max(initial=0.0)), 1e-300)
     for d, joint in enumerate(_dof_joint_names(mj_model)):
-        diff = float(np.abs(jac_a[d] - jac_b[d]).max(initial=0.0))
+        k = own.get(dof_segment[d])
+        if k is None:  # the dof's segment exists in one engine only: reported with the segments
+            diff = float("nan")
+        else:
+            diff = float(
+                max(np.abs(A.omega[d, k] - B.omega[d, k]).max(), np.abs(A.v_pole[d, k] - B.v_pole[d, k]).max())
+            )
         causes = []
-        if diff > rtol * jac_scale * size:
+        if diff > rtol * jac_scale * size:  # nan (segment missing) is not an axis difference
             causes.append("axis")
         if abs(arm_a[d] - arm_b[d]) > rtol * m_scale:
             causes.append("armature")

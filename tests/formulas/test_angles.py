@@ -68,6 +68,11 @@ def test_paper_angles_argument_rules(rng: np.random.Generator) -> None:
         paper_angles(states, "integrated")
     with pytest.raises(ValueError, match=r"angles: shape"):
         paper_angles(states, "integrated", np.zeros((4, 2, 3)))
+    for bad in (np.nan, np.inf):
+        angles = np.zeros((4, 1, 3))
+        angles[2, 0, 1] = bad
+        with pytest.raises(ValueError, match="angles: non-finite"):
+            paper_angles(states, "integrated", angles)
     with pytest.raises(ValueError, match="only used by convention 'integrated'"):
         paper_angles(states, "rotvec", np.zeros((4, 1, 3)))
     with pytest.raises(ValueError, match="unknown angle convention"):

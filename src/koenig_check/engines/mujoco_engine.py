@@ -90,6 +90,16 @@ class MujocoEngine:
             seg = self._segment_of[bid] if bid >= 0 else ""
             self.import_differences.setdefault(seg or "(static)", []).append(reason)
 
+    def dof_segments(self) -> tuple[str, ...]:
+        """Name of the segment each canonical degree of freedom moves (its body's segment).
+
+        Returns
+        -------
+        tuple of str
+            One name per dof, in canonical order.
+        """
+        return tuple(self._segment_of[int(b)] for b in self.model.dof_bodyid)
+
     # -------------------------------------------------------------- segments
     def _build_segments(self) -> None:
         m = self.model
