@@ -21,13 +21,12 @@ import difflib
 import importlib.metadata
 import importlib.resources
 import os
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
 from koenig_check.engines.errors import ModelLoadError
-from koenig_check.validate import preflight
+from koenig_check.validate import ModelFileError, preflight
 
 #: Names the historical example-robot-data loaders used for files whose stem differs.
 LEGACY_ALIASES = {"talos": "talos_reduced", "talos_full": "talos_full_v2", "talos_arm": "talos_left_arm"}
@@ -84,18 +83,9 @@ def detect_format(path: Path) -> str:
     if path.suffix.lower() in _SUFFIX_FORMAT:
         return _SUFFIX_FORMAT[path.suffix.lower()]
     try:
-        for _, elem in ET.iterparse(path, events=("start",)):
-            tag = elem.tag
-            break
-        else:  # pragma: no cover - empty document is a parse error
-            tag = ""
-    except (ET.ParseError, OSError) as exc:
-        raise ModelLoadError(f"{path}: not a readable XML model file ({exc})") from exc
-    if tag == "mujoco":
-        return "mjcf"
-    if tag == "robot":
-        return "urdf"
-    raise ModelLoadError(f"{path}: root element <{tag}> is neither <mujoco> (MJCF) nor <robot> (URDF)")
+        return preflight(path)
+    except ModelFileError as exc:
+        raise ModelLoadError(str(exc)) from None
 
 
 def project_models_dir() -> Path | None:
