@@ -291,3 +291,15 @@ def test_cli_never_shows_a_traceback_unless_debug(tmp_path: Path) -> None:
     assert proc.stderr.strip().count("\n") == 0 and str(path) in proc.stderr
     debug = _cli("parity", str(path), "--debug")
     assert debug.returncode != 0 and "Traceback" in debug.stderr
+
+
+def test_pose_file_entirely_at_rest_is_refused_and_partial_rest_is_noted(tmp_path: Path, gimbal) -> None:
+    path = tmp_path / "rest.csv"
+    np.savetxt(path, np.zeros((3, 4)), delimiter=",")
+    with pytest.raises(PoseFileError, match="every pose has zero velocity"):
+        load_pose_file(path, gimbal)
+    rows = np.zeros((3, 4))
+    rows[2, 2] = 1.0
+    np.savetxt(path, rows, delimiter=",")
+    poses = load_pose_file(path, gimbal)
+    assert any("2 pose(s) at rest (first: row 1)" in n for n in poses.notes)

@@ -135,3 +135,65 @@ def test_python_api_has_the_reach_of_the_cli() -> None:
     assert len(totals) == 4 * 2 * 2  # poses × state sources × reference engines
     assert (totals["rel_error"] < 1e-12).all()
     assert {s.formula for s in check.summaries} >= {"koenig_world", "alyushin_paper:rotvec"}
+
+
+def test_compare_grid_and_trajectory_write_their_figures(tmp_path: Path) -> None:
+    gimbal = str(MODELS / "gimbal.xml")
+    assert (
+        main(
+            [
+                "compare",
+                gimbal,
+                "--pose-kind",
+                "grid",
+                "--grid-joints",
+                "outer_z",
+                "inner_x",
+                "--poses",
+                "6",
+                "--out",
+                str(tmp_path / "g"),
+            ]
+        )
+        == 0
+    )
+    assert _png_size(tmp_path / "g" / "error_map.png")[0] >= 400
+    assert main(["compare", gimbal, "--pose-kind", "trajectory", "--poses", "50", "--out", str(tmp_path / "t")]) == 0
+    assert _png_size(tmp_path / "t" / "trajectory_energy.png")[0] >= 400
+
+
+@pytest.mark.parametrize("rtol", ["nan", "-1", "0", "inf", "abc"])
+def test_bad_tolerance_is_a_usage_error(rtol: str) -> None:
+    proc = subprocess.run(
+        [sys.executable, "-m", "koenig_check.cli", "compare", "gimbal.xml", "--rtol", rtol],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode == 2 and "--rtol" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("where", ["before", "after"])
+def test_debug_flag_shows_the_traceback_wherever_it_is_given(tmp_path: Path, where: str) -> None:
+    missing = str(tmp_path / "missing.urdf")
+    args = ["--debug", "parity", missing] if where == "before" else ["parity", missing, "--debug"]
+    proc = subprocess.run(
+        [sys.executable, "-m", "koenig_check.cli", *args], capture_output=True, text=True, check=False
+    )
+    assert proc.returncode != 0 and "Traceback" in proc.stderr
+
+
+def test_engine_disagreement_names_its_import_cause(tmp_path: Path) -> None:
+    import re
+
+    from koenig_check.api import compare_model
+    from koenig_check.grid import engine_parity
+
+    comp = compare_model(MODELS / "serial7.urdf", n_poses=4)
+    assert engine_parity(comp).agrees and comp.import_summary == "no import difference"
+    text = (MODELS / "serial7.urdf").read_text()
+    altered = re.sub(r'(<link name="link5">.*?<mass value=")1.2(")', r"\g<1>1.5\g<2>", text, count=1, flags=re.S)
+    copy = tmp_path / "heavier.urdf"
+    copy.write_text(altered)
+    parity = engine_parity(compare_model(MODELS / "serial7.urdf", n_poses=4, pinocchio_model=copy))
+    assert not parity.agrees and "import parity: segment j5: mass" in parity.reason

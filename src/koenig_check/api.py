@@ -118,6 +118,7 @@ def compare_model(
     duration: float = 1.0,
     pose_set: poses.PoseSet | None = None,
     pose_file: str | Path | None = None,
+    pinocchio_model: str | Path | None = None,
     label: str | None = None,
 ) -> ModelComparison:
     """Load one model into both engines and run the comparison grid on it.
@@ -139,6 +140,8 @@ def compare_model(
         Use these canonical states instead of drawing poses.
     pose_file : str or Path, optional
         Read the canonical states from a file (see :mod:`koenig_check.pose_file`).
+    pinocchio_model : str or Path, optional
+        A different file of the same robot for Pinocchio (e.g. the URDF twin of an MJCF).
     label : str, optional
 
     Returns
@@ -151,8 +154,15 @@ def compare_model(
         Any load or comparison failure, with a one-line message.
     """
     from koenig_check.engines import load_model
+    from koenig_check.parity import import_parity
 
-    pair = load_model(model, floating=floating, balance_inertia=balance_inertia, allow_coupled=allow_coupled)
+    pair = load_model(
+        model,
+        floating=floating,
+        balance_inertia=balance_inertia,
+        allow_coupled=allow_coupled,
+        pinocchio_source=pinocchio_model,
+    )
     if pose_file is not None:
         from koenig_check.pose_file import load_pose_file
 
@@ -172,6 +182,7 @@ def compare_model(
         raise ValueError(f"{pair.path}: {one_line(err)}") from err
     comp = grid.compare_runs(label or _label(model, floating), ps, runs, formulas)
     comp.notes = list(pair.notes) + list(ps.notes) + comp.notes
+    comp.import_summary = import_parity(pair).headline()
     return comp
 
 
@@ -180,6 +191,7 @@ def compare(
     *,
     rtol: float = DEFAULT_RTOL,
     progress: Callable[[str], None] | None = None,
+    debug: bool = False,
     **options: Any,
 ) -> CrossCheck:
     """Cross-check kinetic energy for one or several models; a failing model never loses the others.
@@ -192,6 +204,8 @@ def compare(
         Tolerance of "agrees" (engines with each other and with ``exact``; formulas).
     progress : callable, optional
         Called with a short message as each model starts.
+    debug : bool
+        Re-raise a model's failure instead of recording it (to see its traceback).
     **options
         Passed to :func:`compare_model` (``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
         ``floating``, ``balance_inertia``, ``allow_coupled``, ``velocity_scale``, ``grid_joints``, ``duration``,
@@ -211,6 +225,8 @@ def compare(
         try:
             comp = compare_model(model, label=label, **options)
         except Exception as err:  # recorded with its reason; the batch goes on
+            if debug:
+                raise
             result.failures.append((label, one_line(err)))
             continue
         result.comparisons.append(comp)

@@ -25,13 +25,24 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
 
 
+def _tolerance(text: str) -> float:
+    """A relative tolerance: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not (value > 0 and value < float("inf")):
+        raise argparse.ArgumentTypeError(f"tolerance must be a finite number > 0, got {text}")
+    return value
+
+
 def _formatter(prog: str) -> argparse.HelpFormatter:
     return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32)
 
 
 def _add(sub: argparse._SubParsersAction, name: str, help_: str, example: str) -> argparse.ArgumentParser:
     p = sub.add_parser(name, help=help_, description=help_, epilog=f"example:\n  {example}", formatter_class=_formatter)
-    p.add_argument("--debug", action="store_true", help="show Python tracebacks on errors")
+    p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show Python tracebacks on errors")
     return p
 
 
@@ -64,14 +75,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=DEFAULT_OUT, help=f"report directory (default {DEFAULT_OUT})")
     p.add_argument("--poses", type=int, default=20, help="random poses per model (default 20)")
     p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
-    p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})")
+    p.add_argument(
+        "--rtol", type=_tolerance, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})"
+    )
     p.set_defaults(func=_cmd_demo)
 
     p = _add(
         sub,
         "compare",
         "cross-check one or several models (files or names from `koenig-check models`)",
-        "koenig-check compare models/gimbal.xml ur5 --poses 50 --out ur5-report",
+        "koenig-check compare gimbal.xml ur5 --poses 50 --out ur5-report",
     )
     p.add_argument("models", nargs="+", metavar="MODEL", help="model file or name")
     p.add_argument("--floating", action="store_true", help="free-floating base (URDF)")
@@ -79,7 +92,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
     p.add_argument("--formulas", nargs="+", metavar="NAME", help="formulas to evaluate (default: all)")
     p.add_argument("--out", help="write a report directory here")
-    p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})")
+    p.add_argument(
+        "--rtol", type=_tolerance, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})"
+    )
     p.add_argument(
         "--pose-kind",
         choices=("random", "keyframes", "grid", "trajectory"),
@@ -93,6 +108,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--allow-coupled", action="store_true", help="load mimic/coupled joints as independent joints (noted)"
     )
+    p.add_argument("--pinocchio-model", help="load Pinocchio from this file instead (e.g. the URDF twin of an MJCF)")
     p.add_argument("--pose-file", help="canonical poses from a .npz (qpos, qvel) or .csv (qpos then qvel per row)")
     p.set_defaults(func=_cmd_compare)
 
@@ -100,7 +116,7 @@ def build_parser() -> argparse.ArgumentParser:
         sub,
         "parity",
         "import parity only: do MuJoCo and Pinocchio see the same robot in the same file?",
-        "koenig-check parity models/serial7.urdf",
+        "koenig-check parity serial7.urdf",
     )
     p.add_argument("model", metavar="MODEL", help="model file or name")
     p.add_argument("--floating", action="store_true", help="free-floating base (URDF)")
@@ -117,7 +133,7 @@ def build_parser() -> argparse.ArgumentParser:
         "koenig-check selfcheck --rtol 1e-12",
     )
     p.add_argument("--seed", type=int, default=0, help="seed of the random cases (default 0)")
-    p.add_argument("--rtol", type=float, default=1e-9, help="agreement tolerance (default 1e-9)")
+    p.add_argument("--rtol", type=_tolerance, default=1e-9, help="agreement tolerance (default 1e-9)")
     p.set_defaults(func=_cmd_selfcheck)
     return parser
 
@@ -173,8 +189,13 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             grid_joints=args.grid_joints,
             duration=args.duration,
             pose_file=args.pose_file,
+            debug=args.debug,
+            pinocchio_model=args.pinocchio_model,
         )
-    return _finish(check, args.out)
+    figures = {}
+    if args.pose_kind in ("grid", "trajectory") and check.comparisons:
+        figures[f"{args.pose_kind}_comparison"] = check.comparisons[0]
+    return _finish(check, args.out, figures)
 
 
 def _cmd_demo(args: argparse.Namespace) -> int:
@@ -215,6 +236,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    args.debug = bool(getattr(args, "debug", False))
     try:
         return int(args.func(args))
     except KeyboardInterrupt:

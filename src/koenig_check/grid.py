@@ -65,6 +65,8 @@ class ModelComparison:
         Engine name to :class:`EngineRun`.
     notes : list of str
         Load notes and decisions (skipped formulas, unmatched segments).
+    import_summary : str
+        The import-parity verdict of the model (what differs between the engines' imports, and where).
     """
 
     model: str
@@ -73,6 +75,7 @@ class ModelComparison:
     refusals: list[dict[str, Any]] = field(default_factory=list)
     runs: dict[str, EngineRun] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    import_summary: str = ""
 
 
 def relative_error(value: np.ndarray, reference: np.ndarray) -> np.ndarray:
@@ -332,6 +335,8 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
     for name, value in self_rel.items():
         if value > rtol:
             reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
+    if reasons and comparison.import_summary:
+        reasons.append(f"import parity: {comparison.import_summary}")
     return EngineParity(
         comparison.model,
         float(rel.max()),

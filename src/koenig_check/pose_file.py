@@ -128,6 +128,16 @@ def load_pose_file(path: str | Path, model: mujoco.MjModel) -> PoseSet:
                 f"{path}: row {row + 1}: {what}[{col}] ({names[col]}) is {arr[row, col]}: every value must be finite"
             )
     notes = []
+    at_rest = np.flatnonzero(~np.any(qvel, axis=1))
+    if at_rest.size == qvel.shape[0]:
+        raise PoseFileError(
+            f"{path}: every pose has zero velocity: every kinetic energy is zero and no relative error is defined"
+        )
+    if at_rest.size:
+        notes.append(
+            f"{path.name}: {at_rest.size} pose(s) at rest (first: row {at_rest[0] + 1}): their energies are zero "
+            "and their relative errors are 0 by convention"
+        )
     for j in range(model.njnt):
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
         adr, jtype = model.jnt_qposadr[j], int(model.jnt_type[j])

@@ -307,6 +307,6 @@ def _check_count(n: int) -> None:
 def _check_scale(scale: float) -> None:
     if not np.isfinite(scale) or scale <= 0:
         raise ValueError(
-            f"velocity scale must be a finite number > 0, got {scale}: with zero velocity every energy "
-            "is zero and no relative error is defined"
+            f"velocity scale must be a finite number > 0, got {scale}"
+            + (": with zero velocity every energy is zero and no relative error is defined" if scale == 0 else "")
         )

@@ -69,7 +69,7 @@ def _project_file(name: str, suffix: str) -> str:
 def _cases() -> list[Case]:
     cases = [Case(f"{n}.xml", f"{n}.xml") for n in PROJECT]
     cases += [Case(f"{n}.urdf", f"{n}.urdf") for n in PROJECT if n != "free_body"]
-    cases.append(Case("free_body.urdf-floating", "free_body.urdf", floating=True))
+    cases += [Case(f"{n}.urdf-floating", f"{n}.urdf", floating=True) for n in PROJECT]
     cases += [
         Case(f"{n}.xml|pin:{n}.urdf", _project_file(n, ".xml"), False, _project_file(n, ".urdf")) for n in PROJECT
     ]

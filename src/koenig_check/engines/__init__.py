@@ -206,7 +206,7 @@ def load_model(
     if coupled and not allow_coupled:
         raise CoupledJointsError(
             f"{source.path}: coupled joints are not supported: {'; '.join(coupled)} (both engines would treat "
-            "the joints as independent; pass allow_coupled=True to load it anyway)"
+            "the joints as independent; --allow-coupled (allow_coupled=True) loads it anyway)"
         )
     if coupled:
         mj_notes.append(f"coupled joints loaded as independent joints (allow_coupled=True): {coupled}")

@@ -53,10 +53,12 @@ def _captured_warnings(notes: list[str]) -> Iterator[None]:
 
 
 def _first_line(exc: BaseException) -> str:
+    """MuJoCo's message on one line: every line joined with '; ' (the element and line number are kept)."""
     text = str(exc).strip()
     if text.startswith("Error:"):
         text = text[len("Error:") :].strip()
-    return text.splitlines()[0] if text else type(exc).__name__
+    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    return "; ".join(lines) if lines else type(exc).__name__
 
 
 def _spec_inertia(body: mujoco.MjsBody) -> np.ndarray:
@@ -122,7 +124,7 @@ def _inertia_error(
             reason = f"principal moments {_moments(inertia)}, MuJoCo requires them strictly positive"
         head += f"; {reason}"
     if "A + B >= C" in message:
-        head += "; pass balance_inertia=True to load it with MuJoCo's balanceinertia"
+        head += "; --balance-inertia (balance_inertia=True) loads it with MuJoCo's balanceinertia"
     return InertiaError(head)
 
 
