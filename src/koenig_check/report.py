@@ -226,7 +226,7 @@ def error_distribution_figure(records: RecordTable, path: Path) -> Path:
         f"log10 relative error of total kinetic energy (dimensionless; exact agreement drawn at {LOG_FLOOR:g})"
     )
     ax.set_title("Relative error of each formula against the engines' own kinetic energy, all models and poses")
-    ax.legend(loc="lower right")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=2, frameon=False)
     ax.grid(True, axis="x", alpha=0.3)
     fig.savefig(path, dpi=110)
     return path

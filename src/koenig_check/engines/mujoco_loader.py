@@ -266,6 +266,8 @@ def _load(
     for name, (mass, inertia) in file_inertia.items():
         if not (np.isfinite(mass) and np.all(np.isfinite(inertia))):
             raise InertiaError(f"{path}: {what} {name!r}: non-finite mass or inertia in the file (NaN or inf)")
+        if mass < 0:
+            raise InertiaError(f"{path}: {what} {name!r}: mass {mass:g} kg is negative")
     _fix_meshes(spec, source, notes)
     if floating:
         tops = list(spec.worldbody.bodies)
