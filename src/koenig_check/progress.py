@@ -20,7 +20,13 @@ class Progress:
 
     def __init__(self, total: int, unit: str) -> None:
         self._bar = tqdm(
-            total=total, unit=f" {unit}", file=sys.stderr, mininterval=0.5, leave=False, dynamic_ncols=True
+            total=total,
+            unit=f" {unit}",
+            file=sys.stderr,
+            mininterval=0.5,
+            leave=False,
+            dynamic_ncols=True,
+            disable=None,  # shown on a terminal only: no bar residue in logs and pipes
         )
         self._started = False
 
