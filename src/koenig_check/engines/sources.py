@@ -223,7 +223,7 @@ def resolve_model(name_or_path: str | os.PathLike[str], fmt: str | None = None) 
         raise ValueError(f"fmt must be 'mjcf', 'urdf' or None, got {fmt!r}")
     text = os.fspath(name_or_path)
     path = Path(text).expanduser()
-    if path.is_file() or path.is_absolute():
+    if path.is_file() or path.is_absolute() or path.is_dir():
         path = path.resolve()
         dirs = tuple(path.parents[:4]) + _erd_package_dirs()
         fmt_found = preflight(path)  # missing, empty, not XML, DOCTYPE...: a one-line ModelFileError
