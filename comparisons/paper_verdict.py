@@ -64,10 +64,7 @@ def run(n_poses: int, seed: int) -> CrossCheck:
             check.failures.append((label, one_line(comp)))
             print(f"{label:40s} FAILED {one_line(comp)[:100]}")
             continue
-        check.comparisons.append(comp)
-        check.summaries += grid.summarize(comp, check.rtol)
-        parity = grid.engine_parity(comp, check.rtol)
-        check.parities.append(parity)
+        parity = check.add(comp)
         print(f"{label:40s} {'agree' if parity.agrees else 'DISAGREE'}")
     return check
 

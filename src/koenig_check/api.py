@@ -45,6 +45,24 @@ class CrossCheck:
         """True when every model loaded and both engines agree with each other and with ``exact``."""
         return not self.failures and all(p.agrees for p in self.parities)
 
+    def add(self, comparison: ModelComparison) -> EngineParity:
+        """Record one model's comparison with its summaries and engine parity.
+
+        Parameters
+        ----------
+        comparison : ModelComparison
+
+        Returns
+        -------
+        EngineParity
+            The parity just recorded.
+        """
+        self.comparisons.append(comparison)
+        self.summaries += grid.summarize(comparison, self.rtol)
+        parity = grid.engine_parity(comparison, self.rtol)
+        self.parities.append(parity)
+        return parity
+
     def reason(self) -> str:
         """One line saying why :attr:`ok` is False (empty when it is True)."""
         parts = [f"{m}: {r}" for m, r in self.failures]
@@ -229,9 +247,7 @@ def compare(
                 raise
             result.failures.append((label, one_line(err)))
             continue
-        result.comparisons.append(comp)
-        result.summaries += grid.summarize(comp, rtol)
-        result.parities.append(grid.engine_parity(comp, rtol))
+        result.add(comp)
     return result
 
 

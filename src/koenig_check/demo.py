@@ -5,7 +5,6 @@ from __future__ import annotations
 import importlib.resources
 from pathlib import Path
 
-from koenig_check import grid
 from koenig_check.api import CrossCheck, compare_model, one_line
 from koenig_check.grid import DEFAULT_RTOL, ModelComparison
 from koenig_check.progress import Progress
@@ -94,9 +93,7 @@ def run_demo(
             except Exception as err:  # the other models still report
                 check.failures.append((label, one_line(err)))
                 continue
-            check.comparisons.append(comp)
-            check.summaries += grid.summarize(comp, rtol)
-            check.parities.append(grid.engine_parity(comp, rtol))
+            check.add(comp)
             if options.get("pose_kind") == "grid":
                 figures["grid_comparison"] = comp
             elif options.get("pose_kind") == "trajectory":

@@ -16,9 +16,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import mujoco
 import numpy as np
 
+from koenig_check.engines.state_map import mujoco_coordinate_names
 from koenig_check.segments import SegmentStates
 
 #: Default relative tolerance of parity comparisons.
@@ -165,16 +165,6 @@ def _rigid_mass_matrix(states: SegmentStates) -> np.ndarray:
     return np.einsum("b,ibk,jbk->ij", states.mass, Jv, Jv) + np.einsum("ibk,bkl,jbl->ij", Jw, I_world, Jw)
 
 
-def _dof_joint_names(mj_model: mujoco.MjModel) -> list[str]:
-    names = []
-    for d in range(mj_model.nv):
-        j = int(mj_model.dof_jntid[d])
-        name = mujoco.mj_id2name(mj_model, mujoco.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
-        count = int(np.sum(mj_model.dof_jntid[:d] == j))
-        names.append(name if np.sum(mj_model.dof_jntid == j) == 1 else f"{name}[{count}]")
-    return names
-
-
 def compiler_findings(path: Path) -> list[str]:
     """Compiler options and inertial gaps in an MJCF file that make the engines import it differently.
 
@@ -291,7 +281,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     arm_a = np.diag(Ma[0]) - np.diag(_rigid_mass_matrix(sa))
     arm_b = np.diag(Mb[0]) - np.diag(_rigid_mass_matrix(sb))
     m_scale = max(float(np.abs(np.diag(Ma[0])).max(initial=0.0)), 1e-300)
-    for d, joint in enumerate(_dof_joint_names(mj_model)):
+    for d, joint in enumerate(mujoco_coordinate_names(mj_model)[1]):
         k = own.get(dof_segment[d])
         if k is None:  # the dof's segment exists in one engine only: reported with the segments
             diff = float("nan")

@@ -19,6 +19,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from koenig_check.engines.state_map import mujoco_coordinate_names
 from koenig_check.poses import PoseSet
 
 #: Largest accepted deviation of a quaternion's norm from 1.
@@ -79,21 +80,6 @@ def _is_float(text: str) -> bool:
     return True
 
 
-def _column_names(model: mujoco.MjModel) -> tuple[list[str], list[str]]:
-    qnames = [""] * model.nq
-    vnames = [""] * model.nv
-    for j in range(model.njnt):
-        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or f"joint{j}"
-        jtype = int(model.jnt_type[j])
-        nq = {0: 7, 1: 4}.get(jtype, 1)
-        nv = {0: 6, 1: 3}.get(jtype, 1)
-        for k in range(nq):
-            qnames[model.jnt_qposadr[j] + k] = name if nq == 1 else f"{name}[{k}]"
-        for k in range(nv):
-            vnames[model.jnt_dofadr[j] + k] = name if nv == 1 else f"{name}[{k}]"
-    return qnames, vnames
-
-
 def load_pose_file(path: str | Path, model: mujoco.MjModel) -> PoseSet:
     """Read a pose file for a model, validating every value.
 
@@ -119,7 +105,7 @@ def load_pose_file(path: str | Path, model: mujoco.MjModel) -> PoseSet:
         raise PoseFileError(
             f"{path}: qpos {qpos.shape} and qvel {qvel.shape} do not fit the model (nq={model.nq}, nv={model.nv})"
         )
-    qnames, vnames = _column_names(model)
+    qnames, vnames = mujoco_coordinate_names(model)
     for arr, names, what in ((qpos, qnames, "qpos"), (qvel, vnames, "qvel")):
         bad = ~np.isfinite(arr)
         if bad.any():

@@ -132,6 +132,33 @@ def mujoco_joint_names(model: mujoco.MjModel) -> list[str]:
     return names
 
 
+#: (qpos, qvel) sizes of MuJoCo's joint types; hinge and slide have one of each.
+_JOINT_SIZES = {int(mujoco.mjtJoint.mjJNT_FREE): (7, 6), int(mujoco.mjtJoint.mjJNT_BALL): (4, 3)}
+
+
+def mujoco_coordinate_names(model: mujoco.MjModel) -> tuple[list[str], list[str]]:
+    """Name every canonical position and velocity coordinate after its joint.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+
+    Returns
+    -------
+    qpos_names, qvel_names : list of str
+        The joint's canonical name (:func:`mujoco_joint_names`) for one-coordinate joints,
+        ``"name[k]"`` for the k-th coordinate of a free or ball joint.
+    """
+    qnames = [""] * model.nq
+    vnames = [""] * model.nv
+    for j, name in enumerate(mujoco_joint_names(model)):
+        nq, nv = _JOINT_SIZES.get(int(model.jnt_type[j]), (1, 1))
+        for names, adr, size in ((qnames, model.jnt_qposadr[j], nq), (vnames, model.jnt_dofadr[j], nv)):
+            for k in range(size):
+                names[adr + k] = name if size == 1 else f"{name}[{k}]"
+    return qnames, vnames
+
+
 def _pin_leaves(model: pin.Model, i: int) -> list[tuple[int, pin.JointModel]]:
     """Return ``[(sub_index, joint_model)]`` of a Pinocchio joint (one entry unless composite)."""
     joint = model.joints[i]
