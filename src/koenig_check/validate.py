@@ -13,6 +13,8 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from koenig_check.findings import KoenigCheckError
+
 #: Largest model file read (bytes).
 MAX_FILE_BYTES = 64 * 1024 * 1024
 #: Deepest element nesting accepted.
@@ -21,7 +23,7 @@ MAX_DEPTH = 256
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.IGNORECASE)
 
 
-class ModelFileError(ValueError):
+class ModelFileError(KoenigCheckError, ValueError):
     """A model file cannot be read as MJCF or URDF; the message names the file and the element."""
 
 

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+from koenig_check.findings import KoenigCheckError
 
-class ModelLoadError(ValueError):
+
+class ModelLoadError(KoenigCheckError, ValueError):
     """A model file cannot be loaded by one engine; the message names the file and the element."""
 
 
@@ -19,7 +21,7 @@ class NoMovingSegmentError(ModelLoadError):
     """The model has no joint: nothing moves, there is no kinetic energy to compare."""
 
 
-class JointMismatch(ValueError):  # noqa: N818 - the name the design uses
+class JointMismatch(KoenigCheckError, ValueError):  # noqa: N818 - the name the design uses
     """The joints of the MuJoCo model and the Pinocchio model cannot be paired by name.
 
     Parameters

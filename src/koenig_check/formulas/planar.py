@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from koenig_check.findings import KoenigCheckError
 from koenig_check.formulas.exact import translational
 from koenig_check.segments import SegmentStates
 
@@ -11,7 +12,7 @@ from koenig_check.segments import SegmentStates
 PLANAR_RTOL = 1e-9
 
 
-class NotPlaneParallelError(ValueError):
+class NotPlaneParallelError(KoenigCheckError, ValueError):
     """Raised when eq. (16) is asked for a motion that is not plane-parallel."""
 
 

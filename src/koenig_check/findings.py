@@ -1,0 +1,184 @@
+"""Findings: everything the tool learns about a model, as one typed record.
+
+A finding is data — what kind of thing was found, by or about which engine, on which element of the
+model, the values on each side, and whether it changes the kinetic energy — never a sentence that
+is filtered later by substring.  The one-line reason, the parity report, the summary, the API and
+:func:`koenig_check.testing.assert_energy_parity` all read these records; :meth:`Finding.message`
+renders one for people.
+
+A *root cause* (Pinocchio ignored an ``<include>``, dropped a root body's pose, used density × volume
+instead of a geom's mass) is one finding that explains many per-segment symptoms; the report leads
+with root causes (:attr:`Finding.root_cause`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from enum import Enum
+from types import MappingProxyType
+from typing import Any
+
+#: The engines a finding can concern.  ``both`` is a finding about the pair (a joint mapping, a
+#: coupling both engines ignore); ``file`` is a construct of the file itself.
+ENGINES = ("mujoco", "pinocchio", "drake", "both", "file")
+
+
+class KoenigCheckError(Exception):
+    """Root of every exception koenig-check raises on purpose.
+
+    Messages are one line naming the file and the element concerned.
+    """
+
+
+class Kind(str, Enum):
+    """What a finding is about.
+
+    The value is the stable identifier used in JSON output and tests.
+    """
+
+    # What was done to load the model (the user asked for it, or a documented engine limitation).
+    LOAD = "load"  # a loading decision: inertia-only meshes, keyframes skipped, a file loaded for one engine
+    REPAIR = "repair"  # a mass property changed so that an engine accepts the model (--repair-inertia)
+    COUPLING = "coupling"  # joints coupled by the file (mimic, equality, tendon, weld/connect)
+    # Import differences: the engines were given, or built, different mechanisms from one file.
+    MASS = "mass"
+    COM = "com"
+    INERTIA = "inertia"
+    AXIS = "axis"
+    ANCHOR = "anchor"
+    ARMATURE = "armature"
+    SEGMENTS = "segments"  # a segment one engine has and the other lacks, or gives no mass
+    FRAME = "frame"  # a constant world transform between the engines (a dropped root pose)
+    COMPILER = "compiler"  # a compiler option that one engine honours and the other ignores
+    IGNORED_CONSTRUCT = "ignored_construct"  # a file construct one engine's parser ignores
+    # An engine disagreeing with itself (energy against ½ q̇ᵀ M q̇, RNEA against M q̈).
+    SELF_CONSISTENCY = "self_consistency"
+    # Nothing to compare.
+    NOTHING_MOVES = "nothing_moves"
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One thing learned about a model.
+
+    Parameters
+    ----------
+    kind : Kind
+        What it is about.
+    engine : str
+        One of :data:`ENGINES`: the engine concerned (the one that departs, ignores or was changed).
+    element : str
+        What in the model it concerns, as ``"<tag> <name>"`` (``"geom pole"``, ``"link base"``,
+        ``"joint hip"``, ``"include arm.xml"``, ``"compiler settotalmass"``), or ``"model"``.
+    summary : str
+        A few words saying what was found, without the values (``"geom mass from default class
+        'pole' ignored; density × volume used"``).
+    values : mapping of str to Any, optional
+        The values on each side (``{"mujoco": 0.1, "pinocchio": 6.74}``), or what changed.
+    affects_energy : bool
+        Whether it changes the kinetic energy one engine computes for the same state.
+    root_cause : bool
+        Whether it is a root cause that explains per-segment symptoms (reports lead with these).
+    segments : tuple of str
+        Segments whose symptoms it explains (empty when none or unknown).
+    hint : str
+        What the user can do about it (an option, a file to load instead), or empty.
+    """
+
+    kind: Kind
+    engine: str
+    element: str
+    summary: str
+    values: Mapping[str, Any] = field(default_factory=dict)
+    affects_energy: bool = False
+    root_cause: bool = False
+    segments: tuple[str, ...] = ()
+    hint: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.kind, Kind):
+            object.__setattr__(self, "kind", Kind(self.kind))
+        if self.engine not in ENGINES:
+            raise ValueError(f"Finding.engine must be one of {ENGINES}, got {self.engine!r}")
+        if not self.element or not self.summary:
+            raise ValueError("Finding needs an element and a summary")
+        object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
+        object.__setattr__(self, "segments", tuple(self.segments))
+
+    def message(self) -> str:
+        """One line for people: engine, element, summary, values and hint.
+
+        Returns
+        -------
+        str
+        """
+        text = f"{self.engine}: {self.element}: {self.summary}"
+        if self.values:
+            text += " (" + ", ".join(f"{k} {_fmt(v)}" for k, v in self.values.items()) + ")"
+        if self.hint:
+            text += f"; {self.hint}"
+        return text
+
+    def as_dict(self) -> dict[str, Any]:
+        """A JSON-ready dictionary of the record.
+
+        Returns
+        -------
+        dict
+        """
+        return {
+            "kind": self.kind.value,
+            "engine": self.engine,
+            "element": self.element,
+            "summary": self.summary,
+            "values": {k: _jsonable(v) for k, v in self.values.items()},
+            "affects_energy": self.affects_energy,
+            "root_cause": self.root_cause,
+            "segments": list(self.segments),
+            "hint": self.hint,
+        }
+
+
+def root_causes(findings: Iterable[Finding]) -> list[Finding]:
+    """The root causes among findings, those that change the energy first.
+
+    Parameters
+    ----------
+    findings : iterable of Finding
+
+    Returns
+    -------
+    list of Finding
+    """
+    roots = [f for f in findings if f.root_cause]
+    return sorted(roots, key=lambda f: not f.affects_energy)
+
+
+def of_kind(findings: Iterable[Finding], *kinds: Kind) -> list[Finding]:
+    """The findings of the given kinds, in order.
+
+    Parameters
+    ----------
+    findings : iterable of Finding
+    *kinds : Kind
+
+    Returns
+    -------
+    list of Finding
+    """
+    return [f for f in findings if f.kind in kinds]
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def _jsonable(value: Any) -> Any:
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    return value
