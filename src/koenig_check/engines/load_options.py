@@ -1,0 +1,98 @@
+"""How a model is loaded: one definition shared by the API, every command and the testing helper.
+
+:class:`LoadOptions` is what :func:`koenig_check.engines.load_model` takes; :func:`add_load_arguments`
+puts the same options on any sub-command that loads a model and :meth:`LoadOptions.from_namespace`
+reads them back, so that a flag a message points to exists wherever a model is loaded.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from dataclasses import dataclass, fields
+from typing import Any
+
+
+@dataclass(frozen=True)
+class LoadOptions:
+    """Options that decide how a file becomes a model in both engines.
+
+    Parameters
+    ----------
+    floating : bool
+        Give a fixed-base model a free root joint.
+    balance_inertia : bool
+        Let MuJoCo load inertias that violate ``A + B >= C`` (``balanceinertia``); recorded per link.
+    pinocchio_model : str or path, optional
+        Load Pinocchio from this other file of the same mechanism (e.g. the URDF twin of an MJCF).
+    allow_coupled : bool
+        Deprecated no-op kept for a while: coupled joints are loaded by default and recorded as findings.
+    """
+
+    floating: bool = False
+    balance_inertia: bool = False
+    pinocchio_model: str | os.PathLike[str] | None = None
+    allow_coupled: bool = False
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if f.type == "bool" and not isinstance(value, bool):
+                raise TypeError(f"LoadOptions.{f.name} must be a bool, got {value!r}")
+
+    @classmethod
+    def names(cls) -> tuple[str, ...]:
+        """The option names, as keyword arguments.
+
+        Returns
+        -------
+        tuple of str
+        """
+        return tuple(f.name for f in fields(cls))
+
+    @classmethod
+    def pop_from(cls, options: dict[str, Any]) -> LoadOptions:
+        """Take the load options out of a keyword dictionary (the rest stays in it).
+
+        Parameters
+        ----------
+        options : dict
+            Keyword arguments; the load options are removed from it.
+
+        Returns
+        -------
+        LoadOptions
+        """
+        return cls(**{name: options.pop(name) for name in cls.names() if name in options})
+
+    @classmethod
+    def from_namespace(cls, args: argparse.Namespace) -> LoadOptions:
+        """Read the options that :func:`add_load_arguments` put on a parser.
+
+        Parameters
+        ----------
+        args : argparse.Namespace
+
+        Returns
+        -------
+        LoadOptions
+        """
+        return cls(**{name: getattr(args, name) for name in cls.names() if hasattr(args, name)})
+
+
+def add_load_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add every load option to a sub-command's parser.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+    """
+    group = parser.add_argument_group("how the model is loaded")
+    group.add_argument("--floating", action="store_true", help="give a fixed-base model a free-floating base")
+    group.add_argument(
+        "--balance-inertia", action="store_true", help="let MuJoCo balance inertias with A + B < C (recorded per link)"
+    )
+    group.add_argument(
+        "--pinocchio-model", help="load Pinocchio from this file instead (e.g. the URDF twin of an MJCF)"
+    )
+    group.add_argument("--allow-coupled", action="store_true", help=argparse.SUPPRESS)
