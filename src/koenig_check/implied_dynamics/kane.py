@@ -77,9 +77,7 @@ def kane_mujoco(engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarra
     return M_out, Q_out
 
 
-def kane_pinocchio(
-    engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
+def kane_pinocchio(engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Kane's ``M`` and ``Q*`` with Pinocchio's frame Jacobians and classical accelerations at each COM.
 
     Parameters
