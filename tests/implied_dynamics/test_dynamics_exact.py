@@ -12,7 +12,8 @@ M_RTOL, Q_RTOL = 1e-9, 1e-6
 ROUTES = ("lagrange@mujoco", "lagrange@pinocchio", "kane@mujoco", "kane@pinocchio")
 
 # (model, floating): every project model in both formats, fixed and floating bases, example-robot-data
-# robots (ur5 fixed and floating, solo12 floating), and a model with a ball joint and a three-joint body.
+# robots (ur5 fixed and floating, solo12 and the g1 humanoid floating), and a model with a ball joint
+# and a three-joint body.
 CASES = [
     ("gimbal.xml", False),
     ("gimbal.urdf", False),
@@ -28,6 +29,7 @@ CASES = [
     ("ur5", False),
     ("ur5", True),
     ("solo12", True),
+    ("g1_29dof_rev_1_0", True),
     ("mixed_joints", False),
 ]
 

@@ -25,8 +25,11 @@ Numerics
   ``(p(t + h) − p(t − h)) / 2h``: truncation ``≈ (hΩ)² / 6`` and rounding ``≈ ε / (hΩ)`` relative
   to ``|p| Ω``, with ``Ω = max(|q̇|∞, √|q̈|∞, 1)`` the pose's characteristic rate.  ``h = η / Ω``
   with ``η`` = :data:`TIME_STEP_SCALE` = 1e-5 keeps both near 1e-11.
-Measured on the project models and example-robot-data robots: ``exact`` against both engines to
-about 1e-10 relative (norm), three orders of magnitude inside the 1e-7 the method is built for.
+Measured (``exact`` on MuJoCo's states against ``mj_inverse``, worst norm-relative error over 6 random
+states with unit and 10× velocities, on gimbal, serial7, free_body, a ball/composite model, ur5 and
+solo12 floating, g1 floating with 35 dofs), with ``δ = η``:  1e-3 → 2e-6, 1e-4 → 2e-8 (truncation,
+falling as h²), 1e-5 → 7e-10, 1e-6 → 6e-9, 1e-7 → 8e-8 (rounding, growing as 1/h).  The chosen 1e-5
+is the minimum, about three orders of magnitude inside the 1e-7 the method is built for.
 """
 
 from __future__ import annotations
