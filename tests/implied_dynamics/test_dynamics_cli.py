@@ -68,3 +68,21 @@ def test_corrupted_mujoco_inverse_dynamics_exits_1(monkeypatch, capsys):
 def test_missing_model_exits_1_naming_the_file(tmp_path, capsys):
     assert main(["dynamics", str(tmp_path / "nope.xml")]) == 1
     assert "nope.xml" in capsys.readouterr().err
+
+
+def test_pinocchio_from_the_urdf_twin_with_armature_only_in_mujoco(capsys):
+    argv = ["dynamics", "armature_chain.xml", "--pinocchio-model", "armature_chain.urdf", "--poses", "2"]
+    assert main([*argv, "--formulas", "exact"]) == 0
+
+
+def test_engine_disagreement_is_named_among_the_failures(monkeypatch):
+    from koenig_check.implied_dynamics.analysis import ENGINE_PARITY, dynamics
+
+    original = PinocchioEngine.mass_matrix
+    monkeypatch.setattr(PinocchioEngine, "mass_matrix", lambda self, qpos: 1.001 * original(self, qpos))
+    result = dynamics("gimbal.xml", n_poses=2, formulas=["exact"])
+    assert not result.ok
+    failed = {(e.formula, e.route, e.engine, e.quantity) for e in result.failures()}
+    assert (ENGINE_PARITY, "mujoco", "pinocchio", "M") in failed
+    assert ("exact", "kane@mujoco", "pinocchio", "M") in failed
+    assert ("exact", "kane@mujoco", "mujoco", "M") not in failed
