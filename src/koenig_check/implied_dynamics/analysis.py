@@ -25,8 +25,8 @@ from koenig_check.engines import ModelPair, load_model
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.state_map import mujoco_coordinate_names
 from koenig_check.findings import KoenigCheckError
-from koenig_check.formulas import FORMULAS
-from koenig_check.implied_dynamics.energy import FormulaEnergy, implied_mass_matrix
+from koenig_check.formulas import FORMULAS, NotPlaneParallelError
+from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix
 from koenig_check.implied_dynamics.errors import Discrepancy, discrepancy
 from koenig_check.implied_dynamics.kane import kane_mujoco, kane_pinocchio
 from koenig_check.implied_dynamics.lagrange import lagrange_inertia_forces
@@ -201,7 +201,9 @@ def dynamics_of_pair(
                 M = implied_mass_matrix(energy, qpos)
                 Q = lagrange_inertia_forces(energy, mj_model, qpos, qvel, qacc)
                 result.routes[(name, f"lagrange@{source}")] = RouteResult(M, Q)
-        except (KoenigCheckError, ValueError) as err:  # path-dependent, not plane-parallel, non-physical
+        except (PathDependentError, NotPlaneParallelError, ValueError) as err:
+            if isinstance(err, ValueError) and not isinstance(err, KoenigCheckError) and name != "point_masses":
+                raise  # only point_masses refuses by ValueError (a non-physical inertia has no point set)
             result.routes = {k: v for k, v in result.routes.items() if k[0] != name}
             result.refusals[name] = " ".join(str(err).split())
             continue
