@@ -8,8 +8,9 @@ from koenig_check.segments import SegmentStates
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
+    from koenig_check.implied_dynamics.analysis import DynamicsResult
 
-__all__ = ["SegmentStates", "compare"]
+__all__ = ["SegmentStates", "compare", "dynamics"]
 __version__ = "0.1.0"
 
 
@@ -32,3 +33,26 @@ def compare(models: Any, **options: Any) -> CrossCheck:
     from koenig_check.api import compare as _compare
 
     return _compare(models, **options)
+
+
+def dynamics(model: Any, **options: Any) -> DynamicsResult:
+    """Mass matrix and generalized inertia forces implied by each energy formula, against both engines.
+
+    See :func:`koenig_check.implied_dynamics.analysis.dynamics`.
+
+    Parameters
+    ----------
+    model : str or Path
+        A model file or name (``koenig-check models``).
+    **options
+        ``n_poses``, ``seed``, ``formulas``, ``m_rtol``, ``q_rtol``, ``velocity_scale`` and the load
+        options ``floating``, ``balance_inertia``, ``pinocchio_model``, ``allow_coupled``.
+
+    Returns
+    -------
+    DynamicsResult
+        Matrices and forces per formula and route, the engines' own, and the errors as arrays.
+    """
+    from koenig_check.implied_dynamics.analysis import dynamics as _dynamics
+
+    return _dynamics(model, **options)

@@ -135,6 +135,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="seed of the random cases (default 0)")
     p.add_argument("--rtol", type=_tolerance, default=1e-9, help="agreement tolerance (default 1e-9)")
     p.set_defaults(func=_cmd_selfcheck)
+
+    _add_dynamics_command(sub)
     return parser
 
 
@@ -215,6 +217,70 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     if report.clean:
         return 0
     print(f"koenig-check: import differences in {args.model}: {report.headline()}", file=sys.stderr)
+    return 1
+
+
+# ----------------------------------------------------------------------------- dynamics (self-contained)
+def _positive_int(text: str) -> int:
+    """A count: an integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
+    return value
+
+
+def _add_dynamics_command(sub: argparse._SubParsersAction) -> None:
+    """The ``dynamics`` sub-command: M and Q* implied by each formula, against both engines."""
+    from koenig_check.engines.load_options import add_load_arguments
+    from koenig_check.formulas import FORMULAS
+    from koenig_check.implied_dynamics.analysis import M_RTOL, Q_RTOL
+
+    p = _add(
+        sub,
+        "dynamics",
+        "mass matrix and generalized inertia forces implied by each energy formula, against both engines",
+        "koenig-check dynamics gimbal.xml --poses 10 --out dyn-report",
+    )
+    p.add_argument("model", metavar="MODEL", help="model file or name")
+    add_load_arguments(p)
+    p.add_argument("--poses", type=_positive_int, default=5, help="random poses (default 5)")
+    p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
+    p.add_argument(
+        "--formulas", nargs="+", metavar="NAME", choices=list(FORMULAS), help="formulas (default: all; exact always)"
+    )
+    p.add_argument("--out", help="write dynamics.md and dynamics.json into this directory")
+    p.add_argument("--m-rtol", type=_tolerance, default=M_RTOL, help=f"tolerance on M of exact (default {M_RTOL:g})")
+    p.add_argument("--q-rtol", type=_tolerance, default=Q_RTOL, help=f"tolerance on Q* of exact (default {Q_RTOL:g})")
+    p.set_defaults(func=_cmd_dynamics)
+
+
+def _cmd_dynamics(args: argparse.Namespace) -> int:
+    from dataclasses import asdict
+
+    from koenig_check.engines.load_options import LoadOptions
+    from koenig_check.implied_dynamics.analysis import dynamics
+    from koenig_check.implied_dynamics.markdown import terminal_lines, write_dynamics
+
+    options = asdict(LoadOptions.from_namespace(args))
+    result = dynamics(
+        args.model,
+        n_poses=args.poses,
+        seed=args.seed,
+        formulas=args.formulas,
+        m_rtol=args.m_rtol,
+        q_rtol=args.q_rtol,
+        **options,
+    )
+    print("\n".join(terminal_lines(result)))
+    if args.out:
+        written = write_dynamics(Path(args.out), result)
+        print(f"\nreport: {Path(args.out).resolve()} ({len(written)} files)")
+    if result.ok:
+        return 0
+    print(f"koenig-check: exact disagrees with an engine: {result.reason()}", file=sys.stderr)
     return 1
 
 

@@ -1,0 +1,289 @@
+"""One model's dynamics check: every formula's implied ``M`` and ``Q*`` by every route, against both engines.
+
+Routes
+------
+``lagrange@<engine>``
+    The formula evaluated on that engine's segment states: ``M`` by polarization, ``Q*`` by Lagrange's
+    equations (any formula that is a function of the state).
+``kane@<engine>``
+    ``exact`` only: Kane's form with that engine's own Jacobians and accelerations.
+
+Every route is compared with both engines' rigid ``M`` and ``Q*`` (armature taken out, see
+:mod:`~koenig_check.implied_dynamics.reference`), and the engines with each other.  The check passes
+when ``exact`` agrees with both engines by every route and the engines agree with each other; the
+paper's formulas disagreeing is the finding the report is for, not a failure.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from koenig_check.engines import ModelPair, load_model
+from koenig_check.engines.load_options import LoadOptions
+from koenig_check.engines.state_map import mujoco_coordinate_names
+from koenig_check.findings import KoenigCheckError
+from koenig_check.formulas import FORMULAS, NotPlaneParallelError
+from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix
+from koenig_check.implied_dynamics.errors import Discrepancy, discrepancy
+from koenig_check.implied_dynamics.kane import kane_mujoco, kane_pinocchio
+from koenig_check.implied_dynamics.lagrange import lagrange_inertia_forces
+from koenig_check.implied_dynamics.reference import rigid_inertia_forces, rigid_mass_matrix
+from koenig_check.poses import random_poses
+
+#: Default relative tolerance (Frobenius norm, per pose) for ``M`` of ``exact`` against an engine.
+M_RTOL = 1e-9
+#: Default relative tolerance (Euclidean norm, per pose) for ``Q*`` of ``exact`` against an engine.
+Q_RTOL = 1e-6
+ENGINES = ("mujoco", "pinocchio")
+#: The pseudo-formula under which the engines are compared with each other.
+ENGINE_PARITY = "(engine)"
+
+
+@dataclass
+class RouteResult:
+    """What one route gives for one formula.
+
+    Attributes
+    ----------
+    M : ndarray, shape (P, nv, nv)
+    Q : ndarray, shape (P, nv)
+        Generalized inertia forces ``Q*``.
+    """
+
+    M: np.ndarray
+    Q: np.ndarray
+
+
+@dataclass
+class DynamicsResult:
+    """Every formula's implied dynamics on one model, with the errors against both engines.
+
+    Attributes
+    ----------
+    model : str
+        The model file.
+    qpos, qvel, qacc : ndarray
+        The canonical states, shapes (P, nq), (P, nv), (P, nv).
+    dof_names : tuple of str
+        Canonical velocity coordinates, named after their joints.
+    engine_mass, engine_forces : dict
+        Engine name -> its rigid mass matrix (P, nv, nv) and ``Q* = −τ_rigid`` (P, nv).
+    routes : dict
+        ``(formula, route)`` -> :class:`RouteResult`.
+    errors : list of Discrepancy
+        Every route against every engine, ``M`` and ``Q*``, and the engines against each other.
+    refusals : dict
+        Formula -> why it has no ``M``/``Q*`` (path-dependent energy, non-plane-parallel motion...).
+    m_rtol, q_rtol : float
+        Tolerances of the verdict on ``exact``.
+    notes : list of str
+        The model's load notes.
+    """
+
+    model: str
+    qpos: np.ndarray
+    qvel: np.ndarray
+    qacc: np.ndarray
+    dof_names: tuple[str, ...]
+    engine_mass: dict[str, np.ndarray] = field(default_factory=dict)
+    engine_forces: dict[str, np.ndarray] = field(default_factory=dict)
+    routes: dict[tuple[str, str], RouteResult] = field(default_factory=dict)
+    errors: list[Discrepancy] = field(default_factory=list)
+    refusals: dict[str, str] = field(default_factory=dict)
+    m_rtol: float = M_RTOL
+    q_rtol: float = Q_RTOL
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def formulas(self) -> list[str]:
+        """Formulas evaluated or refused, in order."""
+        seen = dict.fromkeys([f for f, _ in self.routes] + list(self.refusals))
+        return list(seen)
+
+    def errors_of(self, formula: str, quantity: str | None = None) -> list[Discrepancy]:
+        """The discrepancies of one formula (optionally only ``"M"`` or ``"Q*"``)."""
+        return [e for e in self.errors if e.formula == formula and quantity in (None, e.quantity)]
+
+    def failures(self) -> list[Discrepancy]:
+        """Comparisons of ``exact`` (every route) and of the engines with each other beyond tolerance."""
+        out = []
+        for e in self.errors:
+            if e.formula not in ("exact", ENGINE_PARITY):
+                continue
+            tol = self.m_rtol if e.quantity == "M" else self.q_rtol
+            if not e.max_rel_error <= tol:
+                out.append(e)
+        return out
+
+    @property
+    def ok(self) -> bool:
+        """True when ``exact`` agrees with both engines by every route and the engines agree."""
+        return "exact" not in self.refusals and not self.failures()
+
+    def reason(self) -> str:
+        """One line: why the check failed, or ``""``."""
+        if "exact" in self.refusals:
+            return f"{self.model}: exact refused: {self.refusals['exact']}"
+        bad = self.failures()
+        if not bad:
+            return ""
+        e = max(bad, key=lambda d: d.max_rel_error / (self.m_rtol if d.quantity == "M" else self.q_rtol))
+        tol = self.m_rtol if e.quantity == "M" else self.q_rtol
+        who = "engines disagree" if e.formula == ENGINE_PARITY else f"exact by {e.route}"
+        return (
+            f"{self.model}: {who}: {e.quantity} of {e.route} against {e.engine} off by {e.max_rel_error:.3g} "
+            f"relative (tolerance {tol:g}) at pose {e.max_pose}, worst entry {self.entry_name(e)} "
+            f"({e.worst_entry_error:+.3g})"
+        )
+
+    def entry_name(self, e: Discrepancy) -> str:
+        """Name the worst entry of a discrepancy by its dofs."""
+        return ",".join(self.dof_names[k] for k in e.worst_entry)
+
+
+def _random_accelerations(nv: int, n: int, seed: int) -> np.ndarray:
+    return np.random.default_rng([seed, 9]).normal(size=(n, nv))
+
+
+def dynamics_of_pair(
+    pair: ModelPair,
+    qpos: np.ndarray,
+    qvel: np.ndarray,
+    qacc: np.ndarray,
+    formulas: list[str] | None = None,
+    m_rtol: float = M_RTOL,
+    q_rtol: float = Q_RTOL,
+) -> DynamicsResult:
+    """Run every route for every formula on given canonical states of a loaded model.
+
+    Parameters
+    ----------
+    pair : ModelPair
+    qpos : ndarray, shape (P, nq)
+    qvel, qacc : ndarray, shape (P, nv)
+    formulas : list of str, optional
+        Default: every formula; ``exact`` is always included (the verdict needs it).
+    m_rtol, q_rtol : float
+
+    Returns
+    -------
+    DynamicsResult
+    """
+    names = list(FORMULAS) if formulas is None else list(formulas)
+    unknown = [n for n in names if n not in FORMULAS]
+    if unknown:
+        raise ValueError(f"unknown formulas {unknown}; known: {list(FORMULAS)}")
+    if "exact" not in names:
+        names.insert(0, "exact")
+    qpos, qvel, qacc = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (qpos, qvel, qacc))
+    mj_model = pair.mujoco.model
+    result = DynamicsResult(
+        model=pair.path,
+        qpos=qpos,
+        qvel=qvel,
+        qacc=qacc,
+        dof_names=tuple(mujoco_coordinate_names(mj_model)[1]),
+        m_rtol=m_rtol,
+        q_rtol=q_rtol,
+        notes=list(pair.notes),
+    )
+    engines = dict(zip(ENGINES, pair.engines, strict=True))
+    for name, eng in engines.items():
+        result.engine_mass[name] = rigid_mass_matrix(eng, qpos)
+        result.engine_forces[name] = rigid_inertia_forces(eng, qpos, qvel, qacc)
+    for name in names:
+        try:
+            for source, eng in engines.items():
+                energy = FormulaEnergy(name, eng)
+                M = implied_mass_matrix(energy, qpos)
+                Q = lagrange_inertia_forces(energy, mj_model, qpos, qvel, qacc)
+                result.routes[(name, f"lagrange@{source}")] = RouteResult(M, Q)
+        except (PathDependentError, NotPlaneParallelError, ValueError) as err:
+            if isinstance(err, ValueError) and not isinstance(err, KoenigCheckError) and name != "point_masses":
+                raise  # only point_masses refuses by ValueError (a non-physical inertia has no point set)
+            result.routes = {k: v for k, v in result.routes.items() if k[0] != name}
+            result.refusals[name] = " ".join(str(err).split())
+            continue
+        if name == "exact":
+            result.routes[(name, "kane@mujoco")] = RouteResult(*kane_mujoco(pair.mujoco, qpos, qvel, qacc))
+            result.routes[(name, "kane@pinocchio")] = RouteResult(*kane_pinocchio(pair.pinocchio, qpos, qvel, qacc))
+    for (name, route), r in result.routes.items():
+        for engine in ENGINES:
+            result.errors.append(discrepancy(r.M, result.engine_mass[engine], name, route, engine))
+            result.errors.append(discrepancy(r.Q, result.engine_forces[engine], name, route, engine))
+    result.errors.append(
+        discrepancy(result.engine_mass["mujoco"], result.engine_mass["pinocchio"], ENGINE_PARITY, "mujoco", "pinocchio")
+    )
+    result.errors.append(
+        discrepancy(
+            result.engine_forces["mujoco"], result.engine_forces["pinocchio"], ENGINE_PARITY, "mujoco", "pinocchio"
+        )
+    )
+    return result
+
+
+def load(model: str | os.PathLike[str], options: LoadOptions) -> ModelPair:
+    """Load a model in both engines with the shared load options.
+
+    Parameters
+    ----------
+    model : str or path
+    options : LoadOptions
+
+    Returns
+    -------
+    ModelPair
+    """
+    return load_model(
+        model,
+        floating=options.floating,
+        balance_inertia=options.balance_inertia,
+        pinocchio_source=options.pinocchio_model,
+        allow_coupled=options.allow_coupled,
+    )
+
+
+def dynamics(
+    model: str | os.PathLike[str],
+    n_poses: int = 5,
+    seed: int = 0,
+    formulas: list[str] | None = None,
+    m_rtol: float = M_RTOL,
+    q_rtol: float = Q_RTOL,
+    velocity_scale: float = 1.0,
+    **load_options: bool | str | None,
+) -> DynamicsResult:
+    """Mass matrix and generalized inertia forces implied by each energy formula, against both engines.
+
+    Parameters
+    ----------
+    model : str or path
+        A model file or a name from ``koenig-check models``.
+    n_poses : int
+        Random poses (within joint limits), velocities and accelerations (normal, std ``velocity_scale``).
+    seed : int
+    formulas : list of str, optional
+        Default: every formula (``exact`` is always included).
+    m_rtol, q_rtol : float
+        Tolerances of the verdict on ``exact`` (per-pose norm-relative error of ``M`` and ``Q*``).
+    velocity_scale : float
+    **load_options
+        :class:`~koenig_check.engines.load_options.LoadOptions` fields: ``floating``, ``balance_inertia``,
+        ``pinocchio_model``, ``allow_coupled``.
+
+    Returns
+    -------
+    DynamicsResult
+        ``result.routes[(formula, route)].M`` / ``.Q``, ``result.engine_mass`` / ``engine_forces``,
+        ``result.errors`` (arrays of per-pose relative errors), ``result.ok``, ``result.reason()``.
+    """
+    options = LoadOptions.pop_from(load_options)
+    if load_options:
+        raise TypeError(f"dynamics() got unexpected keyword arguments {sorted(load_options)}")
+    pair = load(model, options)
+    poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
+    qacc = velocity_scale * _random_accelerations(pair.mujoco.nv, n_poses, seed)
+    return dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)

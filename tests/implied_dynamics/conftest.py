@@ -1,0 +1,33 @@
+"""Fixtures of the dynamics tests: models loaded once per session, seeded states with accelerations."""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+import pytest
+from dynamics_helpers import MIXED_JOINTS_MJCF
+
+from koenig_check.engines import ModelPair, load_model
+
+
+@pytest.fixture(scope="session")
+def mixed_joints_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("models") / "mixed_joints.xml"
+    path.write_text(MIXED_JOINTS_MJCF)
+    return path
+
+
+@cache
+def _load(model: str, floating: bool) -> ModelPair:
+    return load_model(model, floating=floating)
+
+
+@pytest.fixture(scope="session")
+def load_pair():
+    """``load_pair(model, floating=False)``: one load per session."""
+
+    def load(model: str | Path, floating: bool = False) -> ModelPair:
+        return _load(str(model), floating)
+
+    return load
