@@ -590,9 +590,9 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
             summary = f"geom mass from default class '{cls}' not applied by Pinocchio; density × volume used"
             kind = Kind.MASS
         else:
-            pos = [_vec(np.array(e.pos, dtype=float)) for _, e, _ in members]
+            pos = list(dict.fromkeys(_vec(np.array(e.pos, dtype=float)) for _, e, _ in members))
             values = {"class": cls, f"{tag}s": tuple(names), "mujoco": pos[0] if len(pos) == 1 else tuple(pos)}
-            values["pinocchio"] = (0.0, 0.0, 0.0) if len(pos) == 1 else ((0.0, 0.0, 0.0),) * len(pos)
+            values["pinocchio"] = (0.0, 0.0, 0.0)
             summary = f"{tag} pos from default class '{cls}' not applied by Pinocchio; {tag} placed at the body origin"
             kind = Kind.ANCHOR if tag == "joint" else Kind.COM
         out.append(
@@ -641,6 +641,46 @@ def _mass_values(spec: mujoco.MjSpec, geoms: list[Any]) -> dict[str, float]:
     return {"mujoco": given, "pinocchio": float(given + unset.body_mass.sum() - base.body_mass.sum())}
 
 
+def compiler_causes(pair: Any) -> list[Finding]:
+    """Compiler options MuJoCo applies and Pinocchio's MJCF parser does not (``settotalmass``).
+
+    Reported when the engines' total masses differ and MuJoCo's equals the option's value.
+
+    Parameters
+    ----------
+    pair : ModelPair
+
+    Returns
+    -------
+    list of Finding
+    """
+    root = _read_mjcf(Path(str(pair.mujoco.path)))
+    if root is None:
+        return []
+    out = []
+    for compiler in root.iter("compiler"):
+        value = compiler.get("settotalmass")
+        if value is None or float(value) <= 0:
+            continue
+        m_mj = float(np.asarray(pair.mujoco.model.body_mass).sum())
+        m_pin = float(sum(Y.mass for Y in pair.pinocchio.model.inertias))
+        scale = max(m_mj, m_pin, 1e-300)
+        if abs(m_mj - float(value)) <= RTOL * scale and abs(m_mj - m_pin) > RTOL * scale:
+            out.append(
+                Finding(
+                    Kind.COMPILER,
+                    "pinocchio",
+                    "compiler settotalmass",
+                    f"settotalmass={value}: MuJoCo rescales every mass and inertia to this total, Pinocchio does not",
+                    values={"mujoco": m_mj, "pinocchio": m_pin},
+                    affects_energy=True,
+                    root_cause=True,
+                    segments=tuple(pair.mujoco.segment_names),
+                )
+            )
+    return out
+
+
 def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     """Every root cause of an MJCF model loaded in both engines, and the dropped root pose if any.
 
@@ -660,6 +700,7 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
         return [], None
     causes = file_causes(mj_path)
     offset, frame = root_frame_offset(pair)
+    causes += compiler_causes(pair)
     causes += class_value_causes(pair, offset)
     causes += massless_causes(pair)
     if frame is not None:
