@@ -160,3 +160,13 @@ def test_nothing_moves_says_so_and_offers_floating() -> None:
     assert "--floating" in cause.hint
     assert "nothing to compare" in str(err) and "--floating" in str(err) and "nothing_moves.xml" in str(err)
     assert koenig_check.compare(CAUSES / "nothing_moves.xml", floating=True, n_poses=2, formulas=["exact"]).ok
+
+
+def test_mesh_geoms_are_named_when_pinocchio_gets_another_mass() -> None:
+    pair = load_model(CAUSES / "mesh_geom.xml")
+    assert engines_agree(pair) is False
+    cause = _only(import_parity(pair).causes, Kind.MASS)
+    assert (cause.engine, cause.element, cause.segments) == ("pinocchio", "geom shell", ("jb",))
+    assert cause.values["mujoco"] == pytest.approx(0.3) and cause.values["pinocchio"] == pytest.approx(1.0)
+    check = _compare("mesh_geom.xml")
+    assert not check.ok and cause.message() in check.reason()

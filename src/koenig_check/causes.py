@@ -413,16 +413,20 @@ def _quat(R: np.ndarray) -> np.ndarray:
 
 def _segment_of_body(mj_model: mujoco.MjModel) -> dict[str, str]:
     """MuJoCo body name -> the segment (name of its carrier's last joint) that moves it ('' if static)."""
-    out: dict[str, str] = {}
+    seg = _segment_by_body_id(mj_model)
+    names = (mujoco.mj_id2name(mj_model, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(mj_model.nbody))
+    return {name: seg[b] for b, name in enumerate(names) if name}
+
+
+def _segment_by_body_id(mj_model: mujoco.MjModel) -> list[str]:
+    """The segment of every MuJoCo body, by body id ('' for the world and static bodies)."""
     seg = [""] * mj_model.nbody
-    for b in range(1, mj_model.nbody):
+    for b in range(1, mj_model.nbody):  # parents come before children
         if mj_model.body_jntnum[b] > 0:
-            j = mj_model.body_jntadr[b] + mj_model.body_jntnum[b] - 1
-            seg[b] = _joint_name(mj_model, j)
+            seg[b] = _joint_name(mj_model, mj_model.body_jntadr[b] + mj_model.body_jntnum[b] - 1)
         else:
             seg[b] = seg[mj_model.body_parentid[b]]
-        out[mujoco.mj_id2name(mj_model, mujoco.mjtObj.mjOBJ_BODY, b) or ""] = seg[b]
-    return out
+    return seg
 
 
 def _joint_name(mj_model: mujoco.MjModel, j: int) -> str:
@@ -516,18 +520,12 @@ def massless_causes(pair: Any) -> list[Finding]:
 
 def _mujoco_massless(pair: Any) -> list[str]:
     """MuJoCo segments (joint-keyed) whose lumped mass is zero."""
-    from koenig_check.engines.state_map import mujoco_joint_names
-
     m = pair.mujoco.model
-    names = mujoco_joint_names(m)
-    seg = _segment_of_body(m)
     total: dict[str, float] = {}
-    for b in range(1, m.nbody):
-        s = seg[mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, b) or ""]
+    for b, s in enumerate(_segment_by_body_id(m)):
         if s:
             total[s] = total.get(s, 0.0) + float(m.body_mass[b])
-    heads = {names[m.body_jntadr[b] + m.body_jntnum[b] - 1] for b in range(1, m.nbody) if m.body_jntnum[b] > 0}
-    return [s for s in heads if total.get(s, 0.0) <= 0]
+    return [s for s, mass in total.items() if mass <= 0]
 
 
 def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Finding]:
@@ -681,6 +679,61 @@ def compiler_causes(pair: Any) -> list[Finding]:
     return out
 
 
+def mesh_causes(pair: Any, explained: set[str] = frozenset()) -> list[Finding]:
+    """Geoms with a mesh in segments whose mass differs between the engines.
+
+    Pinocchio 4.1's MJCF parser does not compute mass and inertia from a mesh: verified, a geom of type
+    ``mesh`` counts as 1 kg with a unit inertia whatever its ``mass``, and a primitive fitted to a mesh (a
+    geom with ``mesh`` but no mesh type) as nothing.
+
+    Parameters
+    ----------
+    pair : ModelPair
+    explained : set of str
+        Segments whose mass difference another cause already explains.
+
+    Returns
+    -------
+    list of Finding
+    """
+    try:
+        spec = mujoco.MjSpec.from_file(str(pair.mujoco.path))
+    except Exception:
+        return []
+    seg_of = _segment_of_body(pair.mujoco.model)
+    segs = _segments(pair, None)
+    geoms: list[str] = []
+    segments: list[str] = []
+    for body in spec.bodies:
+        segment = seg_of.get(body.name, "")
+        if not segment or segment in explained or not _mass_differs(segs, segment):
+            continue
+        meshed = [g.name or f"{body.name}/geom{k}" for k, g in enumerate(body.geoms) if g.meshname]
+        if meshed:
+            geoms += meshed
+            segments.append(segment)
+    if not geoms:
+        return []
+    segments = list(dict.fromkeys(segments))
+    return [
+        Finding(
+            Kind.MASS,
+            "pinocchio",
+            f"geom {_names(geoms)}",
+            "geoms with a mesh: Pinocchio's MJCF parser does not compute mass and inertia from the mesh "
+            "(a mesh-typed geom counts as 1 kg with unit inertia, a primitive fitted to a mesh as nothing)",
+            values={
+                "geoms": tuple(geoms),
+                "mujoco": float(sum(segs.mass[s][0] for s in segments)),
+                "pinocchio": float(sum(segs.mass[s][1] for s in segments)),
+            },
+            affects_energy=True,
+            root_cause=True,
+            segments=tuple(segments),
+        )
+    ]
+
+
 def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     """Every root cause of an MJCF model loaded in both engines, and the dropped root pose if any.
 
@@ -702,6 +755,7 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     offset, frame = root_frame_offset(pair)
     causes += compiler_causes(pair)
     causes += class_value_causes(pair, offset)
+    causes += mesh_causes(pair)
     causes += massless_causes(pair)
     if frame is not None:
         causes.append(frame)

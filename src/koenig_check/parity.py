@@ -31,6 +31,14 @@ from koenig_check.segments import SegmentStates
 
 #: Default relative tolerance of parity comparisons.
 PARITY_RTOL = 1e-9
+#: Per-segment symptoms that a root cause of each kind explains (other kinds explain every symptom).
+_ALL_SYMPTOMS = frozenset({"mass", "com", "inertia", "anchor", "axis", "armature", "missing"})
+_EXPLAINS = {
+    Kind.MASS: frozenset({"mass", "com", "inertia"}),
+    Kind.COMPILER: frozenset({"mass", "com", "inertia"}),
+    Kind.COM: frozenset({"com", "inertia"}),
+    Kind.ANCHOR: frozenset({"anchor", "com", "axis"}),
+}
 
 
 @dataclass(frozen=True)
@@ -149,10 +157,23 @@ class ParityReport:
             or any(c.affects_energy for c in self.causes)
         )
 
-    @property
-    def explained(self) -> set[str]:
-        """Segments (and joints) whose symptoms a root cause explains."""
-        return {s for c in self.causes if c.affects_energy for s in c.segments}
+    def explained(self, name: str) -> set[str]:
+        """The symptoms of a segment or dof that root causes explain (``mass``, ``com``, ``anchor``...).
+
+        Parameters
+        ----------
+        name : str
+            Segment or joint name.
+
+        Returns
+        -------
+        set of str
+        """
+        out: set[str] = set()
+        for c in self.causes:
+            if c.affects_energy and (name in c.segments or name in c.values.get("joints", ())):
+                out |= _EXPLAINS.get(c.kind, _ALL_SYMPTOMS)
+        return out
 
     def causes_for(self, segment: str) -> tuple[str, ...]:
         """The causes found for one segment (empty when it matches).
@@ -176,16 +197,19 @@ class ParityReport:
         A symptom is a differing segment or dof, or a segment one engine lacks or gives no mass.
         """
         parts = [f"root cause: {c.message()}" for c in self.causes if c.affects_energy]
-        done = self.explained
-        parts += [f"segment {s.name}: {', '.join(s.causes)}" for s in self.differing_segments if s.name not in done]
-        parts += [f"dof {d.joint}: {', '.join(d.causes)}" for d in self.differing_dofs if d.joint not in done]
+        for label, items in (("segment", self.differing_segments), ("dof", self.differing_dofs)):
+            for item in items:
+                name = item.name if label == "segment" else item.joint
+                rest = [c for c in item.causes if c not in self.explained(name)]
+                if rest:
+                    parts.append(f"{label} {name}: {', '.join(rest)}")
         for label, names in (
             ("segments only in MuJoCo", self.only_in_mujoco),
             ("segments only in Pinocchio", self.only_in_pinocchio),
             ("segments massless in Pinocchio", self.massless_in_pinocchio),
             ("segments massless in MuJoCo", self.massless_in_mujoco),
         ):
-            rest = [n for n in names if n not in done]
+            rest = [n for n in names if not self.explained(n)]
             if rest:
                 parts.append(f"{label}: {rest}")
         return "; ".join(parts) or "no import difference"
