@@ -126,7 +126,7 @@ def test_joint_positions_from_a_default_class_are_named() -> None:
     report = import_parity(pair)
     assert report.total_mass[0] == pytest.approx(report.total_mass[1], rel=1e-12)
     cause = _only(report.causes, Kind.ANCHOR)
-    assert cause.engine == "pinocchio" and cause.values["class"] == "lumbar"
+    assert cause.engine == "pinocchio" and cause.values["class"] == "lumbar"  # also for class lumbar_bend below it
     assert set(cause.values["joints"]) == {"vertebra_1_extend", "vertebra_1_bend", "vertebra_2_extend"}
     assert cause.values["mujoco"] == pytest.approx((0.03, 0.0, -0.03))
     assert cause.values["pinocchio"] == pytest.approx((0.0, 0.0, 0.0))

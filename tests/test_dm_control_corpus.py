@@ -103,3 +103,11 @@ def test_humanoid_capsules_are_read_as_capsules() -> None:
     inertial = [f for f in report.findings if "<inertial>" in f]
     assert inertial and not any("sphere" in f for f in inertial if "torso" in f), inertial
     assert any("capsule" in f for f in inertial)
+
+
+def test_cheetah_settotalmass_is_named() -> None:
+    report = import_parity(load_model(_dm("suite/cheetah.xml")))
+    (cause,) = [c for c in report.causes if c.kind is Kind.COMPILER]
+    assert (cause.engine, cause.element) == ("pinocchio", "compiler settotalmass")
+    assert cause.values["mujoco"] == pytest.approx(14.0) and cause.values["pinocchio"] > 14.0
+    assert report.headline().startswith("root cause: " + cause.message())
