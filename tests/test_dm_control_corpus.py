@@ -111,3 +111,10 @@ def test_cheetah_settotalmass_is_named() -> None:
     assert (cause.engine, cause.element) == ("pinocchio", "compiler settotalmass")
     assert cause.values["mujoco"] == pytest.approx(14.0) and cause.values["pinocchio"] > 14.0
     assert report.headline().startswith("root cause: " + cause.message())
+
+
+def test_a_worldbody_without_a_body_is_nothing_to_compare() -> None:
+    with pytest.raises(KoenigCheckError) as info:
+        load_model(_dm("mujoco/testing/assets/sphere.xml"))
+    (cause,) = info.value.causes
+    assert cause.kind is Kind.NOTHING_MOVES and not cause.affects_energy and cause.hint == ""

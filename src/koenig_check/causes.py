@@ -248,12 +248,14 @@ def file_causes(path: str | os.PathLike[str]) -> list[Finding]:
     return out
 
 
-def nothing_moves(path: str | os.PathLike[str]) -> Finding:
+def nothing_moves(path: str | os.PathLike[str], has_body: bool = True) -> Finding:
     """The finding for a model without a joint: nothing to compare, not an engine error.
 
     Parameters
     ----------
     path : str or path
+    has_body : bool
+        Whether the model has a body that ``--floating`` could set free.
 
     Returns
     -------
@@ -263,10 +265,11 @@ def nothing_moves(path: str | os.PathLike[str]) -> Finding:
         Kind.NOTHING_MOVES,
         "file",
         "model",
-        "no joint: nothing moves, so there is no kinetic energy to compare (not an engine error)",
+        "no joint: nothing moves, so there is no kinetic energy to compare (not an engine error)"
+        + ("" if has_body else "; the <worldbody> holds no <body>"),
         values={"file": str(path)},
         root_cause=True,
-        hint="--floating (floating=True) gives the root body a free joint",
+        hint="--floating (floating=True) gives the root body a free joint" if has_body else "",
     )
 
 
@@ -288,12 +291,21 @@ def explain_load_failures(load: F) -> F:
 
     @wraps(load)
     def wrapper(path_or_name: Any, *args: Any, **kwargs: Any) -> Any:
-        from koenig_check.engines.errors import JointMismatch, ModelLoadError, NoMovingSegmentError
+        from koenig_check.engines.errors import (
+            CoupledJointsError,
+            InertiaError,
+            JointMismatch,
+            ModelLoadError,
+            NoMovingSegmentError,
+        )
 
         try:
             return load(path_or_name, *args, **kwargs)
         except NoMovingSegmentError as err:
             err.causes = [nothing_moves(getattr(err, "path", path_or_name))]  # type: ignore[attr-defined]
+            raise
+        except (CoupledJointsError, InertiaError) as err:  # MuJoCo's refusal or the file's couplings
+            err.causes = []  # type: ignore[attr-defined]
             raise
         except (ModelLoadError, JointMismatch) as err:
             causes = _file_causes_of(path_or_name, kwargs.get("fmt"))
@@ -312,7 +324,15 @@ def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
         source = resolve_model(path_or_name, fmt)
     except Exception:  # the original error says what is wrong with the name
         return []
-    return file_causes(source.path) if source.format == "mjcf" else []
+    if source.format != "mjcf":
+        return []
+    try:
+        model = mujoco.MjModel.from_xml_path(str(source.path))
+    except Exception:  # MuJoCo refuses the file itself: Pinocchio's reading of it is not the cause
+        return []
+    if model.njnt == 0:  # e.g. a <worldbody> without a <body>: Pinocchio fails, but nothing moves anyway
+        return [nothing_moves(source.path, has_body=model.nbody > 1)]
+    return file_causes(source.path)
 
 
 # ----------------------------------------------------------------------------------- model-level causes
