@@ -143,7 +143,10 @@ class _ClassValue:
 
 
 def _class_values(root: ET.Element) -> list[_ClassValue]:
-    """Attributes in :data:`CLASS_ATTRIBUTES_IGNORED` that the main file's elements get from a class."""
+    """Attributes in :data:`CLASS_ATTRIBUTES_IGNORED` that the main file's elements get from a class.
+
+    Geoms and joints of the main file's body tree only (not those inside ``<frame>`` or included files).
+    """
     defaults = _Defaults(root)
     wanted = {tag: [a for t, a in CLASS_ATTRIBUTES_IGNORED if t == tag] for tag, _ in CLASS_ATTRIBUTES_IGNORED}
     out: list[_ClassValue] = []
@@ -592,11 +595,9 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
         elif cand.tag == "geom":
             pair_com = segs.com.get(segment)
             shows = pair_com is not None and float(np.linalg.norm(pair_com[0] - pair_com[1])) > tol_len
-            shows = shows or _mass_differs(segs, segment)
         else:
             pair_pole = segs.pole.get(segment)
             shows = pair_pole is not None and float(np.linalg.norm(pair_pole[0] - pair_pole[1])) > tol_len
-            shows = shows or pair_pole is None
         if shows:
             groups.setdefault((cand.tag, cand.attr, cand.cls), []).append((cand, element, segment))
     out = []
