@@ -170,3 +170,13 @@ def test_mesh_geoms_are_named_when_pinocchio_gets_another_mass() -> None:
     assert cause.values["mujoco"] == pytest.approx(0.3) and cause.values["pinocchio"] == pytest.approx(1.0)
     check = _compare("mesh_geom.xml")
     assert not check.ok and cause.message() in check.reason()
+
+
+def test_include_of_a_welded_part_is_named_and_changes_the_energy() -> None:
+    pair = load_model(CAUSES / "include_welded_in_body.xml")  # the joints pair: only mass is missing
+    assert engines_agree(pair) is False
+    cause = _only(import_parity(pair).causes, Kind.IGNORED_CONSTRUCT)
+    assert (cause.element, cause.affects_energy, cause.segments) == ("include tool_part.xml", True, ("shoulder",))
+    assert cause.values["bodies"] == ("tool",) and cause.values["joints"] == ()
+    check = _compare("include_welded_in_body.xml")
+    assert not check.ok and cause.message() in check.reason()

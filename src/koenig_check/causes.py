@@ -182,15 +182,19 @@ def _class_values(root: ET.Element) -> list[_ClassValue]:
 
 
 # ------------------------------------------------------------------------------------ file-level causes
-def file_causes(path: str | os.PathLike[str]) -> list[Finding]:
+def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = None) -> list[Finding]:
     """Root causes visible in the file alone: ignored ``<include>`` and the root bodies Pinocchio skips.
 
-    Used when Pinocchio cannot load the file or its joints cannot be paired with MuJoCo's.
+    Used when Pinocchio cannot load the file or its joints cannot be paired with MuJoCo's, and for every
+    model loaded in both engines.
 
     Parameters
     ----------
     path : str or path
         An MJCF file (anything else gives no cause).
+    mj_model : mujoco.MjModel, optional
+        MuJoCo's compiled model of the file: tells which included bodies move (a jointless subtree
+        included in a moving body carries mass of that segment).
 
     Returns
     -------
@@ -201,10 +205,12 @@ def file_causes(path: str | os.PathLike[str]) -> list[Finding]:
     if root is None:
         return []
     out: list[Finding] = []
+    seg_of = {} if mj_model is None else _segment_of_body(mj_model)
     world_bodies = [b for w in root.findall("worldbody") for b in w.findall("body")]
     for inc in _included(root, path.parent):
         if not inc.bodies and not inc.defaults:
             continue  # assets, visual settings: nothing kinematic
+        moved = tuple(dict.fromkeys(seg_of[b] for b in inc.bodies if seg_of.get(b)))
         if inc.bodies and not world_bodies:
             summary = (
                 "<include> ignored by Pinocchio's MJCF parser; the file's <worldbody> has no <body> of its own "
@@ -227,9 +233,9 @@ def file_causes(path: str | os.PathLike[str]) -> list[Finding]:
                     "mujoco": f"{len(inc.bodies)} bodies, {len(inc.joints)} joints",
                     "pinocchio": "not read",
                 },
-                affects_energy=bool(inc.joints),
+                affects_energy=bool(inc.joints or moved),
                 root_cause=True,
-                segments=inc.joints,
+                segments=moved or inc.joints,
                 hint="load a file without <include> (e.g. the robot's own file)" if inc.bodies else "",
             )
         )
@@ -335,7 +341,7 @@ def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
         return []
     if model.njnt == 0:  # e.g. a <worldbody> without a <body>: Pinocchio fails, but nothing moves anyway
         return [nothing_moves(source.path, has_body=model.nbody > 1)]
-    return file_causes(source.path)
+    return file_causes(source.path, model)
 
 
 # ----------------------------------------------------------------------------------- model-level causes
@@ -772,7 +778,7 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     mj_path, pin_path = Path(str(pair.mujoco.path)), Path(str(pair.pinocchio.path))
     if mj_path != pin_path or _read_mjcf(mj_path) is None:
         return [], None
-    causes = file_causes(mj_path)
+    causes = file_causes(mj_path, pair.mujoco.model)
     offset, frame = root_frame_offset(pair)
     causes += compiler_causes(pair)
     causes += class_value_causes(pair, offset)
