@@ -7,22 +7,38 @@ dof's own segment under a unit rate of that dof (a column of each engine's Jacob
 armature as the diagonal of the engine's mass matrix minus the rigid-body mass matrix
 rebuilt from those Jacobians.  Model-level findings come from the load notes and from
 the file's own compiler options.
+
+Root causes come first (:mod:`koenig_check.causes`): a construct Pinocchio's MJCF parser reads
+differently (a geom mass from a default class, a dropped root-body pose, ...) is one typed
+:class:`~koenig_check.findings.Finding` naming the elements, and the segments it explains are not
+listed again as separate reasons.  A dropped root pose is a constant world transform: Pinocchio's
+segments are compared after it is removed.
 """
 
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from koenig_check.causes import FrameOffset, model_causes
 from koenig_check.engines.state_map import mujoco_coordinate_names
+from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
 
 #: Default relative tolerance of parity comparisons.
 PARITY_RTOL = 1e-9
+#: Per-segment symptoms that a root cause of each kind explains (other kinds explain every symptom).
+_ALL_SYMPTOMS = frozenset({"mass", "com", "inertia", "anchor", "axis", "armature", "missing"})
+_EXPLAINS = {
+    Kind.MASS: frozenset({"mass", "com", "inertia"}),
+    Kind.COMPILER: frozenset({"mass", "com", "inertia"}),
+    Kind.COM: frozenset({"com", "inertia"}),
+    Kind.ANCHOR: frozenset({"anchor", "com", "axis"}),
+}
 
 
 @dataclass(frozen=True)
@@ -91,10 +107,15 @@ class ParityReport:
     segments : list of SegmentParity
     dofs : list of DofParity
     only_in_mujoco, only_in_pinocchio : list of str
-        Segments one engine has and the other does not (fused or dropped bodies).
+        Segments one engine has and the other does not (fused or dropped bodies); a segment the
+        other engine has but gives no mass is in ``massless_in_*`` instead.
+    massless_in_pinocchio, massless_in_mujoco : list of str
+        Segments with mass in one engine and none in the other.
     total_mass : tuple of float
     findings : list of str
         Model-level findings (compiler options, inertia from geometry, load notes).
+    causes : list of Finding
+        Root causes (typed records), those that change the energy first.
     mass_matrix_max_rel : float
         Largest relative difference of the two mass matrices over the checked poses.
     rtol : float
@@ -109,6 +130,9 @@ class ParityReport:
     findings: list[str] = field(default_factory=list)
     mass_matrix_max_rel: float = 0.0
     rtol: float = PARITY_RTOL
+    causes: list[Finding] = field(default_factory=list)
+    massless_in_pinocchio: list[str] = field(default_factory=list)
+    massless_in_mujoco: list[str] = field(default_factory=list)
 
     @property
     def differing_segments(self) -> list[SegmentParity]:
@@ -122,8 +146,34 @@ class ParityReport:
 
     @property
     def clean(self) -> bool:
-        """True when no import difference was found."""
-        return not (self.differing_segments or self.differing_dofs or self.only_in_mujoco or self.only_in_pinocchio)
+        """True when no import difference that changes the energy was found."""
+        return not (
+            self.differing_segments
+            or self.differing_dofs
+            or self.only_in_mujoco
+            or self.only_in_pinocchio
+            or self.massless_in_mujoco
+            or self.massless_in_pinocchio
+            or any(c.affects_energy for c in self.causes)
+        )
+
+    def explained(self, name: str) -> set[str]:
+        """The symptoms of a segment or dof that root causes explain (``mass``, ``com``, ``anchor``...).
+
+        Parameters
+        ----------
+        name : str
+            Segment or joint name.
+
+        Returns
+        -------
+        set of str
+        """
+        out: set[str] = set()
+        for c in self.causes:
+            if c.affects_energy and (name in c.segments or name in c.values.get("joints", ())):
+                out |= _EXPLAINS.get(c.kind, _ALL_SYMPTOMS)
+        return out
 
     def causes_for(self, segment: str) -> tuple[str, ...]:
         """The causes found for one segment (empty when it matches).
@@ -142,19 +192,50 @@ class ParityReport:
         return ()
 
     def headline(self) -> str:
-        """One line naming every difference found."""
-        parts = [f"segment {s.name}: {', '.join(s.causes)}" for s in self.differing_segments]
-        parts += [f"dof {d.joint}: {', '.join(d.causes)}" for d in self.differing_dofs]
-        if self.only_in_mujoco:
-            parts.append(f"segments only in MuJoCo: {self.only_in_mujoco}")
-        if self.only_in_pinocchio:
-            parts.append(f"segments only in Pinocchio: {self.only_in_pinocchio}")
+        """One line: root causes that change the energy first, then symptoms no root cause explains.
+
+        A symptom is a differing segment or dof, or a segment one engine lacks or gives no mass.
+        """
+        parts = [f"root cause: {c.message()}" for c in self.causes if c.affects_energy]
+        for label, items in (("segment", self.differing_segments), ("dof", self.differing_dofs)):
+            for item in items:
+                name = item.name if label == "segment" else item.joint
+                rest = [c for c in item.causes if c not in self.explained(name)]
+                if rest:
+                    parts.append(f"{label} {name}: {', '.join(rest)}")
+        for label, names in (
+            ("segments only in MuJoCo", self.only_in_mujoco),
+            ("segments only in Pinocchio", self.only_in_pinocchio),
+            ("segments massless in Pinocchio", self.massless_in_pinocchio),
+            ("segments massless in MuJoCo", self.massless_in_mujoco),
+        ):
+            rest = [n for n in names if not self.explained(n)]
+            if rest:
+                parts.append(f"{label}: {rest}")
         return "; ".join(parts) or "no import difference"
 
 
 def _unit_rate_states(engine: Any, qpos0: np.ndarray, nv: int) -> SegmentStates:
     """Segment states at ``qpos0`` for a unit rate of each dof in turn (one pose per dof)."""
     return engine.segment_states(np.tile(qpos0, (max(nv, 1), 1)), np.eye(max(nv, 1))[:, :nv])
+
+
+def _in_mujoco_world(states: SegmentStates, offset: FrameOffset | None) -> SegmentStates:
+    """Pinocchio's segment states with a dropped root pose put back (world_mujoco <- world_pinocchio)."""
+    if offset is None:
+        return states
+    return replace(
+        states,
+        com=offset.point(states.com),
+        v_com=offset.vector(states.v_com),
+        rotation=offset.frame(states.rotation),
+        omega=offset.vector(states.omega),
+        pole=offset.point(states.pole),
+        v_pole=offset.vector(states.v_pole),
+        rotation_ref=offset.frame(states.rotation_ref),
+        com_ref=offset.point(states.com_ref),
+        pole_ref=offset.point(states.pole_ref),
+    )
 
 
 def _rigid_mass_matrix(states: SegmentStates) -> np.ndarray:
@@ -165,12 +246,15 @@ def _rigid_mass_matrix(states: SegmentStates) -> np.ndarray:
     return np.einsum("b,ibk,jbk->ij", states.mass, Jv, Jv) + np.einsum("ibk,bkl,jbl->ij", Jw, I_world, Jw)
 
 
-def compiler_findings(path: Path) -> list[str]:
+def compiler_findings(path: Path, mj_model: Any = None) -> list[str]:
     """Compiler options and inertial gaps in an MJCF file that make the engines import it differently.
 
     Parameters
     ----------
     path : Path
+    mj_model : mujoco.MjModel, optional
+        The compiled model: geom types are read from it (MuJoCo's resolution of default classes and
+        ``childclass``).  Without it, only types written on the geoms are known.
 
     Returns
     -------
@@ -208,12 +292,24 @@ def compiler_findings(path: Path) -> list[str]:
                 out.append("compiler inertiafromgeom=true: MuJoCo computes every body's inertia from its geoms")
     for body in root.iter("body"):
         if body.find("inertial") is None and body.find("geom") is not None:
-            kinds = sorted({g.get("type", "sphere") for g in body.findall("geom")})
+            kinds = _geom_types(body, mj_model)
             out.append(
                 f"body {body.get('name', '?')!r} has no <inertial>: its inertia comes from geoms of type "
                 f"{kinds}; a parser that ignores a geom type (e.g. mesh) gets a different inertia"
             )
     return out
+
+
+def _geom_types(body: ET.Element, mj_model: Any) -> list[str]:
+    """Types of a body's geoms as MuJoCo resolved them (classes included), else as written."""
+    import mujoco
+
+    b = -1 if mj_model is None else mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_BODY, body.get("name", ""))
+    if b < 0:
+        return sorted({g.get("type", "default class") for g in body.findall("geom")})
+    adr, num = int(mj_model.body_geomadr[b]), int(mj_model.body_geomnum[b])
+    types = mj_model.geom_type[adr : adr + num]
+    return sorted({mujoco.mjtGeom(int(t)).name.removeprefix("mjGEOM_").lower() for t in types})
 
 
 def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, seed: int = 0) -> ParityReport:
@@ -241,12 +337,16 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     qpos0 = np.array(mj_model.qpos0, dtype=float)
     nv = mj_model.nv
     report = ParityReport(model=str(getattr(pair, "path", getattr(mj, "path", "?"))), rtol=rtol)
+    report.causes, offset = model_causes(pair)
     sa = _unit_rate_states(mj, qpos0, nv)
-    sb = _unit_rate_states(pn, qpos0, nv)
+    sb = _in_mujoco_world(_unit_rate_states(pn, qpos0, nv), offset)
     report.total_mass = (float(sa.mass.sum()), float(sb.mass.sum()))
     names_a, names_b = list(sa.names), list(sb.names)
-    report.only_in_mujoco = [n for n in names_a if n not in names_b]
-    report.only_in_pinocchio = [n for n in names_b if n not in names_a]
+    massless = {c.engine: set(c.segments) for c in report.causes if c.kind is Kind.SEGMENTS}
+    report.massless_in_pinocchio = [n for n in names_a if n not in names_b and n in massless.get("pinocchio", ())]
+    report.massless_in_mujoco = [n for n in names_b if n not in names_a and n in massless.get("mujoco", ())]
+    report.only_in_mujoco = [n for n in names_a if n not in names_b and n not in report.massless_in_pinocchio]
+    report.only_in_pinocchio = [n for n in names_b if n not in names_a and n not in report.massless_in_mujoco]
     common = [n for n in names_a if n in names_b]
     A, B = sa.select(segments=common), sb.select(segments=common)
     size = max(float(np.abs(A.com[0]).max(initial=0.0)), float(np.abs(A.pole[0]).max(initial=0.0)), 1.0)
@@ -295,7 +395,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
         if abs(arm_a[d] - arm_b[d]) > rtol * m_scale:
             causes.append("armature")
         report.dofs.append(DofParity(d, joint, (float(arm_a[d]), float(arm_b[d])), diff, tuple(causes)))
-    report.findings = list(getattr(pair, "notes", [])) + compiler_findings(Path(str(mj.path)))
+    report.findings = _pair_notes(pair) + compiler_findings(Path(str(mj.path)), mj_model)
     masses_a = A.mass
     masses_b = B.mass
     if len(common) > 1 and np.all(masses_b > 0):
@@ -306,6 +406,11 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
                 "a total-mass rescaling honoured by one engine only"
             )
     return report
+
+
+def _pair_notes(pair: Any) -> list[str]:
+    """The pair's load notes as lines (plain strings or typed findings)."""
+    return [n if isinstance(n, str) else n.message() for n in getattr(pair, "notes", [])]
 
 
 def format_parity(report: ParityReport) -> str:
@@ -319,8 +424,14 @@ def format_parity(report: ParityReport) -> str:
     -------
     str
     """
-    lines = [
-        f"Import parity of {report.model} (relative tolerance {report.rtol:g})",
+    lines = [f"Import parity of {report.model} (relative tolerance {report.rtol:g})"]
+    if report.causes:
+        lines.append("\nroot causes:")
+        for c in report.causes:
+            effect = "changes the kinetic energy" if c.affects_energy else "no effect on the kinetic energy"
+            lines.append(f"  - [{c.kind.value}, {effect}] {c.message()}")
+        lines.append("")
+    lines += [
         f"total mass: MuJoCo {report.total_mass[0]:.9g} kg, Pinocchio {report.total_mass[1]:.9g} kg; "
         f"mass matrices differ by at most {report.mass_matrix_max_rel:.2e} relative",
         "",
@@ -351,6 +462,10 @@ def format_parity(report: ParityReport) -> str:
         lines.append(f"\nsegments only in MuJoCo: {report.only_in_mujoco}")
     if report.only_in_pinocchio:
         lines.append(f"segments only in Pinocchio: {report.only_in_pinocchio}")
+    if report.massless_in_pinocchio:
+        lines.append(f"segments massless in Pinocchio: {report.massless_in_pinocchio}")
+    if report.massless_in_mujoco:
+        lines.append(f"segments massless in MuJoCo: {report.massless_in_mujoco}")
     if report.findings:
         lines.append("\nfindings:")
         lines += [f"  - {f}" for f in report.findings]

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from koenig_check.causes import explain_load_failures
 from koenig_check.engines.coupling import coupled_joints
 from koenig_check.engines.energy import EnergyParts, self_consistency
 from koenig_check.engines.errors import (
@@ -146,6 +147,7 @@ def _pose_notes(mj: MujocoEngine, pn: PinocchioEngine) -> list[str]:
     ]
 
 
+@explain_load_failures
 def load_model(
     path_or_name: str | os.PathLike[str],
     floating: bool = False,
@@ -216,8 +218,8 @@ def load_model(
     check_finite(mj_model, pin_model, str(source.path))
     if mj_model.nv == 0:
         raise NoMovingSegmentError(
-            f"{source.path}: no joint, so no moving segment to compare (a single free body needs floating=True, "
-            "--floating on the command line)"
+            f"{source.path}: nothing moves (no joint), so there is nothing to compare; not an engine error "
+            "(--floating, floating=True, gives the root body a free joint)"
         )
     state_map = build_state_map(mj_model, pin_model, str(source.path))
     mj = MujocoEngine(mj_model, source.path, mj_notes, mj_diffs)

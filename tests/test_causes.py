@@ -1,0 +1,182 @@
+"""Root causes of engine disagreements, one small MJCF per trap of Pinocchio 4.1's MJCF parser.
+
+Each test asserts the verdict (``koenig_check.compare(...).ok`` and its one-line reason, which must carry the
+cause's own message) and the typed cause (kind, engine, element, values); the disagreement itself is confirmed
+independently from the engines' own mass matrices (:mod:`independent_energy`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+import koenig_check
+from independent_energy import engines_agree
+from koenig_check.engines import load_model
+from koenig_check.findings import Finding, Kind, KoenigCheckError
+from koenig_check.parity import compiler_findings, format_parity, import_parity
+
+CAUSES = Path(__file__).resolve().parent / "models" / "causes"
+
+
+def _compare(name: str) -> Any:
+    return koenig_check.compare(CAUSES / name, n_poses=3, formulas=["exact"])
+
+
+def _load_error(name: str) -> KoenigCheckError:
+    with pytest.raises(KoenigCheckError) as info:
+        load_model(CAUSES / name)
+    return info.value
+
+
+def _only(causes: list[Finding], kind: Kind) -> Finding:
+    found = [c for c in causes if c.kind is kind]
+    assert len(found) == 1, [c.message() for c in causes]
+    return found[0]
+
+
+def test_include_inside_a_body_is_named() -> None:
+    err = _load_error("include_in_body.xml")
+    cause = _only(err.causes, Kind.IGNORED_CONSTRUCT)
+    assert (cause.engine, cause.element, cause.root_cause, cause.affects_energy) == (
+        "pinocchio",
+        "include arm_part.xml",
+        True,
+        True,
+    )
+    assert cause.values["in"] == "body upper"
+    assert cause.values["joints"] == ("elbow",) and cause.values["bodies"] == ("forearm",)
+    check = _compare("include_in_body.xml")
+    assert not check.ok
+    ((_label, reason),) = check.failures
+    assert cause.message() in reason and "include_in_body.xml" in reason and "\n" not in reason
+
+
+def test_include_in_worldbody_is_named_when_pinocchio_fails() -> None:
+    err = _load_error("include_in_worldbody.xml")
+    assert "No such node (body)" in str(err)  # Pinocchio's own reason stays in the message
+    cause = _only(err.causes, Kind.IGNORED_CONSTRUCT)
+    assert (cause.engine, cause.element) == ("pinocchio", "include robot_part.xml")
+    assert cause.values["in"] == "mujoco" and cause.values["joints"] == ("shoulder",)
+    check = _compare("include_in_worldbody.xml")
+    assert not check.ok and cause.message() in check.reason()
+
+
+def test_root_bodies_after_the_first_are_named_with_their_joints() -> None:
+    err = _load_error("several_roots.xml")
+    causes = [c for c in err.causes if c.kind is Kind.IGNORED_CONSTRUCT]
+    assert [c.element for c in causes] == ["body b", "body d"]
+    b, d = causes
+    assert b.values["joints"] == ("jb", "jc") and b.affects_energy and b.segments == ("jb", "jc")
+    assert d.values["joints"] == () and not d.affects_energy  # welded to the world: no kinetic energy
+    assert all(c.engine == "pinocchio" and c.root_cause for c in causes)
+    check = _compare("several_roots.xml")
+    assert not check.ok and b.message() in check.reason()
+
+
+def test_posed_jointless_root_is_a_frame_note_and_the_engines_agree() -> None:
+    pair = load_model(CAUSES / "posed_root.xml")
+    assert engines_agree(pair, n_poses=3) is True
+    report = import_parity(pair)
+    frame = _only(report.causes, Kind.FRAME)
+    assert (frame.engine, frame.element, frame.affects_energy, frame.root_cause) == (
+        "pinocchio",
+        "body base",
+        False,
+        True,
+    )
+    assert frame.values["mujoco pos"] == pytest.approx((0.3, -0.2, 1.0))
+    assert frame.values["pinocchio pos"] == pytest.approx((0.0, 0.0, 0.0))
+    # compared after removing the constant transform: no segment's COM, anchor or axis is flagged
+    assert report.clean and not report.differing_segments and not report.differing_dofs, format_parity(report)
+    assert koenig_check.compare(CAUSES / "posed_root.xml", n_poses=3, formulas=["exact"]).ok
+
+
+def test_geom_mass_from_a_default_class_is_named_with_both_masses() -> None:
+    pair = load_model(CAUSES / "class_mass.xml")
+    assert engines_agree(pair) is False
+    report = import_parity(pair)
+    cause = _only(report.causes, Kind.MASS)
+    assert (cause.engine, cause.element, cause.affects_energy) == ("pinocchio", "geom pole", True)
+    assert cause.values["class"] == "pole" and cause.values["geoms"] == ("pole",)
+    assert cause.values["mujoco"] == pytest.approx(0.1)
+    # density 1000 × capsule volume (r = 0.045, length 1): π r² l + 4/3 π r³, computed here by hand
+    r = 0.045
+    assert cause.values["pinocchio"] == pytest.approx(1000 * (np.pi * r**2 * 1.0 + 4 / 3 * np.pi * r**3))
+    assert cause.segments == ("hinge",)
+    assert report.headline().startswith("root cause: " + cause.message())
+    check = _compare("class_mass.xml")
+    assert not check.ok and cause.message() in check.reason()
+
+
+def test_geom_mass_written_on_the_geom_is_honoured() -> None:
+    pair = load_model(CAUSES / "class_mass_explicit.xml")
+    assert engines_agree(pair) is True
+    assert import_parity(pair).causes == []
+    assert _compare("class_mass_explicit.xml").ok
+
+
+def test_joint_positions_from_a_default_class_are_named() -> None:
+    """The rodent's construct: equal masses, joints placed at the body origin by Pinocchio."""
+    pair = load_model(CAUSES / "class_joint_pos.xml")
+    assert engines_agree(pair) is False
+    report = import_parity(pair)
+    assert report.total_mass[0] == pytest.approx(report.total_mass[1], rel=1e-12)
+    cause = _only(report.causes, Kind.ANCHOR)
+    assert cause.engine == "pinocchio" and cause.values["class"] == "lumbar"  # also for class lumbar_bend below it
+    assert set(cause.values["joints"]) == {"vertebra_1_extend", "vertebra_1_bend", "vertebra_2_extend"}
+    assert cause.values["mujoco"] == pytest.approx((0.03, 0.0, -0.03))
+    assert cause.values["pinocchio"] == pytest.approx((0.0, 0.0, 0.0))
+    check = _compare("class_joint_pos.xml")
+    assert not check.ok and cause.message() in check.reason()
+
+
+def test_joint_positions_written_on_the_joints_are_honoured() -> None:
+    pair = load_model(CAUSES / "class_joint_pos_explicit.xml")
+    assert engines_agree(pair) is True
+    assert import_parity(pair).causes == []
+
+
+def test_childclass_geom_types_are_read_as_mujoco_resolves_them() -> None:
+    pair = load_model(CAUSES / "childclass_geom_type.xml")
+    assert engines_agree(pair) is True  # Pinocchio applies geom types from classes
+    lines = [f for f in compiler_findings(CAUSES / "childclass_geom_type.xml", pair.mujoco.model) if "<inertial>" in f]
+    assert len(lines) == 2 and all("['capsule']" in f for f in lines), lines
+    assert import_parity(pair).causes == [] and _compare("childclass_geom_type.xml").ok
+
+
+def test_nothing_moves_says_so_and_offers_floating() -> None:
+    err = _load_error("nothing_moves.xml")
+    (cause,) = err.causes
+    assert (cause.kind, cause.engine, cause.element, cause.affects_energy) == (
+        Kind.NOTHING_MOVES,
+        "file",
+        "model",
+        False,
+    )
+    assert "--floating" in cause.hint
+    assert "nothing to compare" in str(err) and "--floating" in str(err) and "nothing_moves.xml" in str(err)
+    assert koenig_check.compare(CAUSES / "nothing_moves.xml", floating=True, n_poses=2, formulas=["exact"]).ok
+
+
+def test_mesh_geoms_are_named_when_pinocchio_gets_another_mass() -> None:
+    pair = load_model(CAUSES / "mesh_geom.xml")
+    assert engines_agree(pair) is False
+    cause = _only(import_parity(pair).causes, Kind.MASS)
+    assert (cause.engine, cause.element, cause.segments) == ("pinocchio", "geom shell", ("jb",))
+    assert cause.values["mujoco"] == pytest.approx(0.3) and cause.values["pinocchio"] == pytest.approx(1.0)
+    check = _compare("mesh_geom.xml")
+    assert not check.ok and cause.message() in check.reason()
+
+
+def test_include_of_a_welded_part_is_named_and_changes_the_energy() -> None:
+    pair = load_model(CAUSES / "include_welded_in_body.xml")  # the joints pair: only mass is missing
+    assert engines_agree(pair) is False
+    cause = _only(import_parity(pair).causes, Kind.IGNORED_CONSTRUCT)
+    assert (cause.element, cause.affects_energy, cause.segments) == ("include tool_part.xml", True, ("shoulder",))
+    assert cause.values["bodies"] == ("tool",) and cause.values["joints"] == ()
+    check = _compare("include_welded_in_body.xml")
+    assert not check.ok and cause.message() in check.reason()
