@@ -22,8 +22,9 @@ class EnergyParts:
     Parameters
     ----------
     rigid : ndarray, shape (P,)
-        The engine's own kinetic-energy function evaluated on a copy of the model whose armature
-        is zero: the rigid-body term alone.
+        The rigid-body term alone, from the engine itself: Pinocchio's kinetic-energy function on a
+        copy of the model whose armature is zero; MuJoCo's ``½ q̇ᵀ (M − diag(armature)) q̇`` (a
+        zeroed copy keeps the armature of its "simple" dofs, see ``MujocoEngine.kinetic_energy``).
     armature : ndarray, shape (P,)
         ``½ Σ aᵢ vᵢ²`` over the engine's velocity coordinates and armature values (rotor inertia).
     reported : ndarray, shape (P,)

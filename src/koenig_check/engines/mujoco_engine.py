@@ -75,8 +75,6 @@ class MujocoEngine:
         self._data = mujoco.MjData(model)
         self._m_energy = copy.copy(model)
         self._m_energy.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
-        self._m_rigid = copy.copy(self._m_energy)
-        self._m_rigid.dof_armature[:] = 0.0
         self._m_dyn = copy.copy(model)
         self._m_dyn.opt.gravity[:] = 0.0
         self._m_dyn.opt.density = 0.0
@@ -253,9 +251,12 @@ class MujocoEngine:
         return out
 
     # ------------------------------------------------------------- dynamics
-    def _energy(self, model: mujoco.MjModel, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
+    def _energy(self, qpos: np.ndarray, qvel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Return ``mj_energyVel`` and ``½ q̇ᵀ M q̇`` (``M`` from ``mj_fullM``) pose by pose."""
+        model = self._m_energy
         d = mujoco.MjData(model)
-        out = np.empty(qpos.shape[0])
+        reported, quadratic = np.empty(qpos.shape[0]), np.empty(qpos.shape[0])
+        M = np.zeros((self.nv, self.nv))
         for p in range(qpos.shape[0]):
             d.qpos[:] = qpos[p]
             d.qvel[:] = qvel[p]
@@ -263,11 +264,20 @@ class MujocoEngine:
             mujoco.mj_comPos(model, d)
             mujoco.mj_makeM(model, d)
             mujoco.mj_energyVel(model, d)
-            out[p] = d.energy[1]
-        return out
+            reported[p] = d.energy[1]
+            mujoco.mj_fullM(model, d, M)
+            quadratic[p] = 0.5 * qvel[p] @ M @ qvel[p]
+        return reported, quadratic
 
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
-        """Return ``mj_energyVel`` with and without armature, and the armature term.
+        """Return ``mj_energyVel``, the rigid-body energy and the armature term.
+
+        The rigid-body energy is ``½ q̇ᵀ (M − diag(dof_armature)) q̇`` with MuJoCo's own mass matrix:
+        MuJoCo builds ``M`` as the composite-rigid-body matrix plus ``dof_armature`` on the
+        diagonal.  Zeroing ``dof_armature`` on a compiled copy would not do: for the dofs MuJoCo
+        treats as *simple* (``dof_simplenum``: e.g. a slide or an aligned hinge on a body attached
+        to the world) the diagonal of ``M``, armature included, is precomputed at compile time
+        (``dof_M0``) and the copy would still count the armature as rigid-body energy.
 
         Parameters
         ----------
@@ -279,11 +289,9 @@ class MujocoEngine:
         EnergyParts
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
-        return EnergyParts(
-            rigid=self._energy(self._m_rigid, qpos, qvel),
-            armature=0.5 * (qvel**2) @ self.model.dof_armature,
-            reported=self._energy(self._m_energy, qpos, qvel),
-        )
+        reported, quadratic = self._energy(qpos, qvel)
+        armature = 0.5 * (qvel**2) @ self.model.dof_armature
+        return EnergyParts(rigid=quadratic - armature, armature=armature, reported=reported)
 
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return ``mj_fullM`` (armature included) for a batch of poses.
