@@ -12,6 +12,12 @@ import os
 from dataclasses import dataclass, fields
 from typing import Any
 
+#: What the deprecated ``allow_coupled`` / ``--allow-coupled`` is told.
+ALLOW_COUPLED_DEPRECATION = (
+    "allow_coupled (--allow-coupled) is deprecated and does nothing: coupled joints are loaded by default and "
+    "recorded as findings"
+)
+
 
 @dataclass(frozen=True)
 class LoadOptions:
@@ -64,6 +70,16 @@ class LoadOptions:
         LoadOptions
         """
         return cls(**{name: options.pop(name) for name in cls.names() if name in options})
+
+    def as_overrides(self) -> dict[str, Any]:
+        """The options that differ from their defaults, as keyword arguments.
+
+        Returns
+        -------
+        dict
+        """
+        default = LoadOptions()
+        return {name: getattr(self, name) for name in self.names() if getattr(self, name) != getattr(default, name)}
 
     @classmethod
     def from_namespace(cls, args: argparse.Namespace) -> LoadOptions:
