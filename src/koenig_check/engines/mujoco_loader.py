@@ -136,6 +136,21 @@ def _inertia_only(spec: mujoco.MjSpec, reason: str, files: list[str], bodies: li
     )
 
 
+def _prepend_free_joint_to_keys(spec: mujoco.MjSpec, top: mujoco.MjsBody) -> None:
+    """Give each keyframe the coordinates of the free joint about to be added on the top body.
+
+    MuJoCo does not shift a keyframe written for the fixed base when a free joint is added in
+    front of the tree: the keyframe's first values would become the base's position.  The body's
+    own pose (``pos``, ``quat``) and a zero twist are put in front instead.
+    """
+    pose = [*np.asarray(top.pos, dtype=float), *np.asarray(top.quat, dtype=float)]
+    for key in spec.keys:
+        if len(key.qpos):
+            key.qpos = pose + list(key.qpos)
+        if len(key.qvel):
+            key.qvel = [0.0] * 6 + list(key.qvel)
+
+
 def _inertia_error(
     source: ModelSource, element: str, message: str, file_inertia: dict[str, tuple[float, np.ndarray]]
 ) -> InertiaError:
@@ -335,6 +350,7 @@ def _load(
                 )
             )
         else:
+            _prepend_free_joint_to_keys(spec, tops[0])
             tops[0].add_freejoint(name=ROOT_JOINT_NAME)
     spec.compiler.balanceinertia = bool(balance_inertia)
     names_before = [b.name for b in spec.bodies]

@@ -108,13 +108,51 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
                     )
                 )
     except (RuntimeError, ValueError) as exc:
-        raise ModelLoadError(f"{path}: Pinocchio cannot parse the file: {parser_reason(exc, parser_output)}") from exc
+        reason = parser_reason(exc, parser_output)
+        hint = limitation_hint(source, reason)
+        raise ModelLoadError(
+            f"{path}: Pinocchio cannot parse the file: {reason}" + (f" ({hint})" if hint else "")
+        ) from exc
     notes += [
         Finding(Kind.LOAD, "pinocchio", "model", f"parser says: {line}")
         for line in parser_output
         if line.startswith(("Error:", "Warning:"))
     ]
     return model, notes
+
+
+def limitation_hint(source: ModelSource, reason: str) -> str:
+    """What to do about a known limitation of Pinocchio's parsers, from its reason (empty when unknown).
+
+    Parameters
+    ----------
+    source : ModelSource
+    reason : str
+        From :func:`parser_reason`.
+
+    Returns
+    -------
+    str
+    """
+    if "hfields are not supported" in reason:
+        return (
+            "Pinocchio's MJCF parser does not read height fields: give Pinocchio a copy of the file without the "
+            "<hfield> asset and its geoms with --pinocchio-model (pinocchio_model=...)"
+        )
+    if "No such node (body)" in reason and source.format == "mjcf":
+        try:
+            world = ET.parse(source.path).getroot().find("worldbody")
+        except ET.ParseError:
+            world = None
+        included = [e.get("file", "?") for e in world.findall("include")] if world is not None else []
+        if included:
+            return (
+                f"Pinocchio's MJCF parser does not follow an <include> standing directly in <worldbody> "
+                f"({', '.join(included)}): load the included robot file instead"
+            )
+    if KEYFRAME_SIZE in reason:
+        return "the file's keyframes do not fit the model Pinocchio builds: remove <keyframe> from a copy"
+    return ""
 
 
 @contextmanager
