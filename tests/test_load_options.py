@@ -17,19 +17,19 @@ LOADING_COMMANDS = ("compare", "parity")
 
 def _subparser(command: str):
     parser = build_parser()
-    action = next(a for a in parser._subparsers._group_actions if a.dest == "command")  # noqa: SLF001
+    action = next(a for a in parser._subparsers._group_actions if a.dest == "command")
     return action.choices[command]
 
 
 def _option_dests(command: str) -> set[str]:
     sub = _subparser(command)
-    return {a.dest for a in sub._actions if a.option_strings and a.dest != "help"}  # noqa: SLF001
+    return {a.dest for a in sub._actions if a.option_strings and a.dest != "help"}
 
 
 @pytest.mark.parametrize("command", LOADING_COMMANDS)
 def test_every_loading_command_has_exactly_the_load_options(command: str) -> None:
-    group = next(g for g in _subparser(command)._action_groups if g.title == "how the model is loaded")  # noqa: SLF001
-    assert {a.dest for a in group._group_actions} == set(LoadOptions.names())  # noqa: SLF001
+    group = next(g for g in _subparser(command)._action_groups if g.title == "how the model is loaded")
+    assert {a.dest for a in group._group_actions} == set(LoadOptions.names())
     assert set(LoadOptions.names()) <= _option_dests(command)
 
 

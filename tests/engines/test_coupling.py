@@ -37,7 +37,7 @@ def coupled(request):
 
 
 def test_coupling_is_one_finding_that_does_not_change_the_energy(coupled) -> None:
-    name, pair = coupled
+    _name, pair = coupled
     (found,) = [f for f in pair.findings if f.kind is Kind.COUPLING]
     assert found.engine == "both" and not found.affects_energy
     assert "elbow" in found.element + str(found.values.get("follower", ""))
@@ -72,7 +72,7 @@ def test_sampled_states_satisfy_the_joint_relation(coupled, kind) -> None:
 
 
 def test_engines_agree_on_the_coupled_model(coupled) -> None:
-    name, pair = coupled
+    name, _pair = coupled
     check = compare(MODELS / name, n_poses=6, seed=2)
     assert check.ok, check.reason()
 
