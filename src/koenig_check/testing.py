@@ -105,4 +105,10 @@ def assert_energy_parity(
                 f"Pinocchio {kb.armature[k]:.9g} J"
             )
     if problems:
+        from koenig_check.api import parity_findings
+        from koenig_check.grid import disagreement_cause
+
+        cause = disagreement_cause(pair.findings + parity_findings(import_parity(pair, rtol=rtol)))
+        if cause:
+            problems.append(f"cause: {cause}")
         raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))
