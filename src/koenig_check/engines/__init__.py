@@ -237,7 +237,7 @@ def load_model(
     for s in {source.path: source, pin_source.path: pin_source}.values():
         preflight(s.path)
     mj_model, mj_findings, body_findings = load_mujoco(
-        source, floating=opts.floating, balance_inertia=opts.balance_inertia
+        source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
     )
     pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
     if pin_source is not source:
@@ -260,7 +260,7 @@ def load_model(
     state_map = build_state_map(mj_model, pin_model, str(source.path))
     mj = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
     pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_findings + state_map.findings)
-    tolerate = frozenset({"pinocchio"}) if opts.balance_inertia else frozenset()
+    tolerate = frozenset({"pinocchio"}) if opts.balance_inertia or opts.repair_inertia else frozenset()
     pn.findings += check_segments((mj, pn), mj_model.qpos0, str(source.path), tolerate)
     findings = mj.findings + pn.findings + coupling_findings(source, mj_model)
     findings += _armature_findings(mj, pn, state_map) + _pose_findings(mj, pn)

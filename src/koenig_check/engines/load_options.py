@@ -29,6 +29,10 @@ class LoadOptions:
         Give a fixed-base model a free root joint.
     balance_inertia : bool
         Let MuJoCo load inertias that violate ``A + B >= C`` (``balanceinertia``); recorded per link.
+    repair_inertia : bool
+        Load masses and inertias MuJoCo refuses (a zero or negative principal moment, a massless
+        moving link, ``A + B < C``) with the smallest change MuJoCo accepts, recorded per link;
+        Pinocchio keeps the file's values, so the comparison shows the repair's effect.
     pinocchio_model : str or path, optional
         Load Pinocchio from this other file of the same mechanism (e.g. the URDF twin of an MJCF).
     allow_coupled : bool
@@ -37,6 +41,7 @@ class LoadOptions:
 
     floating: bool = False
     balance_inertia: bool = False
+    repair_inertia: bool = False
     pinocchio_model: str | os.PathLike[str] | None = None
     allow_coupled: bool = False
 
@@ -107,6 +112,12 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--floating", action="store_true", help="give a fixed-base model a free-floating base")
     group.add_argument(
         "--balance-inertia", action="store_true", help="let MuJoCo balance inertias with A + B < C (recorded per link)"
+    )
+    group.add_argument(
+        "--repair-inertia",
+        action="store_true",
+        help="load masses and inertias MuJoCo refuses with the smallest change it accepts (recorded per link; "
+        "Pinocchio keeps the file's values)",
     )
     group.add_argument(
         "--pinocchio-model", help="load Pinocchio from this file instead (e.g. the URDF twin of an MJCF)"

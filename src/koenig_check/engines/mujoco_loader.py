@@ -29,6 +29,7 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
+from koenig_check.engines.inertia_repair import Repair, repair_body
 from koenig_check.engines.sources import ModelSource, resolve_uri
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import check_physical_inertia
@@ -38,6 +39,8 @@ ROOT_JOINT_NAME = "root_joint"
 #: Mesh formats MuJoCo 4.0 has no decoder for ("no decoder found for mesh file").
 UNDECODABLE_MESH_SUFFIXES = frozenset({".dae"})
 _ELEMENT = re.compile(r"Element name '([^']*)'")
+#: Compilations tried per body under repair (the balance margin grows tenfold each time).
+MAX_REPAIR_TRIES = 3
 
 
 #: A body's mass-property change with the body it concerns (mapped to its segment by the engine adapter).
@@ -162,27 +165,64 @@ def _inertia_error(
         if reason is None:
             reason = f"principal moments {_moments(inertia)}, MuJoCo requires them strictly positive"
         head += f"; {reason}"
+    head += f"; {REPAIR_HINT}"
     if "A + B >= C" in message:
-        head += "; --balance-inertia (balance_inertia=True) loads it with MuJoCo's balanceinertia"
+        head += " (or --balance-inertia, balance_inertia=True: MuJoCo's balanceinertia)"
     return InertiaError(head)
 
 
+#: What a refusal says would load the file.
+REPAIR_HINT = "--repair-inertia (repair_inertia=True) loads it with the smallest change MuJoCo accepts, recorded"
+
+
+def _repair_finding(repair: Repair, message: str, what: str) -> Finding:
+    return Finding(
+        Kind.REPAIR,
+        "mujoco",
+        f"{what} {repair.body}",
+        "mass and principal moments raised to MuJoCo's bounds and balanced (A + B >= C) so that MuJoCo accepts "
+        "them; Pinocchio keeps the file's values",
+        {
+            "mass before": repair.mass[0],
+            "mass after": repair.mass[1],
+            "moments before": list(repair.moments[0]),
+            "moments after": list(repair.moments[1]),
+            "max moment change": repair.max_change,
+            "mujoco refused": message,
+        },
+        affects_energy=True,
+        root_cause=True,
+        hint="--repair-inertia (repair_inertia=True) was asked for",
+    )
+
+
 def _compile(
-    spec: mujoco.MjSpec, source: ModelSource, notes: list[Finding], file_inertia: dict[str, tuple[float, np.ndarray]]
-) -> tuple[mujoco.MjModel, list[str]]:
+    spec: mujoco.MjSpec,
+    source: ModelSource,
+    notes: list[Finding],
+    file_inertia: dict[str, tuple[float, np.ndarray]],
+    repair: bool = False,
+) -> tuple[mujoco.MjModel, list[str], list[BodyFinding]]:
     """Compile, dropping meshes MuJoCo refuses one by one; raise clear errors otherwise.
 
-    Returns the model and the names of the meshes dropped on the way.
+    With ``repair``, a body whose mass or inertia MuJoCo refuses is repaired in ``spec``
+    (:func:`~koenig_check.engines.inertia_repair.repair_body`) and a copy compiled again (a failed
+    compilation leaves the spec's static bodies fused).
+
+    Returns the model, the names of the meshes dropped on the way and the repairs.
     """
     refused: list[str] = []
     reasons: list[str] = []
     files: list[str] = []
     losers: list[str] = []
+    repairs: dict[str, tuple[Repair, str]] = {}
+    tries: dict[str, int] = {}
+    what = "link" if source.format == "urdf" else "body"
     while True:
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                model = spec.compile()
+                model = (spec.copy() if repair else spec).compile()
             notes.extend(_warning(str(w.message)) for w in caught)
         except ValueError as exc:
             message = _first_line(exc)
@@ -199,18 +239,28 @@ def _compile(
                 losers += _drop_mesh(spec, mesh)
                 continue
             if "inertia" in message or "mass" in message:
+                body = spec.body(element) if element else None
+                if repair and body is not None and tries.get(element, 0) < MAX_REPAIR_TRIES:
+                    tries[element] = tries.get(element, 0) + 1
+                    done = repair_body(body, margin=8.0 * 10 ** (tries[element] - 1))
+                    first = repairs.get(element)
+                    if first is not None:  # a second pass: before = the file's values
+                        done = Repair(
+                            done.body, (first[0].mass[0], done.mass[1]), (first[0].moments[0], done.moments[1])
+                        )
+                    repairs[element] = (done, first[1] if first else message)
+                    continue
                 if "moving bodies" in message:
-                    what = "link" if source.format == "urdf" else "body"
                     raise InertiaError(
                         f"{source.path}: {what} {element!r}: MuJoCo rejects a moving body without mass or "
-                        f"inertia ({message}); Pinocchio accepts it"
+                        f"inertia ({message}); Pinocchio accepts it; {REPAIR_HINT}"
                     ) from exc
                 raise _inertia_error(source, element, message, file_inertia) from exc
             where = f" at element {element!r}" if element else ""
             raise ModelLoadError(f"{source.path}: MuJoCo cannot compile the model{where}: {message}") from exc
         if refused:
             notes.append(_inertia_only(spec, "MuJoCo refused to compile them: " + "; ".join(reasons), files, losers))
-        return model, refused
+        return model, refused, [(n, _repair_finding(r, m, what)) for n, (r, m) in repairs.items()]
 
 
 def _balance_findings(
@@ -260,7 +310,7 @@ def _balance_findings(
 
 
 def load_mujoco(
-    source: ModelSource, floating: bool = False, balance_inertia: bool = False
+    source: ModelSource, floating: bool = False, balance_inertia: bool = False, repair_inertia: bool = False
 ) -> tuple[mujoco.MjModel, list[Finding], list[BodyFinding]]:
     """Compile a model file into MuJoCo.
 
@@ -273,6 +323,9 @@ def load_mujoco(
         body already has one).
     balance_inertia : bool
         Load inertias violating ``A + B >= C`` with MuJoCo's ``balanceinertia``.
+    repair_inertia : bool
+        Change each body whose mass or inertia MuJoCo refuses by the smallest amount MuJoCo accepts
+        (:mod:`koenig_check.engines.inertia_repair`); a ``REPAIR`` finding per body says by how much.
 
     Returns
     -------
@@ -290,11 +343,11 @@ def load_mujoco(
     """
     notes: list[Finding] = []
     with _captured_warnings(notes):
-        return _load(source, floating, balance_inertia, notes)
+        return _load(source, floating, balance_inertia, notes, repair_inertia)
 
 
 def _load(
-    source: ModelSource, floating: bool, balance_inertia: bool, notes: list[Finding]
+    source: ModelSource, floating: bool, balance_inertia: bool, notes: list[Finding], repair_inertia: bool = False
 ) -> tuple[mujoco.MjModel, list[Finding], list[BodyFinding]]:
     path = Path(source.path)
     try:
@@ -356,7 +409,7 @@ def _load(
     names_before = [b.name for b in spec.bodies]
     parent_of = {b.name: (b.parent.name if b.parent is not None else "") for b in spec.bodies}
     spec_before = spec.copy() if balance_inertia else None
-    model, refused = _compile(spec, source, notes, file_inertia)
+    model, refused, repaired = _compile(spec, source, notes, file_inertia, repair=repair_inertia)
     fused = [n for n in names_before if n and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n) < 0]
     if fused:
         notes.append(
@@ -393,10 +446,11 @@ def _load(
                 ),
             )
         )
-    changed: list[str] = []
+    changed: list[str] = [n for n, _ in repaired]
+    diffs += [(survivor(n), f) for n, f in repaired]
     if spec_before is not None:
         balanced = _balance_findings(spec_before, refused, model, source, file_inertia)
-        changed = [n for n, _ in balanced]
+        changed += [n for n, _ in balanced]
         diffs += [(survivor(n), f) for n, f in balanced]
     hosts = {survivor(parent_of.get(n, "")) for n in fused}
     altered = [
