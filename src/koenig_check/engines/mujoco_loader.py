@@ -188,12 +188,16 @@ def _repair_finding(repair: Repair, message: str, what: str) -> Finding:
             "moments before": list(repair.moments[0]),
             "moments after": list(repair.moments[1]),
             "max moment change": repair.max_change,
-            "mujoco refused": message,
+            "refused for": _refusal(message),
         },
         affects_energy=True,
         root_cause=True,
-        hint="--repair-inertia (repair_inertia=True) was asked for",
     )
+
+
+def _refusal(message: str) -> str:
+    """MuJoCo's reason without the element and line it names (the finding names the link)."""
+    return message.split("; Element name")[0].removeprefix("error ").strip()
 
 
 def _compile(
