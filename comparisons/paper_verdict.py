@@ -21,7 +21,8 @@ import pinocchio as pin
 from koenig_check import grid
 from koenig_check.api import CrossCheck, compare_model, one_line
 from koenig_check.demo import FLOATING_MODELS, builtin_models
-from koenig_check.engines import CoupledJointsError, InertiaError, NoMovingSegmentError, list_models
+from koenig_check.engines import InertiaError, NoMovingSegmentError, list_models
+from koenig_check.findings import Kind
 from koenig_check.formulas import FORMULAS
 
 
@@ -51,12 +52,6 @@ def run(n_poses: int, seed: int) -> CrossCheck:
                     break
                 floating = True
                 label = f"{label} (floating)"
-            except CoupledJointsError as err:  # retried with the coupled joints independent, labelled
-                if options.get("allow_coupled"):
-                    comp = err
-                    break
-                options["allow_coupled"] = True
-                label = f"{label} (mimic joints independent)"
             except Exception as err:  # noted in the verdict, the others go on
                 comp = err
                 break
@@ -131,7 +126,14 @@ def main() -> None:
     if check.failures:
         lines += ["", "## Models that could not be compared", ""]
         lines += [f"- {m}: {r}" for m, r in check.failures]
-    findings = sorted({n for c in check.comparisons for n in c.notes if "inconsistent" in n or "neither" in n})
+    findings = sorted(
+        {
+            f.message()
+            for c in check.comparisons
+            for f in c.findings
+            if f.kind is Kind.SELF_CONSISTENCY and f.affects_energy
+        }
+    )
     if findings:
         lines += ["", "## Engine findings (self-consistency)", ""] + [f"- {f}" for f in findings]
     args.out.write_text("\n".join(lines) + "\n", encoding="utf-8")

@@ -12,6 +12,7 @@ import pytest
 
 from koenig_check.api import compare
 from koenig_check.engines import load_model
+from koenig_check.findings import Kind
 from koenig_check.pose_file import PoseFileError, load_pose_file
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
@@ -155,10 +156,8 @@ LOOP = """<mujoco><compiler inertiafromgeom="false"/><worldbody>
   <body name="a"><joint name="ja" axis="0 0 1"/><inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/>
     <body name="b" pos="0.2 0 0"><joint name="jb" axis="0 0 1"/>
       <inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/></body></body>
-  <body name="c" pos="0.4 0 0"><joint name="jc" axis="0 0 1"/>
-    <inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/></body>
 </worldbody>
-<equality><connect name="close" body1="b" body2="c" anchor="0.2 0 0"/></equality></mujoco>"""
+<equality><connect name="close" body1="b" anchor="0.2 0 0"/></equality></mujoco>"""
 TENDON = """<mujoco><compiler inertiafromgeom="false"/><worldbody>
   <body name="a"><joint name="ja" axis="0 0 1"/><inertial pos="0.1 0 0" mass="1" diaginertia="0.01 0.02 0.02"/>
     <body name="b" pos="0.2 0 0"><joint name="jb" axis="0 0 1"/>
@@ -171,17 +170,20 @@ TENDON = """<mujoco><compiler inertiafromgeom="false"/><worldbody>
 @pytest.mark.parametrize(
     ("name", "content", "needles"),
     [
-        ("mimic.urdf", MIMIC, ["'j2' mimics joint 'j1'"]),
-        ("loop.xml", LOOP, ["'close' closes a kinematic loop", "'b'", "'c'"]),
-        ("tendon.xml", TENDON, ["tendon 'couple'", "coupling its joints"]),
+        ("mimic.urdf", MIMIC, ["joint j2", "mimic", "leader j1", "multiplier 2"]),
+        ("loop.xml", LOOP, ["equality close", "connect closes a loop", "['b', 'world']"]),
+        ("tendon.xml", TENDON, ["equality tie", "tendons ['couple']", "joints ['ja', 'jb']"]),
     ],
 )
-def test_coupled_joints_and_loops_are_refused_by_name(tmp_path: Path, name: str, content: str, needles: list) -> None:
+def test_coupled_joints_and_loops_are_loaded_and_named(tmp_path: Path, name: str, content: str, needles: list) -> None:
+    # Behaviour changed by design (issue 8): these were refused; T(q, q̇) is defined on the tree's coordinates.
     path = tmp_path / name
     path.write_text(content)
-    with pytest.raises(ValueError) as info:
-        load_model(path)
-    _one_line_naming(info.value, str(path), "not supported", *needles)
+    (found,) = [f for f in load_model(path).findings if f.kind is Kind.COUPLING]
+    assert not found.affects_energy
+    _one_line_naming(ValueError(found.message()), *needles)
+    check = compare(path, n_poses=4)
+    assert check.ok, check.reason()
 
 
 def test_joints_missing_in_one_engine_are_listed(tmp_path: Path) -> None:

@@ -22,8 +22,10 @@ def compare(models: Any, **options: Any) -> CrossCheck:
     models : str, Path or sequence of them
         Model files or names (``koenig-check models``).
     **options
-        ``rtol``, ``progress``, ``pose_kind``, ``n_poses``, ``seed``, ``formulas``, ``floating``,
-        ``balance_inertia``, ``velocity_scale``, ``grid_joints``, ``duration``, ``pose_set``, ``pose_file``.
+        ``rtol``, ``progress``, ``pose_kind``, ``n_poses``, ``seed``, ``formulas``, ``velocity_scale``,
+        ``grid_joints``, ``duration``, ``pose_set``, ``pose_file``, ``load_options``, and every load
+        option by name (``floating``, ``balance_inertia``, ``repair_inertia``, ``pinocchio_model``: see
+        :class:`koenig_check.engines.load_options.LoadOptions`).
 
     Returns
     -------

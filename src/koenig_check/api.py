@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import sys
+import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from koenig_check import grid, poses
+from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import RecordTable
 
@@ -128,16 +130,14 @@ def compare_model(
     n_poses: int = 20,
     seed: int = 0,
     formulas: Sequence[str] | None = None,
-    floating: bool = False,
-    balance_inertia: bool = False,
-    allow_coupled: bool = False,
     velocity_scale: float = 1.0,
     grid_joints: Sequence[str] | None = None,
     duration: float = 1.0,
     pose_set: poses.PoseSet | None = None,
     pose_file: str | Path | None = None,
-    pinocchio_model: str | Path | None = None,
     label: str | None = None,
+    load_options: LoadOptions | None = None,
+    **load_kwargs: Any,
 ) -> ModelComparison:
     """Load one model into both engines and run the comparison grid on it.
 
@@ -148,19 +148,16 @@ def compare_model(
     pose_kind, n_poses, seed, velocity_scale, grid_joints, duration
         See :func:`make_poses`.
     formulas : sequence of str, optional
-    floating : bool
-        Free-floating base (URDF).
-    balance_inertia : bool
-        Let MuJoCo balance inertias that violate the triangle inequality (noted).
-    allow_coupled : bool
-        Load models with coupled joints (mimic, equalities), treating the joints as independent (noted).
     pose_set : PoseSet, optional
         Use these canonical states instead of drawing poses.
     pose_file : str or Path, optional
         Read the canonical states from a file (see :mod:`koenig_check.pose_file`).
-    pinocchio_model : str or Path, optional
-        A different file of the same robot for Pinocchio (e.g. the URDF twin of an MJCF).
     label : str, optional
+    load_options : LoadOptions, optional
+        How the model is loaded (see :class:`koenig_check.engines.load_options.LoadOptions`).
+    **load_kwargs
+        The same options as keywords (``floating``, ``balance_inertia``, ``pinocchio_model``, ...);
+        they override ``load_options``.
 
     Returns
     -------
@@ -174,13 +171,8 @@ def compare_model(
     from koenig_check.engines import load_model
     from koenig_check.parity import import_parity
 
-    pair = load_model(
-        model,
-        floating=floating,
-        balance_inertia=balance_inertia,
-        allow_coupled=allow_coupled,
-        pinocchio_source=pinocchio_model,
-    )
+    options = load_options_from(load_options, load_kwargs)
+    pair = load_model(model, options)
     if pose_file is not None:
         from koenig_check.pose_file import load_pose_file
 
@@ -198,9 +190,9 @@ def compare_model(
         runs = {"mujoco": grid.run_engine(pair.mujoco, ps), "pinocchio": grid.run_engine(pair.pinocchio, ps)}
     except ValueError as err:  # an engine produced an invalid state: name the file
         raise ValueError(f"{pair.path}: {one_line(err)}") from err
-    comp = grid.compare_runs(label or _label(model, floating), ps, runs, formulas)
+    comp = grid.compare_runs(label or _label(model, options.floating), ps, runs, formulas)
     comp.notes = list(pair.notes) + list(ps.notes) + comp.notes
-    comp.import_summary = import_parity(pair).headline()
+    comp.findings = list(pair.findings) + import_parity(pair).as_findings()
     return comp
 
 
@@ -225,9 +217,10 @@ def compare(
     debug : bool
         Re-raise a model's failure instead of recording it (to see its traceback).
     **options
-        Passed to :func:`compare_model` (``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
-        ``floating``, ``balance_inertia``, ``allow_coupled``, ``velocity_scale``, ``grid_joints``, ``duration``,
-        ``pose_set``, ``pose_file``).
+        Passed to :func:`compare_model`: ``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
+        ``velocity_scale``, ``grid_joints``, ``duration``, ``pose_set``, ``pose_file``, ``load_options``, and
+        every load option by name (:meth:`LoadOptions.names`: ``floating``, ``balance_inertia``,
+        ``pinocchio_model``, ...).
 
     Returns
     -------
@@ -235,13 +228,15 @@ def compare(
     """
     if isinstance(models, str | Path):
         models = [models]
+    options = dict(options)
+    load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
     result = CrossCheck(rtol=rtol)
     for model in models:
-        label = _label(model, bool(options.get("floating")))
+        label = _label(model, load.floating)
         if progress:
             progress(label)
         try:
-            comp = compare_model(model, label=label, **options)
+            comp = compare_model(model, label=label, load_options=load, **options)
         except Exception as err:  # recorded with its reason; the batch goes on
             if debug:
                 raise
@@ -249,6 +244,36 @@ def compare(
             continue
         result.add(comp)
     return result
+
+
+def load_options_from(base: LoadOptions | None, overrides: dict[str, Any]) -> LoadOptions:
+    """The load options: ``base`` (defaults when None) with keyword overrides.
+
+    ``allow_coupled=True`` warns (:class:`DeprecationWarning`) and is dropped: it does nothing.
+
+    Parameters
+    ----------
+    base : LoadOptions, optional
+    overrides : dict
+        Load options by name.
+
+    Returns
+    -------
+    LoadOptions
+
+    Raises
+    ------
+    TypeError
+        On a keyword that is not a load option.
+    """
+    unknown = sorted(set(overrides) - set(LoadOptions.names()))
+    if unknown:
+        raise TypeError(f"unknown option(s) {unknown}; load options are {list(LoadOptions.names())}")
+    options = replace(base or LoadOptions(), **overrides)
+    if options.allow_coupled:
+        warnings.warn(ALLOW_COUPLED_DEPRECATION, DeprecationWarning, stacklevel=3)
+        options = replace(options, allow_coupled=False)
+    return options
 
 
 def one_line(err: BaseException) -> str:

@@ -11,9 +11,11 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Sequence
+from dataclasses import replace
 from pathlib import Path
 
 from koenig_check import __version__
+from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions, add_load_arguments
 
 DEFAULT_OUT = "koenig-check-report"
 
@@ -87,7 +89,6 @@ def build_parser() -> argparse.ArgumentParser:
         "koenig-check compare gimbal.xml ur5 --poses 50 --out ur5-report",
     )
     p.add_argument("models", nargs="+", metavar="MODEL", help="model file or name")
-    p.add_argument("--floating", action="store_true", help="free-floating base (URDF)")
     p.add_argument("--poses", type=int, default=20, help="number of poses / grid samples per joint (default 20)")
     p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
     p.add_argument("--formulas", nargs="+", metavar="NAME", help="formulas to evaluate (default: all)")
@@ -104,12 +105,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--grid-joints", nargs=2, metavar=("A", "B"), help="the two joints of a grid sweep")
     p.add_argument("--duration", type=float, default=1.0, help="trajectory duration in seconds (default 1)")
     p.add_argument("--velocity-scale", type=float, default=1.0, help="std of random joint velocities (default 1)")
-    p.add_argument("--balance-inertia", action="store_true", help="let MuJoCo balance non-physical inertias (noted)")
-    p.add_argument(
-        "--allow-coupled", action="store_true", help="load mimic/coupled joints as independent joints (noted)"
-    )
-    p.add_argument("--pinocchio-model", help="load Pinocchio from this file instead (e.g. the URDF twin of an MJCF)")
     p.add_argument("--pose-file", help="canonical poses from a .npz (qpos, qvel) or .csv (qpos then qvel per row)")
+    add_load_arguments(p)
     p.set_defaults(func=_cmd_compare)
 
     p = _add(
@@ -119,8 +116,7 @@ def build_parser() -> argparse.ArgumentParser:
         "koenig-check parity serial7.urdf",
     )
     p.add_argument("model", metavar="MODEL", help="model file or name")
-    p.add_argument("--floating", action="store_true", help="free-floating base (URDF)")
-    p.add_argument("--balance-inertia", action="store_true", help="let MuJoCo balance non-physical inertias (noted)")
+    add_load_arguments(p)
     p.set_defaults(func=_cmd_parity)
 
     p = _add(sub, "models", "list every model name koenig-check can load, with its format", "koenig-check models")
@@ -171,6 +167,15 @@ def _finish(check, out: str | None, extra_figures: dict | None = None) -> int:
     return 1
 
 
+def _load_options(args: argparse.Namespace) -> LoadOptions:
+    """The load options of a command; ``--allow-coupled`` is accepted with a note and ignored."""
+    options = LoadOptions.from_namespace(args)
+    if options.allow_coupled:
+        print(f"koenig-check: note: {ALLOW_COUPLED_DEPRECATION}", file=sys.stderr)
+        options = replace(options, allow_coupled=False)
+    return options
+
+
 def _cmd_compare(args: argparse.Namespace) -> int:
     from koenig_check.api import compare
     from koenig_check.progress import Progress
@@ -184,15 +189,12 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             n_poses=args.poses,
             seed=args.seed,
             formulas=args.formulas,
-            floating=args.floating,
-            balance_inertia=args.balance_inertia,
-            allow_coupled=args.allow_coupled,
+            load_options=_load_options(args),
             velocity_scale=args.velocity_scale,
             grid_joints=args.grid_joints,
             duration=args.duration,
             pose_file=args.pose_file,
             debug=args.debug,
-            pinocchio_model=args.pinocchio_model,
         )
     figures = {}
     if args.pose_kind in ("grid", "trajectory") and check.comparisons:
@@ -211,7 +213,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.engines import load_model
     from koenig_check.parity import format_parity, import_parity
 
-    pair = load_model(args.model, floating=args.floating, balance_inertia=args.balance_inertia)
+    pair = load_model(args.model, _load_options(args))
     report = import_parity(pair)
     print(format_parity(report))
     if report.clean:

@@ -14,6 +14,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from koenig_check.findings import Finding, Kind, root_causes
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.point_masses import equimomental_points
 from koenig_check.poses import PoseSet
@@ -65,8 +66,9 @@ class ModelComparison:
         Engine name to :class:`EngineRun`.
     notes : list of str
         Load notes and decisions (skipped formulas, unmatched segments).
-    import_summary : str
-        The import-parity verdict of the model (what differs between the engines' imports, and where).
+    findings : list of Finding
+        What is known about the model: the load findings and the import-parity differences; the
+        one-line reason of a disagreement is chosen from these (:func:`disagreement_cause`).
     """
 
     model: str
@@ -75,7 +77,7 @@ class ModelComparison:
     refusals: list[dict[str, Any]] = field(default_factory=list)
     runs: dict[str, EngineRun] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
-    import_summary: str = ""
+    findings: list[Finding] = field(default_factory=list)
 
 
 def relative_error(value: np.ndarray, reference: np.ndarray) -> np.ndarray:
@@ -335,8 +337,9 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
     for name, value in self_rel.items():
         if value > rtol:
             reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
-    if reasons and comparison.import_summary:
-        reasons.append(f"import parity: {comparison.import_summary}")
+    cause = disagreement_cause(comparison.findings) if reasons else ""
+    if cause:
+        reasons.append(f"cause: {cause}")
     return EngineParity(
         comparison.model,
         float(rel.max()),
@@ -346,6 +349,42 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
         not reasons,
         "; ".join(reasons),
     )
+
+
+#: Kinds of per-segment import differences (symptoms, after the root causes in a reason).
+_SYMPTOMS = (Kind.MASS, Kind.COM, Kind.INERTIA, Kind.ANCHOR, Kind.AXIS, Kind.ARMATURE, Kind.SEGMENTS, Kind.FRAME)
+
+
+def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
+    """The cause of an engine disagreement, chosen from the findings, for the one-line reason.
+
+    Root causes that change the energy come first (a repaired or compiler-altered inertia, a
+    construct one parser ignores), then the per-segment import differences, then each engine's
+    inconsistencies with itself.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+    limit : int
+        At most this many findings are named (the count of the others is given).
+
+    Returns
+    -------
+    str
+        Empty when no finding explains a change of energy.
+    """
+    energy = [f for f in findings if f.affects_energy]
+    roots = [f for f in root_causes(energy) if f.affects_energy]
+    symptoms = [f for f in energy if f.kind in _SYMPTOMS and f not in roots]
+    selves = [f for f in energy if f.kind is Kind.SELF_CONSISTENCY and f not in roots]
+    chosen: list[Finding] = []
+    for f in roots + symptoms + selves:
+        if f not in chosen:
+            chosen.append(f)
+    text = "; ".join(f.message() for f in chosen[:limit])
+    if len(chosen) > limit:
+        text += f"; and {len(chosen) - limit} more finding(s)"
+    return text
 
 
 def records_for(comparisons: Iterable[ModelComparison]) -> RecordTable:

@@ -41,6 +41,17 @@ _EXPLAINS = {
 }
 
 
+#: Parity cause -> finding kind.
+_PARITY_KINDS = {
+    "mass": Kind.MASS,
+    "com": Kind.COM,
+    "inertia": Kind.INERTIA,
+    "anchor": Kind.ANCHOR,
+    "axis": Kind.AXIS,
+    "armature": Kind.ARMATURE,
+}
+
+
 @dataclass(frozen=True)
 class SegmentParity:
     """Engine A (MuJoCo) versus engine B (Pinocchio) for one segment.
@@ -190,6 +201,63 @@ class ParityReport:
             if s.name == segment:
                 return s.causes
         return ()
+
+    def as_findings(self) -> list[Finding]:
+        """The import differences of a parity report as findings (one per segment or dof and quantity).
+
+        Returns
+        -------
+        list of Finding
+            The root causes come first, then the typed findings the report already carries, then one
+            finding per differing segment and quantity that no root cause explains (values: MuJoCo's
+            and Pinocchio's mass where the mass differs), per differing dof and quantity, and per
+            segment that one engine lacks.
+        """
+        out = list(self.causes) + [f for f in self.findings if isinstance(f, Finding)]
+        for seg in self.differing_segments:
+            for cause in seg.causes:
+                if cause in self.explained(seg.name):
+                    continue
+                values = {"mujoco": seg.mass[0], "pinocchio": seg.mass[1]} if cause == "mass" else {}
+                out.append(
+                    Finding(
+                        _PARITY_KINDS.get(cause, Kind.INERTIA),
+                        "both",
+                        f"segment {seg.name}",
+                        f"{cause} differs between the engines",
+                        values,
+                        affects_energy=True,
+                        segments=(seg.name,),
+                    )
+                )
+        for dof in self.differing_dofs:
+            for cause in dof.causes:
+                if cause in self.explained(dof.joint):
+                    continue
+                values = {"mujoco": dof.armature[0], "pinocchio": dof.armature[1]} if cause == "armature" else {}
+                out.append(
+                    Finding(
+                        _PARITY_KINDS.get(cause, Kind.AXIS),
+                        "both",
+                        f"dof {dof.joint}",
+                        f"{cause} differs between the engines",
+                        values,
+                        affects_energy=True,
+                    )
+                )
+        for engine, names in (("mujoco", self.only_in_mujoco), ("pinocchio", self.only_in_pinocchio)):
+            if names:
+                out.append(
+                    Finding(
+                        Kind.SEGMENTS,
+                        engine,
+                        "segments " + ", ".join(names),
+                        f"segments only in {'MuJoCo' if engine == 'mujoco' else 'Pinocchio'}",
+                        affects_energy=True,
+                        segments=tuple(names),
+                    )
+                )
+        return out
 
     def headline(self) -> str:
         """One line: root causes that change the energy first, then symptoms no root cause explains.

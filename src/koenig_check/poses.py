@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
+from koenig_check.engines.coupling import apply_joint_relations, joint_relations
+
 _FREE, _BALL, _SLIDE, _HINGE = (
     int(mujoco.mjtJoint.mjJNT_FREE),
     int(mujoco.mjtJoint.mjJNT_BALL),
@@ -119,13 +121,16 @@ def random_poses(model: mujoco.MjModel, n: int, seed: int = 0, velocity_scale: f
     Returns
     -------
     PoseSet
+        Joints coupled to others (URDF mimic, MJCF joint equalities) follow their leaders, in
+        position and velocity; the notes say so.
     """
     _check_count(n)
     _check_scale(velocity_scale)
     rng = np.random.default_rng(seed)
     qpos = random_qpos(model, n, rng)
     qvel = velocity_scale * rng.normal(size=(n, model.nv))
-    return PoseSet(qpos, qvel, tuple(f"random-{i}" for i in range(n)), "random")
+    qpos, qvel, notes = apply_joint_relations(model, qpos, qvel)
+    return PoseSet(qpos, qvel, tuple(f"random-{i}" for i in range(n)), "random", notes=tuple(notes))
 
 
 def keyframe_poses(model: mujoco.MjModel, seed: int = 0, velocity_scale: float = 1.0) -> PoseSet:
@@ -154,6 +159,8 @@ def keyframe_poses(model: mujoco.MjModel, seed: int = 0, velocity_scale: float =
         if not np.any(qvel[k]):
             qvel[k] = velocity_scale * rng.normal(size=model.nv)
             notes.append(f"keyframe {name!r} is at rest: random velocities (seed {seed}) were drawn for it")
+    qpos, qvel, coupled = apply_joint_relations(model, qpos, qvel)
+    notes += coupled
     return PoseSet(qpos, qvel, tuple(ids), "keyframes", notes=tuple(notes))
 
 
@@ -213,12 +220,14 @@ def grid_poses(
     for j, vals, rate in zip(joints, (A, B), (rate_a, rate_b), strict=True):
         qpos[:, model.jnt_qposadr[j]] = vals.ravel()
         qvel[:, model.jnt_dofadr[j]] = rate
+    qpos, qvel, notes = apply_joint_relations(model, qpos, qvel)
     return PoseSet(
         qpos,
         qvel,
         tuple(f"grid-{i}" for i in range(n * n)),
         "grid",
         grid={"joints": (joint_a, joint_b), "values": tuple(values), "shape": (n, n)},
+        notes=tuple(notes),
     )
 
 
@@ -296,7 +305,15 @@ def trajectory_poses(
         mujoco.mj_step(sim, data)
     if not np.all(np.isfinite(qpos)) or not np.all(np.isfinite(qvel)):
         raise ValueError("the simulated trajectory diverged (non-finite state): shorten it or lower the velocity")
-    return PoseSet(qpos, qvel, tuple(f"traj-{i}" for i in range(keep.size)), "trajectory", times=times)
+    notes = []
+    if joint_relations(model) and (free_motion or sim.opt.disableflags & int(mujoco.mjtDisableBit.mjDSBL_EQUALITY)):
+        notes.append(
+            "couplings between joints (mimic, joint equalities) are not enforced along the simulated path "
+            "(equality constraints off for torque-free motion)"
+        )
+    return PoseSet(
+        qpos, qvel, tuple(f"traj-{i}" for i in range(keep.size)), "trajectory", times=times, notes=tuple(notes)
+    )
 
 
 def _check_count(n: int) -> None:

@@ -7,9 +7,12 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from koenig_check.api import load_options_from
+from koenig_check.engines.load_options import LoadOptions
 from koenig_check.formulas import FORMULAS
 from koenig_check.grid import DEFAULT_RTOL, relative_error
 
@@ -18,12 +21,13 @@ def assert_energy_parity(
     model: str | Path,
     pinocchio_model: str | Path | None = None,
     *,
-    floating: bool = False,
     n_poses: int = 20,
     seed: int = 0,
     velocity_scale: float = 1.0,
     rtol: float = DEFAULT_RTOL,
     include_armature: bool = True,
+    load_options: LoadOptions | None = None,
+    **load_kwargs: Any,
 ) -> None:
     """Assert that MuJoCo and Pinocchio give the same kinetic energy for a model, segment by segment.
 
@@ -34,14 +38,17 @@ def assert_energy_parity(
         ``pinocchio_model`` is given).
     pinocchio_model : str or Path, optional
         A different file of the same robot for Pinocchio (e.g. the URDF of an MJCF).
-    floating : bool
-        Free-floating base.
     n_poses, seed, velocity_scale
         Seeded random poses within joint limits.
     rtol : float
         Relative tolerance on every segment's energy and on the totals.
     include_armature : bool
         Also require the engines' armature energies to agree.
+    load_options : LoadOptions, optional
+        How the model is loaded.
+    **load_kwargs
+        Any load option by name (:meth:`LoadOptions.names`: ``floating``, ``balance_inertia``, ...),
+        overriding ``load_options``.
 
     Raises
     ------
@@ -53,7 +60,9 @@ def assert_energy_parity(
     from koenig_check.parity import import_parity
     from koenig_check.poses import random_poses
 
-    pair = load_model(model, floating=floating, pinocchio_source=pinocchio_model)
+    if pinocchio_model is not None:
+        load_kwargs["pinocchio_model"] = pinocchio_model
+    pair = load_model(model, load_options_from(load_options, load_kwargs))
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     sa = pair.mujoco.segment_states(poses.qpos, poses.qvel)
     sb = pair.pinocchio.segment_states(poses.qpos, poses.qvel)
@@ -96,4 +105,9 @@ def assert_energy_parity(
                 f"Pinocchio {kb.armature[k]:.9g} J"
             )
     if problems:
+        from koenig_check.grid import disagreement_cause
+
+        cause = disagreement_cause(pair.findings + import_parity(pair, rtol=rtol).as_findings())
+        if cause:
+            problems.append(f"cause: {cause}")
         raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))

@@ -23,7 +23,6 @@ def _load(case: Case) -> ModelPair:
         floating=case.floating,
         pinocchio_source=case.pinocchio_source,
         balance_inertia=case.balance_inertia,
-        allow_coupled=case.allow_coupled,
     )
 
 

@@ -57,7 +57,6 @@ class Case:
     floating: bool = False
     pinocchio_source: str | None = None
     balance_inertia: bool = False
-    allow_coupled: bool = False
 
 
 def _project_file(name: str, suffix: str) -> str:
@@ -81,11 +80,11 @@ def _cases() -> list[Case]:
     for source in list_models(origin="example-robot-data"):
         if source.name in EXPECTED_LOAD_FAILURES:
             continue
-        # mimic joints: both engines treat them as independent joints (allow_coupled)
+        # mimic joints are loaded: both engines' energies are defined on the tree's coordinates
         if source.name not in NO_DOF_WHEN_FIXED:
-            cases.append(Case(f"erd:{source.name}", source.name, allow_coupled=True))
-        cases.append(Case(f"erd:{source.name}-floating", source.name, floating=True, allow_coupled=True))
-    cases += [Case(f"erd:{n}-balanced", n, balance_inertia=True, allow_coupled=True) for n in BALANCEABLE]
+            cases.append(Case(f"erd:{source.name}", source.name))
+        cases.append(Case(f"erd:{source.name}-floating", source.name, floating=True))
+    cases += [Case(f"erd:{n}-balanced", n, balance_inertia=True) for n in BALANCEABLE]
     return cases
 
 

@@ -13,6 +13,7 @@ import pytest
 from engine_helpers import RTOL, rel_err
 
 from koenig_check.engines import load_model, random_states
+from koenig_check.findings import Kind
 
 
 @pytest.fixture(scope="module")
@@ -35,7 +36,9 @@ def test_mujoco_energy_and_mass_matrix_include_armature(armature_chain):
     M0 = np.zeros_like(M[0])
     mujoco.mj_fullM(rigid, data, M0)
     assert np.allclose(np.diag(M[0] - M0), mj.model.dof_armature, rtol=1e-12, atol=0)
-    assert "mujoco: its kinetic energy includes the armature term" in armature_chain.findings
+    facts = [f for f in armature_chain.findings if f.kind is Kind.SELF_CONSISTENCY and f.engine == "mujoco"]
+    assert any(f.summary == "its kinetic energy includes the armature term" for f in facts)
+    assert not any(f.affects_energy for f in facts)
 
 
 def test_mujoco_rne_excludes_armature_but_inverse_includes_it(armature_chain):
@@ -65,7 +68,14 @@ def test_pinocchio_energy_misses_armature_of_unaligned_revolute_joints(armature_
         # crba has the armature for every joint kind
         half_vmv = 0.5 * np.einsum("pi,pij,pj->p", v, pn.mass_matrix(qpos), v)
         assert rel_err(half_vmv, parts.total) < RTOL, kind
-    assert any("inconsistent" in f and "JointModelRevoluteUnaligned" in f for f in armature_chain.findings)
+    assert any(
+        f.kind is Kind.SELF_CONSISTENCY
+        and f.engine == "pinocchio"
+        and f.affects_energy
+        and "kinetic energy != ½ q̇ᵀ M q̇" in f.summary
+        and f.values["joint kinds"] == ["JointModelRevoluteUnaligned"]
+        for f in armature_chain.findings
+    )
 
 
 def test_pinocchio_rotor_inertia_fields_are_unused():

@@ -19,6 +19,7 @@ from koenig_check.engines import (
     resolve_model,
 )
 from koenig_check.engines.sources import project_models_dir
+from koenig_check.findings import Kind
 
 
 def _urdf(links: str, joints: str) -> str:
@@ -72,10 +73,11 @@ def test_triangle_inequality_violation_names_the_link(tmp_path):
 def test_balance_inertia_loads_and_records_the_change(tmp_path):
     path = _chain(tmp_path, _link("l2", 0.5, BAD_TRIANGLE))
     pair = load_model(path, balance_inertia=True)
-    note = next(n for n in pair.notes if "balanceinertia changed link 'l2'" in n)
-    before, after = re.search(r"\[([^\]]*)\] -> \[([^\]]*)\]", note).groups()
-    assert [float(x) for x in before.split(",")] == pytest.approx([0.001, 0.001, 0.01])
-    after = np.array([float(x) for x in after.split(",")])
+    (found,) = [f for f in pair.findings if f.kind is Kind.REPAIR]
+    assert found.engine == "mujoco" and found.element == "link l2" and found.segments == ("j2",)
+    assert "balanceinertia" in found.summary and found.affects_energy and found.root_cause
+    assert found.values["moments before"] == pytest.approx([0.001, 0.001, 0.01])
+    after = np.array(found.values["moments after"])
     assert after[0] + after[1] >= after[2] * (1 - 1e-9)
     assert set(pair.import_differences) == {"j2"}
     # MuJoCo's compiled inertia is the balanced one, Pinocchio keeps the file's
@@ -132,7 +134,7 @@ def test_links_without_inertial_get_no_mass_from_geometry(tmp_path):
         extra_joints=_joint("f3", "l2", "l3", kind="fixed"),
     )
     pair = load_model(path)
-    assert any("without <inertial> get no mass" in n and "'l3'" in n for n in pair.notes)
+    assert any(f.kind is Kind.LOAD and "no mass" in f.summary and "l3" in f.values["links"] for f in pair.findings)
     seg = dict(
         zip(
             pair.mujoco.segment_names,
@@ -157,7 +159,10 @@ def test_massless_link_with_inertia_fused_by_mujoco_is_an_import_difference(tmp_
         extra_joints=_joint("f3", "l2", "tip", kind="fixed"),
     )
     pair = load_model(path)
-    assert pair.import_differences == {"j2": ["fusestatic dropped the inertia of massless link 'tip'"]}
+    (found,) = pair.import_differences["j2"]
+    assert set(pair.import_differences) == {"j2"}
+    assert found.kind is Kind.COMPILER and found.element == "link tip" and "fusestatic dropped" in found.summary
+    assert found.values["principal moments in the file"] == pytest.approx([1e-3, 2e-3, 3e-3])
     qpos, qvel = random_states(pair.mujoco.model, 1, seed=2)
     sm, sp = pair.mujoco.segment_states(qpos, qvel), pair.pinocchio.segment_states(qpos, qvel)
     j2 = list(sm.names).index("j2")
@@ -181,7 +186,7 @@ def test_floating_on_a_file_that_already_floats_keeps_its_free_joint():
 
 
 def test_floating_urdf_with_a_world_root_link_moves_the_same_link():
-    pair = load_model("TwoDofs", floating=True, allow_coupled=True)  # world -> ground fixed joint with rpy 0 0 -1.57
+    pair = load_model("TwoDofs", floating=True)  # world -> ground fixed joint with rpy 0 0 -1.57
     assert any("root link 'world'" in n for n in pair.notes)
     qpos, qvel = random_states(pair.mujoco.model, 5, seed=3)
     sm = pair.mujoco.segment_states(qpos, qvel)
@@ -216,9 +221,11 @@ def test_example_robot_data_robots_that_do_not_load(name):
     elements = element if isinstance(element, tuple) else (element, element)
     for floating, expected in zip((False, True), elements, strict=True):
         with pytest.raises(ModelLoadError) as info:
-            load_model(name, floating=floating, check=False, allow_coupled=True)
+            load_model(name, floating=floating, check=False)
         msg = str(info.value)
         assert "\n" not in msg and str(resolve_model(name).path) in msg and expected in msg
+        if isinstance(info.value, InertiaError):  # the refusal says which option would load the file
+            assert "--repair-inertia" in msg
 
 
 def test_unparsable_file_is_a_one_line_error(tmp_path):
@@ -228,20 +235,28 @@ def test_unparsable_file_is_a_one_line_error(tmp_path):
     assert str(path) in str(info.value) and "\n" not in str(info.value)
 
 
-def test_mimic_joints_are_refused_unless_allowed():
-    with pytest.raises(
-        ModelLoadError, match=r"not supported: joint 'panda_finger_joint2' mimics joint 'panda_finger_joint1'"
-    ):
-        load_model("panda", check=False)
-    pair = load_model("panda", check=False, allow_coupled=True)
-    assert any("loaded as independent joints" in n and "panda_finger_joint2" in n for n in pair.notes)
+def test_mimic_joints_are_loaded_and_recorded_as_couplings():
+    # Behaviour changed by design (issue 8): coupled joints used to be refused unless allow_coupled=True.
+    pair = load_model("panda", check=False)
+    (found,) = [f for f in pair.findings if f.kind is Kind.COUPLING]
+    assert found.element == "joint panda_finger_joint2" and found.values["leader"] == "panda_finger_joint1"
+    assert not found.affects_energy and "satisfy" in found.hint
     assert "panda_finger_joint2" in pair.mujoco.segment_names and "panda_finger_joint2" in pair.pinocchio.segment_names
+
+
+def test_allow_coupled_is_a_deprecated_no_op():
+    with pytest.warns(DeprecationWarning, match="allow_coupled"):
+        pair = load_model("panda", check=False, allow_coupled=True)
+    assert [f.kind for f in pair.findings].count(Kind.COUPLING) == 1
 
 
 def test_mujoco_warnings_become_notes_not_log_files(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     pair = load_model("double_pendulum_simple", check=False)
-    assert any("mujoco warning:" in n and "equal lower and upper limits" in n for n in pair.notes)
+    assert any(
+        f.kind is Kind.LOAD and "warning" in f.summary and "equal lower and upper limits" in f.summary
+        for f in pair.findings
+    )
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
 
 
@@ -257,6 +272,7 @@ def test_masses_rescaled_by_mujoco_compiler_are_import_differences(tmp_path):
     )
     pair = load_model(path)
     assert set(pair.import_differences) == {"ja", "jb"}
-    assert any("mujoco warning:" in n and "settotalmass" in n for n in pair.notes)
+    assert any(f.kind is Kind.LOAD and "warning" in f.summary and "settotalmass" in f.summary for f in pair.findings)
+    assert all(f.kind is Kind.COMPILER and f.affects_energy for fs in pair.import_differences.values() for f in fs)
     states = [e.segment_states(*random_states(pair.mujoco.model, 1)) for e in pair.engines]
     assert states[0].mass == pytest.approx([2.0, 4.0]) and states[1].mass == pytest.approx([1.0, 2.0])

@@ -2,12 +2,12 @@
 
 Public API
 ----------
-``load_model(path_or_name, floating=False, balance_inertia=False, fmt=None, pinocchio_source=None,
-allow_coupled=False, check=True) -> ModelPair``
+``load_model(path_or_name, options=None, *, fmt=None, check=True, **load_options) -> ModelPair``
     ``pair.mujoco`` and ``pair.pinocchio`` answer the same methods for canonical (MuJoCo-layout)
     states: ``segment_states``, ``point_velocities``, ``kinetic_energy``, ``mass_matrix``,
-    ``inverse_dynamics``; ``pair.state_map`` converts states; ``pair.notes`` says what was changed
-    or noticed while loading and what each engine includes.
+    ``inverse_dynamics``; ``pair.state_map`` converts states; ``pair.findings`` (typed
+    :class:`~koenig_check.findings.Finding` records) say what was changed or noticed while loading
+    and what each engine includes.
 ``list_models()``, ``resolve_model()``
     Names of the project's models and of every example-robot-data URDF.
 ``random_states(model, n, seed)``
@@ -17,12 +17,14 @@ allow_coupled=False, check=True) -> ModelPair``
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
+import warnings
+from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
 from koenig_check.causes import explain_load_failures
-from koenig_check.engines.coupling import coupled_joints
+from koenig_check.engines.coupling import coupling_findings
 from koenig_check.engines.energy import EnergyParts, self_consistency
 from koenig_check.engines.errors import (
     CoupledJointsError,
@@ -32,6 +34,7 @@ from koenig_check.engines.errors import (
     NoMovingSegmentError,
 )
 from koenig_check.engines.finite import check_finite, check_segments
+from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.engines.mujoco_engine import MujocoEngine
 from koenig_check.engines.mujoco_loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
 from koenig_check.engines.pinocchio_engine import PinocchioEngine
@@ -39,6 +42,7 @@ from koenig_check.engines.pinocchio_loader import load_pinocchio
 from koenig_check.engines.sampling import random_states
 from koenig_check.engines.sources import ModelSource, list_models, resolve_model
 from koenig_check.engines.state_map import StateMap, build_state_map
+from koenig_check.findings import Finding, Kind
 from koenig_check.validate import preflight
 
 __all__ = [
@@ -47,6 +51,7 @@ __all__ = [
     "EnergyParts",
     "InertiaError",
     "JointMismatch",
+    "LoadOptions",
     "ModelLoadError",
     "ModelPair",
     "ModelSource",
@@ -76,27 +81,20 @@ class ModelPair:
     mujoco : MujocoEngine
     pinocchio : PinocchioEngine
     state_map : StateMap
-    floating : bool
-    balance_inertia : bool
-    notes : list of str
-        Load notes of both engines, the state map's notes and the engines' self-consistency
-        findings, each prefixed with the engine concerned.
-    findings : list of str
-        The self-consistency part of ``notes`` alone.
-    import_differences : dict
-        Segment name -> reasons the engines were given different mass properties for it (empty
-        when both engines load the file's values).
+    options : LoadOptions
+        How it was loaded.
+    findings : list of Finding
+        Everything learned while loading: loading decisions, couplings, inertias MuJoCo's compiler
+        or a repair changed (with the segments concerned), armature and pose differences between
+        the engines, and each engine's self-consistency facts and inconsistencies.
     """
 
     source: ModelSource
     mujoco: MujocoEngine
     pinocchio: PinocchioEngine
     state_map: StateMap
-    floating: bool = False
-    balance_inertia: bool = False
-    notes: list[str] = field(default_factory=list)
-    findings: list[str] = field(default_factory=list)
-    import_differences: dict[str, list[str]] = field(default_factory=dict)
+    options: LoadOptions = field(default_factory=LoadOptions)
+    findings: list[Finding] = field(default_factory=list)
 
     @property
     def path(self) -> str:
@@ -108,26 +106,52 @@ class ModelPair:
         """Both engine models, MuJoCo first."""
         return (self.mujoco, self.pinocchio)
 
+    @property
+    def floating(self) -> bool:
+        """Whether a free base was asked for."""
+        return self.options.floating
 
-def _armature_notes(mj: MujocoEngine, pn: PinocchioEngine, state_map: StateMap) -> list[str]:
+    @property
+    def notes(self) -> list[str]:
+        """The findings rendered for people, one line each (:meth:`Finding.message`)."""
+        return [f.message() for f in self.findings]
+
+    @property
+    def import_differences(self) -> dict[str, list[Finding]]:
+        """Segment -> the findings by which the engines were given different mass properties for it."""
+        out: dict[str, list[Finding]] = {}
+        for f in self.findings:
+            if f.affects_energy and f.kind in (Kind.REPAIR, Kind.COMPILER):
+                for segment in f.segments or ("(static)",):
+                    out.setdefault(segment, []).append(f)
+        return out
+
+
+def _armature_findings(mj: MujocoEngine, pn: PinocchioEngine, state_map: StateMap) -> list[Finding]:
     """Compare the armature each engine was given, joint by joint (canonical dofs)."""
     arm_pin = np.zeros(state_map.nv)
     arm_pin[state_map.velocity_permutation[1]] = np.asarray(pn.model.armature)[state_map.velocity_permutation[0]]
     arm_mj = np.asarray(mj.model.dof_armature)
     width = {"free": 6, "ball": 3}
-    differ = sorted(
-        p.name
-        for p in state_map.pairs
-        if not np.allclose(*(a[p.vadr : p.vadr + width.get(p.kind, 1)] for a in (arm_mj, arm_pin)), rtol=1e-12)
-    )
-    if not differ:
-        return []
-    pairs = {p.name: p for p in state_map.pairs}
-    detail = ", ".join(f"{n}: {arm_mj[pairs[n].vadr]:g} vs {arm_pin[pairs[n].vadr]:g}" for n in differ)
-    return [f"armature differs between the engines (MuJoCo vs Pinocchio): {detail}"]
+    out = []
+    for p in state_map.pairs:
+        a, b = (x[p.vadr : p.vadr + width.get(p.kind, 1)] for x in (arm_mj, arm_pin))
+        if not np.allclose(a, b, rtol=1e-12):
+            out.append(
+                Finding(
+                    Kind.ARMATURE,
+                    "both",
+                    f"joint {p.name}",
+                    "armature differs between the engines",
+                    {"mujoco": float(a[0]), "pinocchio": float(b[0])},
+                    affects_energy=True,
+                    segments=(p.name,),
+                )
+            )
+    return out
 
 
-def _pose_notes(mj: MujocoEngine, pn: PinocchioEngine) -> list[str]:
+def _pose_findings(mj: MujocoEngine, pn: PinocchioEngine) -> list[Finding]:
     """Compare where both engines put each segment at MuJoCo's ``qpos0`` (frame-only differences)."""
     common = [n for n in mj.segment_names if n in pn.segment_names]
     if not common:
@@ -142,20 +166,25 @@ def _pose_notes(mj: MujocoEngine, pn: PinocchioEngine) -> list[str]:
     if not bad:
         return []
     return [
-        f"segment poses differ between the engines at qpos0 (max rotation entry {d_rot.max():.3g}, "
-        f"max COM distance {d_com.max():.3g} m) for {len(bad)} segment(s): {bad[:8]}"
+        Finding(
+            Kind.FRAME,
+            "both",
+            "segments " + ", ".join(bad[:8]) + (" …" if len(bad) > 8 else ""),
+            "segment poses differ between the engines at qpos0",
+            {"max rotation entry": float(d_rot.max()), "max COM distance (m)": float(d_com.max())},
+            segments=tuple(bad),
+        )
     ]
 
 
 @explain_load_failures
 def load_model(
     path_or_name: str | os.PathLike[str],
-    floating: bool = False,
-    balance_inertia: bool = False,
+    options: LoadOptions | None = None,
+    *,
     fmt: str | None = None,
-    pinocchio_source: str | os.PathLike[str] | None = None,
-    allow_coupled: bool = False,
     check: bool = True,
+    **legacy: Any,
 ) -> ModelPair:
     """Load a model file (or a named model) into MuJoCo and Pinocchio.
 
@@ -163,20 +192,12 @@ def load_model(
     ----------
     path_or_name : str or path
         A file, or a name from :func:`list_models`.
-    floating : bool
-        Give a fixed-base model a free root joint named :data:`ROOT_JOINT_NAME` (a file whose
-        single root body already has a free joint is left as it is).
-    balance_inertia : bool
-        Let MuJoCo load inertias violating ``A + B >= C`` (``balanceinertia``); the notes record the
-        change per link (Pinocchio keeps the file's inertia).
+    options : LoadOptions, optional
+        How to load it (floating base, inertia balancing or repair, a separate file for
+        Pinocchio).  The same options are accepted as keywords (``floating=True``, ...;
+        ``pinocchio_source`` is the older name of ``pinocchio_model``).
     fmt : {"mjcf", "urdf"}, optional
         Disambiguates a project model name.
-    pinocchio_source : str or path, optional
-        Load Pinocchio from this other file of the same mechanism (e.g. the URDF twin of an
-        MJCF); MuJoCo loads ``path_or_name``.
-    allow_coupled : bool
-        Load a model with mimic joints, loops or joint/tendon equality constraints anyway; both
-        engines then treat its joints as independent (recorded in the notes).  Refused by default.
     check : bool
         Run the engines' self-consistency checks on a few random states and record the findings.
 
@@ -187,8 +208,8 @@ def load_model(
     Raises
     ------
     ModelLoadError, InertiaError
-        If an engine cannot load the file, or the model couples its joints (one-line message
-        naming the file and the element).
+        If an engine cannot load the file (one-line message naming the file, the element and
+        the engine's whole reason; for an inertia MuJoCo refuses, the option that would load it).
     koenig_check.validate.ModelFileError
         If the file fails the pre-flight checks (missing, empty, not XML, DOCTYPE...).
     JointMismatch
@@ -196,25 +217,42 @@ def load_model(
 
     Notes
     -----
+    Coupled joints (URDF mimic, MJCF joint/tendon equalities, connect and weld constraints) are
+    loaded and recorded as ``COUPLING`` findings: the kinetic energy is defined on the tree's
+    coordinates.  ``allow_coupled`` is a deprecated no-op.
+
     Pinocchio gets a free flyer exactly when MuJoCo's model ends with a free joint on its single
     root body, named like it, so the two engines' free joints always pair.
     """
+    if "pinocchio_source" in legacy:
+        legacy["pinocchio_model"] = legacy.pop("pinocchio_source")
+    unknown = sorted(set(legacy) - set(LoadOptions.names()))
+    if unknown:
+        raise TypeError(f"load_model() got unexpected keyword argument(s) {unknown}")
+    opts = options if options is not None else LoadOptions()
+    if legacy:
+        opts = replace(opts, **legacy)
+    if opts.allow_coupled:
+        warnings.warn(ALLOW_COUPLED_DEPRECATION, DeprecationWarning, stacklevel=2)
     source = resolve_model(path_or_name, fmt)
-    pin_source = source if pinocchio_source is None else resolve_model(pinocchio_source)
+    pin_source = source if opts.pinocchio_model is None else resolve_model(opts.pinocchio_model)
     for s in {source.path: source, pin_source.path: pin_source}.values():
         preflight(s.path)
-    mj_model, mj_notes, mj_diffs = load_mujoco(source, floating=floating, balance_inertia=balance_inertia)
-    coupled = coupled_joints(source, mj_model)
-    if coupled and not allow_coupled:
-        raise CoupledJointsError(
-            f"{source.path}: coupled joints are not supported: {'; '.join(coupled)} (both engines would treat "
-            "the joints as independent; --allow-coupled (allow_coupled=True) loads it anyway)"
-        )
-    if coupled:
-        mj_notes.append(f"coupled joints loaded as independent joints (allow_coupled=True): {coupled}")
-    pin_model, pin_notes = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
+    mj_model, mj_findings, body_findings = load_mujoco(
+        source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
+    )
+    pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
     if pin_source is not source:
-        pin_notes.insert(0, f"pinocchio: loaded from {pin_source.path} (MuJoCo from {source.path})")
+        pin_findings.insert(
+            0,
+            Finding(
+                Kind.LOAD,
+                "pinocchio",
+                f"file {pin_source.path.name}",
+                "Pinocchio loaded from another file than MuJoCo",
+                {"pinocchio": str(pin_source.path), "mujoco": str(source.path)},
+            ),
+        )
     check_finite(mj_model, pin_model, str(source.path))
     if mj_model.nv == 0:
         raise NoMovingSegmentError(
@@ -222,23 +260,30 @@ def load_model(
             "(--floating, floating=True, gives the root body a free joint)"
         )
     state_map = build_state_map(mj_model, pin_model, str(source.path))
-    mj = MujocoEngine(mj_model, source.path, mj_notes, mj_diffs)
-    pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_notes + state_map.notes)
-    pn.notes += check_segments(
-        (mj, pn), mj_model.qpos0, str(source.path), frozenset({"pinocchio"}) if balance_inertia else frozenset()
-    )
-    notes = mj.notes + pn.notes + _armature_notes(mj, pn, state_map) + _pose_notes(mj, pn)
+    mj = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
+    pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_findings + state_map.findings)
+    tolerate = frozenset({"pinocchio"}) if opts.balance_inertia or opts.repair_inertia else frozenset()
+    pn.findings += check_segments((mj, pn), mj_model.qpos0, str(source.path), tolerate)
+    findings = mj.findings + pn.findings + coupling_findings(source, mj_model)
+    findings += _armature_findings(mj, pn, state_map) + _pose_findings(mj, pn)
     if set(mj.segment_names) != set(pn.segment_names):
         only_mj = sorted(set(mj.segment_names) - set(pn.segment_names))
         only_pin = sorted(set(pn.segment_names) - set(mj.segment_names))
-        notes.append(f"segments differ between engines: only MuJoCo {only_mj}, only Pinocchio {only_pin}")
-    findings: list[str] = []
+        findings.append(
+            Finding(
+                Kind.SEGMENTS,
+                "both",
+                "segments " + ", ".join(only_mj + only_pin),
+                "segments differ between the engines",
+                {"only mujoco": only_mj, "only pinocchio": only_pin},
+                affects_energy=True,
+                segments=tuple(only_mj + only_pin),
+            )
+        )
     if check:
         qpos, qvel = random_states(mj_model, CONSISTENCY_POSES, seed=12345)
         for engine in (mj, pn):
             found = self_consistency(engine, qpos, qvel)
-            engine.notes.extend(found)
+            engine.findings.extend(found)
             findings.extend(found)
-    return ModelPair(
-        source, mj, pn, state_map, floating, balance_inertia, notes + findings, findings, dict(mj.import_differences)
-    )
+    return ModelPair(source, mj, pn, state_map, opts, findings)

@@ -8,6 +8,7 @@ from typing import Protocol
 import numpy as np
 
 from koenig_check.engines.energy import EnergyParts
+from koenig_check.findings import Finding
 from koenig_check.segments import SegmentStates
 
 
@@ -19,7 +20,7 @@ class EngineModel(Protocol):
 
     engine: str
     path: Path
-    notes: list[str]
+    findings: list[Finding]
     segment_names: tuple[str, ...]
     nq: int
     nv: int

@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from koenig_check.findings import Finding, Kind
+
 if TYPE_CHECKING:
     from koenig_check.engines.base import EngineModel
 
@@ -22,8 +24,9 @@ class EnergyParts:
     Parameters
     ----------
     rigid : ndarray, shape (P,)
-        The engine's own kinetic-energy function evaluated on a copy of the model whose armature
-        is zero: the rigid-body term alone.
+        The rigid-body term alone, from the engine itself: Pinocchio's kinetic-energy function on a
+        copy of the model whose armature is zero; MuJoCo's ``½ q̇ᵀ (M − diag(armature)) q̇`` (a
+        zeroed copy keeps the armature of its "simple" dofs, see ``MujocoEngine.kinetic_energy``).
     armature : ndarray, shape (P,)
         ``½ Σ aᵢ vᵢ²`` over the engine's velocity coordinates and armature values (rotor inertia).
     reported : ndarray, shape (P,)
@@ -63,14 +66,17 @@ def _kinds_concerned(
     return bad
 
 
-def _armature_inclusion(engine: EngineModel, qpos: np.ndarray, qvel: np.ndarray, rtol: float) -> list[str]:
+def _fact(engine: EngineModel, summary: str, **values: object) -> Finding:
+    return Finding(Kind.SELF_CONSISTENCY, engine.engine, "model", summary, values)
+
+
+def _armature_inclusion(engine: EngineModel, qpos: np.ndarray, qvel: np.ndarray, rtol: float) -> list[Finding]:
     """Say, joint kind by joint kind, whether the engine's energy includes the armature term."""
-    name = engine.engine
     parts = engine.kinetic_energy(qpos, qvel)
     if _close(parts.reported, parts.total, rtol):
-        return [f"{name}: its kinetic energy includes the armature term"]
+        return [_fact(engine, "its kinetic energy includes the armature term")]
     if _close(parts.reported, parts.rigid, rtol):
-        return [f"{name}: its kinetic energy excludes the armature term"]
+        return [_fact(engine, "its kinetic energy excludes the armature term")]
     included, excluded, other = [], [], []
     for kind, dofs in engine.dofs_by_kind().items():
         v = np.zeros_like(qvel)
@@ -85,14 +91,20 @@ def _armature_inclusion(engine: EngineModel, qpos: np.ndarray, qvel: np.ndarray,
         else:
             other.append(kind)
     return [
-        f"{name}: its kinetic energy includes the armature term for joint kinds {included} "
-        f"but excludes it for {excluded}" + (f" (neither for {other})" if other else "")
+        Finding(
+            Kind.SELF_CONSISTENCY,
+            engine.engine,
+            "joint kinds " + ", ".join(excluded + other),
+            "its kinetic energy includes the armature term for some joint kinds only",
+            {"included": included, "excluded": excluded, "neither": other},
+            affects_energy=True,
+        )
     ]
 
 
 def self_consistency(
     engine: EngineModel, qpos: np.ndarray, qvel: np.ndarray, rtol: float = CONSISTENCY_RTOL
-) -> list[str]:
+) -> list[Finding]:
     """Describe what an engine's energy, mass matrix and inverse dynamics include, and where they disagree.
 
     Parameters
@@ -105,12 +117,11 @@ def self_consistency(
 
     Returns
     -------
-    list of str
-        Facts (``"includes armature"``) and inconsistencies, each prefixed by the engine name and
-        naming the joint kinds concerned.
+    list of Finding
+        Facts (``"includes the armature term"``, not affecting the energy) and inconsistencies
+        (affecting it, naming the joint kinds concerned), of kind ``SELF_CONSISTENCY``.
     """
-    name = engine.engine
-    out: list[str] = []
+    out: list[Finding] = []
     parts = engine.kinetic_energy(qpos, qvel)
     M = engine.mass_matrix(qpos)
 
@@ -124,12 +135,21 @@ def self_consistency(
     if np.any(parts.armature > 0):
         out += _armature_inclusion(engine, qpos, qvel, rtol)
         if _close(half_vmv, parts.total, rtol):
-            out.append(f"{name}: its mass matrix includes the armature on the diagonal")
+            out.append(_fact(engine, "its mass matrix includes the armature on the diagonal"))
         elif _close(half_vmv, parts.rigid, rtol):
-            out.append(f"{name}: its mass matrix excludes the armature")
+            out.append(_fact(engine, "its mass matrix excludes the armature"))
     if not _close(parts.reported, half_vmv, rtol):
         kinds = _kinds_concerned(engine, qpos, qvel, energy_vs_matrix, rtol)
-        out.append(f"{name}: inconsistent: kinetic energy != ½ q̇ᵀ M q̇ (joint kinds concerned: {kinds})")
+        out.append(
+            Finding(
+                Kind.SELF_CONSISTENCY,
+                engine.engine,
+                "joint kinds " + ", ".join(kinds),
+                "inconsistent: kinetic energy != ½ q̇ᵀ M q̇",
+                {"joint kinds": kinds},
+                affects_energy=True,
+            )
+        )
     rng = np.random.default_rng(0)
     qacc = rng.normal(size=qvel.shape)
     tau = engine.inverse_dynamics(qpos, np.zeros_like(qvel), qacc)
@@ -140,5 +160,13 @@ def self_consistency(
             return _close(t, np.einsum("pij,pj->pi", engine.mass_matrix(q), a), tol)
 
         kinds = _kinds_concerned(engine, qpos, qacc, id_vs_matrix, rtol)
-        out.append(f"{name}: inconsistent: inverse dynamics at q̇=0 != M q̈ (joint kinds concerned: {kinds})")
+        out.append(
+            Finding(
+                Kind.SELF_CONSISTENCY,
+                engine.engine,
+                "joint kinds " + ", ".join(kinds),
+                "inconsistent: inverse dynamics at q̇=0 != M q̈",
+                {"joint kinds": kinds},
+            )
+        )
     return out

@@ -11,6 +11,7 @@ import numpy as np
 import pinocchio as pin
 
 from koenig_check.engines.errors import ModelLoadError
+from koenig_check.findings import Finding, Kind
 
 #: Largest length (m), mass (kg) or inertia (kg m²) accepted as physical.
 MAX_MAGNITUDE = 1e6
@@ -93,7 +94,9 @@ def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> N
             )
 
 
-def check_segments(engines: tuple, qpos0: np.ndarray, path: str, tolerate: frozenset[str] = frozenset()) -> list[str]:
+def check_segments(
+    engines: tuple, qpos0: np.ndarray, path: str, tolerate: frozenset[str] = frozenset()
+) -> list[Finding]:
     """Probe each engine at its reference pose: valid segment states and physical lumped inertias.
 
     Parameters
@@ -109,8 +112,8 @@ def check_segments(engines: tuple, qpos0: np.ndarray, path: str, tolerate: froze
 
     Returns
     -------
-    list of str
-        Notes on tolerated non-physical segments.
+    list of Finding
+        Tolerated non-physical segments (kind ``INERTIA``).
 
     Raises
     ------
@@ -119,7 +122,7 @@ def check_segments(engines: tuple, qpos0: np.ndarray, path: str, tolerate: froze
     """
     from koenig_check.segments import check_physical_inertia
 
-    notes = []
+    notes: list[Finding] = []
 
     for engine in engines:
         try:
@@ -133,7 +136,9 @@ def check_segments(engines: tuple, qpos0: np.ndarray, path: str, tolerate: froze
             if reason is None:
                 continue
             if engine.engine in tolerate:
-                notes.append(f"{engine.engine}: segment {name!r} keeps a non-physical inertia: {reason}")
+                notes.append(
+                    Finding(Kind.INERTIA, engine.engine, f"segment {name}", f"keeps a non-physical inertia: {reason}")
+                )
             else:
                 raise ModelLoadError(f"{path}: {engine.engine}: segment {name!r} (with its welded links): {reason}")
     return notes

@@ -12,6 +12,12 @@ import os
 from dataclasses import dataclass, fields
 from typing import Any
 
+#: What the deprecated ``allow_coupled`` / ``--allow-coupled`` is told.
+ALLOW_COUPLED_DEPRECATION = (
+    "allow_coupled (--allow-coupled) is deprecated and does nothing: coupled joints are loaded by default and "
+    "recorded as findings"
+)
+
 
 @dataclass(frozen=True)
 class LoadOptions:
@@ -23,6 +29,10 @@ class LoadOptions:
         Give a fixed-base model a free root joint.
     balance_inertia : bool
         Let MuJoCo load inertias that violate ``A + B >= C`` (``balanceinertia``); recorded per link.
+    repair_inertia : bool
+        Load masses and inertias MuJoCo refuses (a zero or negative principal moment, a massless
+        moving link, ``A + B < C``) with the smallest change MuJoCo accepts, recorded per link;
+        Pinocchio keeps the file's values, so the comparison shows the repair's effect.
     pinocchio_model : str or path, optional
         Load Pinocchio from this other file of the same mechanism (e.g. the URDF twin of an MJCF).
     allow_coupled : bool
@@ -31,6 +41,7 @@ class LoadOptions:
 
     floating: bool = False
     balance_inertia: bool = False
+    repair_inertia: bool = False
     pinocchio_model: str | os.PathLike[str] | None = None
     allow_coupled: bool = False
 
@@ -65,6 +76,16 @@ class LoadOptions:
         """
         return cls(**{name: options.pop(name) for name in cls.names() if name in options})
 
+    def as_overrides(self) -> dict[str, Any]:
+        """The options that differ from their defaults, as keyword arguments.
+
+        Returns
+        -------
+        dict
+        """
+        default = LoadOptions()
+        return {name: getattr(self, name) for name in self.names() if getattr(self, name) != getattr(default, name)}
+
     @classmethod
     def from_namespace(cls, args: argparse.Namespace) -> LoadOptions:
         """Read the options that :func:`add_load_arguments` put on a parser.
@@ -91,6 +112,12 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--floating", action="store_true", help="give a fixed-base model a free-floating base")
     group.add_argument(
         "--balance-inertia", action="store_true", help="let MuJoCo balance inertias with A + B < C (recorded per link)"
+    )
+    group.add_argument(
+        "--repair-inertia",
+        action="store_true",
+        help="load masses and inertias MuJoCo refuses with the smallest change it accepts (recorded per link; "
+        "Pinocchio keeps the file's values)",
     )
     group.add_argument(
         "--pinocchio-model", help="load Pinocchio from this file instead (e.g. the URDF twin of an MJCF)"

@@ -26,6 +26,7 @@ gravity zero and constraints, springs, dampers and fluid forces disabled.
 from __future__ import annotations
 
 import copy
+from dataclasses import replace
 from pathlib import Path
 
 import mujoco
@@ -34,6 +35,7 @@ import numpy as np
 from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import mujoco_joint_names
+from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
 
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
@@ -47,15 +49,15 @@ class MujocoEngine:
     model : mujoco.MjModel
     path : Path
         The model file.
-    notes : list of str
-        Load notes (extended here with segment notes).
-    import_differences : list of (str, str), optional
-        ``(body, reason)`` from the loader: bodies whose mass properties MuJoCo changed.
+    findings : list of Finding
+        Load findings (extended here with segment findings).
+    body_findings : list of (str, Finding), optional
+        ``(body, finding)`` from the loader: bodies whose mass properties MuJoCo changed; each
+        finding is recorded with the segment the body belongs to.
 
     Attributes
     ----------
-    import_differences : dict
-        Segment name -> reasons its mass properties differ from the file's.
+    findings : list of Finding
     """
 
     engine = "mujoco"
@@ -64,19 +66,17 @@ class MujocoEngine:
         self,
         model: mujoco.MjModel,
         path: Path,
-        notes: list[str] | None = None,
-        import_differences: list[tuple[str, str]] | None = None,
+        findings: list[Finding] | None = None,
+        body_findings: list[tuple[str, Finding]] | None = None,
     ) -> None:
         self.model = model
         self.path = Path(path)
-        self.notes = list(notes or [])
+        self.findings = list(findings or [])
         self.nq, self.nv = int(model.nq), int(model.nv)
         self.joint_names = tuple(mujoco_joint_names(model))
         self._data = mujoco.MjData(model)
         self._m_energy = copy.copy(model)
         self._m_energy.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
-        self._m_rigid = copy.copy(self._m_energy)
-        self._m_rigid.dof_armature[:] = 0.0
         self._m_dyn = copy.copy(model)
         self._m_dyn.opt.gravity[:] = 0.0
         self._m_dyn.opt.density = 0.0
@@ -84,11 +84,10 @@ class MujocoEngine:
         off = mujoco.mjtDisableBit
         self._m_dyn.opt.disableflags |= int(off.mjDSBL_CONSTRAINT | off.mjDSBL_SPRING | off.mjDSBL_DAMPER)
         self._build_segments()
-        self.import_differences: dict[str, list[str]] = {}
-        for body, reason in import_differences or []:
+        for body, finding in body_findings or []:
             bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body)
             seg = self._segment_of[bid] if bid >= 0 else ""
-            self.import_differences.setdefault(seg or "(static)", []).append(reason)
+            self.findings.append(replace(finding, segments=(seg,) if seg else ()))
 
     def dof_segments(self) -> tuple[str, ...]:
         """Name of the segment each canonical degree of freedom moves (its body's segment).
@@ -139,7 +138,11 @@ class MujocoEngine:
         keep = mass > 0
         if not keep.all():
             dropped = [n for n, k in zip(names, keep, strict=True) if not k]
-            self.notes.append(f"mujoco: massless segments left out (no kinetic energy): {dropped}")
+            self.findings.append(
+                Finding(
+                    Kind.SEGMENTS, "mujoco", "segments " + ", ".join(dropped), "massless: left out (no kinetic energy)"
+                )
+            )
         self._seg_body = heads[keep]
         self._seg_root = m.body_rootid[self._seg_body]
         self._seg_joint = last_joint[keep]
@@ -253,9 +256,12 @@ class MujocoEngine:
         return out
 
     # ------------------------------------------------------------- dynamics
-    def _energy(self, model: mujoco.MjModel, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
+    def _energy(self, qpos: np.ndarray, qvel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Return ``mj_energyVel`` and ``½ q̇ᵀ M q̇`` (``M`` from ``mj_fullM``) pose by pose."""
+        model = self._m_energy
         d = mujoco.MjData(model)
-        out = np.empty(qpos.shape[0])
+        reported, quadratic = np.empty(qpos.shape[0]), np.empty(qpos.shape[0])
+        M = np.zeros((self.nv, self.nv))
         for p in range(qpos.shape[0]):
             d.qpos[:] = qpos[p]
             d.qvel[:] = qvel[p]
@@ -263,11 +269,20 @@ class MujocoEngine:
             mujoco.mj_comPos(model, d)
             mujoco.mj_makeM(model, d)
             mujoco.mj_energyVel(model, d)
-            out[p] = d.energy[1]
-        return out
+            reported[p] = d.energy[1]
+            mujoco.mj_fullM(model, d, M)
+            quadratic[p] = 0.5 * qvel[p] @ M @ qvel[p]
+        return reported, quadratic
 
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
-        """Return ``mj_energyVel`` with and without armature, and the armature term.
+        """Return ``mj_energyVel``, the rigid-body energy and the armature term.
+
+        The rigid-body energy is ``½ q̇ᵀ (M − diag(dof_armature)) q̇`` with MuJoCo's own mass matrix:
+        MuJoCo builds ``M`` as the composite-rigid-body matrix plus ``dof_armature`` on the
+        diagonal.  Zeroing ``dof_armature`` on a compiled copy would not do: for the dofs MuJoCo
+        treats as *simple* (``dof_simplenum``: e.g. a slide or an aligned hinge on a body attached
+        to the world) the diagonal of ``M``, armature included, is precomputed at compile time
+        (``dof_M0``) and the copy would still count the armature as rigid-body energy.
 
         Parameters
         ----------
@@ -279,11 +294,9 @@ class MujocoEngine:
         EnergyParts
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
-        return EnergyParts(
-            rigid=self._energy(self._m_rigid, qpos, qvel),
-            armature=0.5 * (qvel**2) @ self.model.dof_armature,
-            reported=self._energy(self._m_energy, qpos, qvel),
-        )
+        reported, quadratic = self._energy(qpos, qvel)
+        armature = 0.5 * (qvel**2) @ self.model.dof_armature
+        return EnergyParts(rigid=quadratic - armature, armature=armature, reported=reported)
 
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return ``mj_fullM`` (armature included) for a batch of poses.

@@ -1,6 +1,6 @@
 """Build a MuJoCo ``MjModel`` from an MJCF or URDF file through ``MjSpec``.
 
-What this module changes in the spec, and records in the load notes:
+What this module changes in the spec, and records as findings (:class:`~koenig_check.findings.Finding`):
 
 * URDF: ``compiler.inertiafromgeom`` is set to *false*.  The importer's default (*auto*) gives a
   link without ``<inertial>`` a mass computed from its collision geometry, whereas Pinocchio gives
@@ -12,7 +12,7 @@ What this module changes in the spec, and records in the load notes:
 * ``floating=True`` adds a free joint named :data:`ROOT_JOINT_NAME` to the single top-level body.
 * Inertia rejected by MuJoCo raises :class:`InertiaError` naming the link and its principal
   moments, unless ``balance_inertia=True`` (MuJoCo's ``compiler.balanceinertia``), in which case the
-  notes record by how much each offending link's principal moments were changed.
+  findings record by how much each offending link's principal moments were changed.
 * Static bodies that the compiler fused into their parent (``compiler.fusestatic``, on by default
   for URDF) are listed.
 """
@@ -29,7 +29,9 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
+from koenig_check.engines.inertia_repair import Repair, repair_body
 from koenig_check.engines.sources import ModelSource, resolve_uri
+from koenig_check.findings import Finding, Kind
 from koenig_check.segments import check_physical_inertia
 
 #: Name given to the free joint added for a floating base, in both engines (Pinocchio's default).
@@ -37,11 +39,21 @@ ROOT_JOINT_NAME = "root_joint"
 #: Mesh formats MuJoCo 4.0 has no decoder for ("no decoder found for mesh file").
 UNDECODABLE_MESH_SUFFIXES = frozenset({".dae"})
 _ELEMENT = re.compile(r"Element name '([^']*)'")
+#: Compilations tried per body under repair (the balance margin grows tenfold each time).
+MAX_REPAIR_TRIES = 3
+
+
+#: A body's mass-property change with the body it concerns (mapped to its segment by the engine adapter).
+BodyFinding = tuple[str, Finding]
+
+
+def _warning(message: str) -> Finding:
+    return Finding(Kind.LOAD, "mujoco", "model", f"compiler warning: {message}")
 
 
 @contextmanager
-def _captured_warnings(notes: list[str]) -> Iterator[None]:
-    """Route MuJoCo's warnings (printed and written to MUJOCO_LOG.TXT by default) into the notes."""
+def _captured_warnings(notes: list[Finding]) -> Iterator[None]:
+    """Route MuJoCo's warnings (printed and written to MUJOCO_LOG.TXT by default) into the findings."""
     previous = mujoco.get_mju_user_warning()
     seen: list[str] = []
     mujoco.set_mju_user_warning(seen.append)
@@ -49,7 +61,7 @@ def _captured_warnings(notes: list[str]) -> Iterator[None]:
         yield
     finally:
         mujoco.set_mju_user_warning(previous)
-        notes.extend(f"mujoco warning: {m}" for m in dict.fromkeys(seen))
+        notes.extend(_warning(m) for m in dict.fromkeys(seen))
 
 
 def _first_line(exc: BaseException) -> str:
@@ -86,10 +98,11 @@ def _drop_mesh(spec: mujoco.MjSpec, mesh: mujoco.MjsMesh) -> list[str]:
     return bodies
 
 
-def _fix_meshes(spec: mujoco.MjSpec, source: ModelSource, notes: list[str]) -> None:
+def _fix_meshes(spec: mujoco.MjSpec, source: ModelSource, notes: list[Finding]) -> None:
     meshdir = spec.compiler.meshdir or spec.meshdir or ""
     base = source.path.parent / meshdir
     dropped: dict[str, list[str]] = {}
+    losers: dict[str, list[str]] = {}
     rewritten = False
     for mesh in list(spec.meshes):
         if not mesh.file:
@@ -105,11 +118,40 @@ def _fix_meshes(spec: mujoco.MjSpec, source: ModelSource, notes: list[str]) -> N
                 rewritten = True
             continue
         dropped.setdefault(reason, []).append(mesh.file)
-        _drop_mesh(spec, mesh)
+        losers.setdefault(reason, []).extend(_drop_mesh(spec, mesh))
     if rewritten:
         spec.strippath = False
     for reason, names in dropped.items():
-        notes.append(f"mujoco: inertia-only for {len(names)} mesh file(s) ({reason}), geoms dropped: {names}")
+        notes.append(_inertia_only(spec, reason, names, losers[reason]))
+
+
+def _inertia_only(spec: mujoco.MjSpec, reason: str, files: list[str], bodies: list[str]) -> Finding:
+    """A LOAD finding for meshes dropped with their geoms; it changes the energy where a body has no <inertial>."""
+    explicit = {b.name: bool(b.explicitinertial) for b in spec.bodies}
+    from_geoms = sorted({b for b in bodies if not explicit.get(b, True)})
+    return Finding(
+        Kind.LOAD,
+        "mujoco",
+        "mesh " + ", ".join(Path(f).name for f in files[:5]) + (f" (+{len(files) - 5})" if len(files) > 5 else ""),
+        f"inertia-only: {len(files)} mesh file(s) dropped with their geoms ({reason})",
+        {"files": files, "bodies without <inertial>": from_geoms},
+        affects_energy=bool(from_geoms),
+    )
+
+
+def _prepend_free_joint_to_keys(spec: mujoco.MjSpec, top: mujoco.MjsBody) -> None:
+    """Give each keyframe the coordinates of the free joint about to be added on the top body.
+
+    MuJoCo does not shift a keyframe written for the fixed base when a free joint is added in
+    front of the tree: the keyframe's first values would become the base's position.  The body's
+    own pose (``pos``, ``quat``) and a zero twist are put in front instead.
+    """
+    pose = [*np.asarray(top.pos, dtype=float), *np.asarray(top.quat, dtype=float)]
+    for key in spec.keys:
+        if len(key.qpos):
+            key.qpos = pose + list(key.qpos)
+        if len(key.qvel):
+            key.qvel = [0.0] * 6 + list(key.qvel)
 
 
 def _inertia_error(
@@ -123,26 +165,69 @@ def _inertia_error(
         if reason is None:
             reason = f"principal moments {_moments(inertia)}, MuJoCo requires them strictly positive"
         head += f"; {reason}"
+    head += f"; {REPAIR_HINT}"
     if "A + B >= C" in message:
-        head += "; --balance-inertia (balance_inertia=True) loads it with MuJoCo's balanceinertia"
+        head += " (or --balance-inertia, balance_inertia=True: MuJoCo's balanceinertia)"
     return InertiaError(head)
 
 
+#: What a refusal says would load the file.
+REPAIR_HINT = "--repair-inertia (repair_inertia=True) loads it with the smallest change MuJoCo accepts, recorded"
+
+
+def _repair_finding(repair: Repair, message: str, what: str) -> Finding:
+    return Finding(
+        Kind.REPAIR,
+        "mujoco",
+        f"{what} {repair.body}",
+        "mass and principal moments raised to MuJoCo's bounds and balanced (A + B >= C) so that MuJoCo accepts "
+        "them; Pinocchio keeps the file's values",
+        {
+            "mass before": repair.mass[0],
+            "mass after": repair.mass[1],
+            "moments before": list(repair.moments[0]),
+            "moments after": list(repair.moments[1]),
+            "max moment change": repair.max_change,
+            "refused for": _refusal(message),
+        },
+        affects_energy=True,
+        root_cause=True,
+    )
+
+
+def _refusal(message: str) -> str:
+    """MuJoCo's reason without the element and line it names (the finding names the link)."""
+    return message.split("; Element name")[0].removeprefix("error ").strip()
+
+
 def _compile(
-    spec: mujoco.MjSpec, source: ModelSource, notes: list[str], file_inertia: dict[str, tuple[float, np.ndarray]]
-) -> tuple[mujoco.MjModel, list[str]]:
+    spec: mujoco.MjSpec,
+    source: ModelSource,
+    notes: list[Finding],
+    file_inertia: dict[str, tuple[float, np.ndarray]],
+    repair: bool = False,
+) -> tuple[mujoco.MjModel, list[str], list[BodyFinding]]:
     """Compile, dropping meshes MuJoCo refuses one by one; raise clear errors otherwise.
 
-    Returns the model and the names of the meshes dropped on the way.
+    With ``repair``, a body whose mass or inertia MuJoCo refuses is repaired in ``spec``
+    (:func:`~koenig_check.engines.inertia_repair.repair_body`) and a copy compiled again (a failed
+    compilation leaves the spec's static bodies fused).
+
+    Returns the model, the names of the meshes dropped on the way and the repairs.
     """
     refused: list[str] = []
     reasons: list[str] = []
+    files: list[str] = []
+    losers: list[str] = []
+    repairs: dict[str, tuple[Repair, str]] = {}
+    tries: dict[str, int] = {}
+    what = "link" if source.format == "urdf" else "body"
     while True:
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                model = spec.compile()
-            notes.extend(f"mujoco warning: {w.message}" for w in caught)
+                model = (spec.copy() if repair else spec).compile()
+            notes.extend(_warning(str(w.message)) for w in caught)
         except ValueError as exc:
             message = _first_line(exc)
             match = _ELEMENT.search(str(exc))
@@ -153,33 +238,43 @@ def _compile(
             )
             if mesh is not None:
                 refused.append(mesh.name)
-                reasons.append(f"{mesh.file} ({message})")
-                _drop_mesh(spec, mesh)
+                reasons.append(message)
+                files.append(mesh.file)
+                losers += _drop_mesh(spec, mesh)
                 continue
             if "inertia" in message or "mass" in message:
+                body = spec.body(element) if element else None
+                if repair and body is not None and tries.get(element, 0) < MAX_REPAIR_TRIES:
+                    tries[element] = tries.get(element, 0) + 1
+                    done = repair_body(body, margin=8.0 * 10 ** (tries[element] - 1))
+                    first = repairs.get(element)
+                    if first is not None:  # a second pass: before = the file's values
+                        done = Repair(
+                            done.body, (first[0].mass[0], done.mass[1]), (first[0].moments[0], done.moments[1])
+                        )
+                    repairs[element] = (done, first[1] if first else message)
+                    continue
                 if "moving bodies" in message:
-                    what = "link" if source.format == "urdf" else "body"
                     raise InertiaError(
                         f"{source.path}: {what} {element!r}: MuJoCo rejects a moving body without mass or "
-                        f"inertia ({message}); Pinocchio accepts it"
+                        f"inertia ({message}); Pinocchio accepts it; {REPAIR_HINT}"
                     ) from exc
                 raise _inertia_error(source, element, message, file_inertia) from exc
             where = f" at element {element!r}" if element else ""
             raise ModelLoadError(f"{source.path}: MuJoCo cannot compile the model{where}: {message}") from exc
         if refused:
-            notes.append(f"mujoco: inertia-only for {len(refused)} mesh(es) MuJoCo refused: {reasons}")
-        return model, refused
+            notes.append(_inertia_only(spec, "MuJoCo refused to compile them: " + "; ".join(reasons), files, losers))
+        return model, refused, [(n, _repair_finding(r, m, what)) for n, (r, m) in repairs.items()]
 
 
-def _balance_notes(
+def _balance_findings(
     spec_before: mujoco.MjSpec,
     refused: list[str],
     model: mujoco.MjModel,
     source: ModelSource,
     file_inertia: dict[str, tuple[float, np.ndarray]],
-    notes: list[str],
-) -> list[str]:
-    """Record, per link whose inertia MuJoCo would reject, how balanceinertia changed it; return those links."""
+) -> list[BodyFinding]:
+    """Per link whose inertia MuJoCo would reject: how balanceinertia changed it (a REPAIR finding)."""
     bad = {}
     for name, (mass, inertia) in file_inertia.items():
         lam = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
@@ -195,21 +290,32 @@ def _balance_notes(
                 _drop_mesh(spec_before, mesh)
         compiled = spec_before.compile()
     what = "link" if source.format == "urdf" else "body"
+    out = []
     for name, lam in bad.items():
         bid = mujoco.mj_name2id(compiled, mujoco.mjtObj.mjOBJ_BODY, name)
         new = np.sort(compiled.body_inertia[bid])
         change = np.abs(new - lam).max() / max(np.abs(lam).max(), 1e-300)
-        notes.append(
-            f"mujoco: balanceinertia changed {what} {name!r}: principal moments "
-            f"[{', '.join(f'{v:.6g}' for v in lam)}] -> [{', '.join(f'{v:.6g}' for v in new)}] "
-            f"(max change {change:.3g} relative); Pinocchio keeps the file's values"
+        finding = Finding(
+            Kind.REPAIR,
+            "mujoco",
+            f"{what} {name}",
+            "principal moments changed by MuJoCo's balanceinertia (A + B >= C); Pinocchio keeps the file's values",
+            {
+                "moments before": lam.round(12).tolist(),
+                "moments after": new.round(12).tolist(),
+                "max relative change": change,
+            },
+            affects_energy=True,
+            root_cause=True,
+            hint="--balance-inertia (balance_inertia=True) was asked for",
         )
-    return list(bad)
+        out.append((name, finding))
+    return out
 
 
 def load_mujoco(
-    source: ModelSource, floating: bool = False, balance_inertia: bool = False
-) -> tuple[mujoco.MjModel, list[str], list[tuple[str, str]]]:
+    source: ModelSource, floating: bool = False, balance_inertia: bool = False, repair_inertia: bool = False
+) -> tuple[mujoco.MjModel, list[Finding], list[BodyFinding]]:
     """Compile a model file into MuJoCo.
 
     Parameters
@@ -221,14 +327,17 @@ def load_mujoco(
         body already has one).
     balance_inertia : bool
         Load inertias violating ``A + B >= C`` with MuJoCo's ``balanceinertia``.
+    repair_inertia : bool
+        Change each body whose mass or inertia MuJoCo refuses by the smallest amount MuJoCo accepts
+        (:mod:`koenig_check.engines.inertia_repair`); a ``REPAIR`` finding per body says by how much.
 
     Returns
     -------
     model : mujoco.MjModel
-    notes : list of str
-        What was changed or noticed while loading.
-    import_differences : list of (str, str)
-        ``(body, reason)``: a compiled body whose mass properties MuJoCo changed with respect to
+    findings : list of Finding
+        What was changed or noticed while loading that concerns no body in particular.
+    body_findings : list of (str, Finding)
+        ``(body, finding)``: a compiled body whose mass properties MuJoCo changed with respect to
         the file (so Pinocchio, which keeps the file's values, will differ there).
 
     Raises
@@ -236,14 +345,14 @@ def load_mujoco(
     ModelLoadError, InertiaError
         With a one-line message naming the file and the element.
     """
-    notes: list[str] = []
+    notes: list[Finding] = []
     with _captured_warnings(notes):
-        return _load(source, floating, balance_inertia, notes)
+        return _load(source, floating, balance_inertia, notes, repair_inertia)
 
 
 def _load(
-    source: ModelSource, floating: bool, balance_inertia: bool, notes: list[str]
-) -> tuple[mujoco.MjModel, list[str], list[tuple[str, str]]]:
+    source: ModelSource, floating: bool, balance_inertia: bool, notes: list[Finding], repair_inertia: bool = False
+) -> tuple[mujoco.MjModel, list[Finding], list[BodyFinding]]:
     path = Path(source.path)
     try:
         spec = mujoco.MjSpec.from_file(str(path))
@@ -255,11 +364,24 @@ def _load(
         without = [b.name for b in spec.bodies if b.name != "world" and not b.explicitinertial]
         if without:
             notes.append(
-                f"mujoco: {len(without)} link(s) without <inertial> get no mass (inertiafromgeom=false; "
-                f"MuJoCo's default would derive one from collision geometry): {without}"
+                Finding(
+                    Kind.LOAD,
+                    "mujoco",
+                    "links without <inertial>",
+                    "no mass (inertiafromgeom=false; MuJoCo's default would derive one from collision geometry, "
+                    "Pinocchio gives none)",
+                    {"links": without},
+                )
             )
     elif spec.compiler.inertiafromgeom == mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE:
-        notes.append("mujoco: the MJCF sets inertiafromgeom=true: every body's inertia comes from its geoms")
+        notes.append(
+            Finding(
+                Kind.COMPILER,
+                "mujoco",
+                "compiler inertiafromgeom",
+                "inertiafromgeom=true: every body's inertia comes from its geoms",
+            )
+        )
     file_inertia = {
         b.name: (float(b.mass), _spec_inertia(b)) for b in spec.bodies if b.name != "world" and b.explicitinertial
     }
@@ -279,46 +401,82 @@ def _load(
                 f"{path}: floating=True needs exactly one top-level {what} without joints, found {names}"
             )
         if already:
-            notes.append(f"mujoco: floating=True: {what} {tops[0].name!r} already has a free joint, none added")
+            notes.append(
+                Finding(
+                    Kind.LOAD, "mujoco", f"{what} {tops[0].name}", "floating=True: already has a free joint, none added"
+                )
+            )
         else:
+            _prepend_free_joint_to_keys(spec, tops[0])
             tops[0].add_freejoint(name=ROOT_JOINT_NAME)
     spec.compiler.balanceinertia = bool(balance_inertia)
     names_before = [b.name for b in spec.bodies]
     parent_of = {b.name: (b.parent.name if b.parent is not None else "") for b in spec.bodies}
     spec_before = spec.copy() if balance_inertia else None
-    model, refused = _compile(spec, source, notes, file_inertia)
+    model, refused, repaired = _compile(spec, source, notes, file_inertia, repair=repair_inertia)
     fused = [n for n in names_before if n and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n) < 0]
     if fused:
-        notes.append(f"mujoco: fusestatic fused {len(fused)} static {what}(s) into their parents: {fused}")
+        notes.append(
+            Finding(
+                Kind.LOAD,
+                "mujoco",
+                f"{what}s {', '.join(fused[:5])}" + (" …" if len(fused) > 5 else ""),
+                f"fusestatic fused {len(fused)} static {what}(s) into their parents",
+                {"fused": fused},
+            )
+        )
 
     def survivor(name: str) -> str:
         while name and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name) < 0:
             name = parent_of.get(name, "")
         return name or "world"
 
-    diffs: list[tuple[str, str]] = []
+    diffs: list[BodyFinding] = []
     ghost = [n for n in fused if n in file_inertia and file_inertia[n][0] == 0 and np.any(file_inertia[n][1])]
-    if ghost:
-        notes.append(
-            f"mujoco: fusestatic dropped the rotational inertia of massless {what}(s) {ghost} "
-            "(mass 0, inertia non-zero); Pinocchio keeps it"
+    for n in ghost:
+        moments = np.linalg.eigvalsh(0.5 * (file_inertia[n][1] + file_inertia[n][1].T))
+        diffs.append(
+            (
+                survivor(n),
+                Finding(
+                    Kind.COMPILER,
+                    "mujoco",
+                    f"{what} {n}",
+                    "fusestatic dropped the rotational inertia of this massless link (mass 0, inertia non-zero); "
+                    "Pinocchio keeps it",
+                    {"principal moments in the file": moments.round(12).tolist()},
+                    affects_energy=True,
+                    root_cause=True,
+                ),
+            )
         )
-        diffs += [(survivor(n), f"fusestatic dropped the inertia of massless {what} {n!r}") for n in ghost]
-    changed: list[str] = []
+    changed: list[str] = [n for n, _ in repaired]
+    diffs += [(survivor(n), f) for n, f in repaired]
     if spec_before is not None:
-        changed = _balance_notes(spec_before, refused, model, source, file_inertia, notes)
-        diffs += [(survivor(n), f"balanceinertia changed {what} {n!r}") for n in changed]
+        balanced = _balance_findings(spec_before, refused, model, source, file_inertia)
+        changed += [n for n, _ in balanced]
+        diffs += [(survivor(n), f) for n, f in balanced]
     hosts = {survivor(parent_of.get(n, "")) for n in fused}
     altered = [
         n for n in _altered_by_compiler(model, file_inertia) if n not in changed and n not in hosts and n != "world"
     ]
-    if altered:
-        options = ", ".join(f"{k}={getattr(spec.compiler, k)}" for k in ("settotalmass", "boundmass", "boundinertia"))
-        notes.append(
-            f"mujoco: compiled mass or inertia differs from the file's for {what}(s) {altered} ({options}); "
-            "Pinocchio keeps the file's values"
+    options = {k: getattr(spec.compiler, k) for k in ("settotalmass", "boundmass", "boundinertia")}
+    for n in altered:
+        bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n)
+        diffs.append(
+            (
+                n,
+                Finding(
+                    Kind.COMPILER,
+                    "mujoco",
+                    f"{what} {n}",
+                    "MuJoCo's compiler altered the mass or inertia; Pinocchio keeps the file's values",
+                    {"mass in the file": file_inertia[n][0], "mass compiled": float(model.body_mass[bid]), **options},
+                    affects_energy=True,
+                    root_cause=True,
+                ),
+            )
         )
-        diffs += [(n, f"MuJoCo's compiler altered the mass or inertia of {what} {n!r}") for n in altered]
     return model, notes, diffs
 
 

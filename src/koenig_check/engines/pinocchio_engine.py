@@ -26,6 +26,7 @@ import pinocchio as pin
 from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import StateMap
+from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
 
 
@@ -39,17 +40,19 @@ class PinocchioEngine:
         Canonical <-> Pinocchio conversion for this model.
     path : Path
         The model file.
-    notes : list of str
-        Load notes (extended here with segment notes).
+    findings : list of Finding
+        Load findings (extended here with segment findings).
     """
 
     engine = "pinocchio"
 
-    def __init__(self, model: pin.Model, state_map: StateMap, path: Path, notes: list[str] | None = None) -> None:
+    def __init__(
+        self, model: pin.Model, state_map: StateMap, path: Path, findings: list[Finding] | None = None
+    ) -> None:
         self.model = model
         self.state_map = state_map
         self.path = Path(path)
-        self.notes = list(notes or [])
+        self.findings = list(findings or [])
         self.nq, self.nv = state_map.nq, state_map.nv
         self._data = model.createData()
         self._m_rigid = pin.Model(model)
@@ -62,7 +65,14 @@ class PinocchioEngine:
         joints = sorted(range(1, model.njoints), key=lambda i: order[state_map.segment_names[i]])
         massless = [state_map.segment_names[i] for i in joints if model.inertias[i].mass <= 0]
         if massless:
-            self.notes.append(f"pinocchio: massless segments left out (no kinetic energy): {massless}")
+            self.findings.append(
+                Finding(
+                    Kind.SEGMENTS,
+                    "pinocchio",
+                    "segments " + ", ".join(massless),
+                    "massless: left out (no kinetic energy)",
+                )
+            )
         self._joints = np.array([i for i in joints if model.inertias[i].mass > 0], dtype=int)
         self.segment_names = tuple(state_map.segment_names[i] for i in self._joints)
         inertias = [model.inertias[int(i)] for i in self._joints]

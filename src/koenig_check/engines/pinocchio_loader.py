@@ -19,14 +19,42 @@ import tempfile
 import xml.etree.ElementTree as ET
 from collections.abc import Iterator
 from contextlib import contextmanager
+from pathlib import Path
 
 import pinocchio as pin
 
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.engines.sources import ModelSource
+from koenig_check.findings import Finding, Kind
+
+#: Lines of Pinocchio's C++ exception text that say where in Pinocchio's sources it was raised, not why.
+_SOURCE_LOCATION = ("From file:", "in function:", "at line:", "message:")
+#: Pinocchio's MJCF parser refuses a keyframe whose size is that of the file's joints, not of the model it built.
+KEYFRAME_SIZE = "Keyframe size does not match model size"
 
 
-def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[pin.Model, list[str]]:
+def parser_reason(exc: BaseException, parser_output: list[str] | None = None) -> str:
+    """Pinocchio's whole reason on one line, without the C++ source-location lines.
+
+    Parameters
+    ----------
+    exc : BaseException
+        What the parser raised.
+    parser_output : list of str, optional
+        What it printed on standard error (urdfdom's ``Error:`` lines are kept).
+
+    Returns
+    -------
+    str
+        Every line of the reason, joined with ``"; "``.
+    """
+    lines = [line.strip() for line in str(exc).splitlines()]
+    reason = [line for line in lines if line and not line.startswith(_SOURCE_LOCATION)]
+    reason += [line[len("Error:") :].strip() for line in parser_output or [] if line.startswith("Error:")]
+    return "; ".join(dict.fromkeys(reason)) or type(exc).__name__
+
+
+def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[pin.Model, list[Finding]]:
     """Parse a model file into Pinocchio.
 
     Parameters
@@ -39,27 +67,129 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
     Returns
     -------
     model : pinocchio.Model
-    notes : list of str
+    findings : list of Finding
+        What was decided while loading (kind ``LOAD``) and what the parser printed.
 
     Raises
     ------
     ModelLoadError
-        If Pinocchio cannot parse the file.
+        If Pinocchio cannot parse the file: one line naming the file, with the parser's whole reason.
+
+    Notes
+    -----
+    Pinocchio's MJCF parser checks each ``<key>`` against the model it built: with a free flyer
+    added for a floating base, the file's keyframes (written for the fixed base) no longer fit and
+    it refuses the file ("Keyframe size does not match model size").  Keyframes play no part in the
+    model's kinetic energy, so the file is then parsed again without its ``<keyframe>`` elements
+    (a copy written next to the original, so that includes and asset directories resolve), and a
+    ``LOAD`` finding says so.
     """
     path = str(source.path)
-    notes: list[str] = []
+    notes: list[Finding] = []
     flyer = pin.JointModelFreeFlyer()
     parser_output: list[str] = []
     try:
         with _captured_c_stderr(parser_output):
-            model = _build(source, path, flyer, root_joint, notes)
+            try:
+                model = _build(source, path, flyer, root_joint, notes)
+            except ValueError as exc:
+                if source.format != "mjcf" or not root_joint or KEYFRAME_SIZE not in str(exc):
+                    raise
+                with _without_keyframes(source.path) as copy:
+                    model = _build(source, str(copy), flyer, root_joint, notes)
+                notes.append(
+                    Finding(
+                        Kind.LOAD,
+                        "pinocchio",
+                        "keyframe",
+                        "loaded without the file's keyframes: with the added free joint they no longer match the "
+                        "model's size (Pinocchio refuses them); keyframes do not change the kinetic energy",
+                        hint="MuJoCo keeps them (--pose-kind keyframes uses MuJoCo's)",
+                    )
+                )
     except (RuntimeError, ValueError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        detail = next((line for line in parser_output if line.startswith("Error:")), "")
-        detail = f" ({detail[len('Error:') :].strip()})" if detail else ""
-        raise ModelLoadError(f"{path}: Pinocchio cannot parse the file: {first}{detail}") from exc
-    notes += [f"pinocchio: parser says: {line}" for line in parser_output if line.startswith(("Error:", "Warning:"))]
+        reason = parser_reason(exc, parser_output)
+        hint = limitation_hint(source, reason)
+        raise ModelLoadError(
+            f"{path}: Pinocchio cannot parse the file: {reason}" + (f" ({hint})" if hint else "")
+        ) from exc
+    notes += [
+        Finding(Kind.LOAD, "pinocchio", "model", f"parser says: {line}")
+        for line in parser_output
+        if line.startswith(("Error:", "Warning:"))
+    ]
     return model, notes
+
+
+def limitation_hint(source: ModelSource, reason: str) -> str:
+    """What to do about a known limitation of Pinocchio's parsers, from its reason (empty when unknown).
+
+    Parameters
+    ----------
+    source : ModelSource
+    reason : str
+        From :func:`parser_reason`.
+
+    Returns
+    -------
+    str
+    """
+    if "hfields are not supported" in reason:
+        return (
+            "Pinocchio's MJCF parser does not read height fields: give Pinocchio a copy of the file without the "
+            "<hfield> asset and its geoms with --pinocchio-model (pinocchio_model=...)"
+        )
+    if "No such node (body)" in reason and source.format == "mjcf":
+        try:
+            world = ET.parse(source.path).getroot().find("worldbody")
+        except ET.ParseError:
+            world = None
+        included = [e.get("file", "?") for e in world.findall("include")] if world is not None else []
+        if included:
+            return (
+                f"Pinocchio's MJCF parser does not follow an <include> standing directly in <worldbody> "
+                f"({', '.join(included)}): load the included robot file instead"
+            )
+    if KEYFRAME_SIZE in reason:
+        return "the file's keyframes do not fit the model Pinocchio builds: remove <keyframe> from a copy"
+    return ""
+
+
+@contextmanager
+def _without_keyframes(path: os.PathLike[str] | str) -> Iterator[Path]:
+    """A copy of an MJCF file without its ``<keyframe>`` elements, next to the original (removed afterwards).
+
+    Written in the same directory so that relative ``<include>`` files and asset directories resolve
+    as for the original; in the system's temporary directory, with includes made absolute, when that
+    directory is not writable.
+    """
+    original = Path(path)
+    tree = ET.parse(original)
+    root = tree.getroot()
+    for parent in list(root.iter()):
+        for child in list(parent):
+            if child.tag == "keyframe":
+                parent.remove(child)
+    try:
+        handle = tempfile.NamedTemporaryFile(
+            "wb", suffix=".xml", prefix=f".{original.stem}-nokeys-", dir=original.parent, delete=False
+        )
+    except OSError:
+        for element in root.iter():
+            if element.tag == "include" and element.get("file"):
+                element.set("file", str((original.parent / element.get("file", "")).resolve()))
+        for element in root.iter("compiler"):
+            for attr in ("meshdir", "texturedir", "assetdir"):
+                if element.get(attr) is not None:
+                    element.set(attr, str((original.parent / element.get(attr, "")).resolve()))
+        handle = tempfile.NamedTemporaryFile("wb", suffix=".xml", prefix=f"{original.stem}-nokeys-", delete=False)
+    copy = Path(handle.name)
+    try:
+        with handle:
+            tree.write(handle)
+        yield copy
+    finally:
+        copy.unlink(missing_ok=True)
 
 
 @contextmanager
@@ -80,7 +210,7 @@ def _captured_c_stderr(lines: list[str]) -> Iterator[None]:
 
 
 def _build(
-    source: ModelSource, path: str, flyer: pin.JointModelFreeFlyer, root_joint: str | None, notes: list[str]
+    source: ModelSource, path: str, flyer: pin.JointModelFreeFlyer, root_joint: str | None, notes: list[Finding]
 ) -> pin.Model:
     """Call the Pinocchio parser that fits the format and the root joint."""
     if source.format == "urdf":
@@ -88,8 +218,13 @@ def _build(
         if stripped is not None:
             model = pin.buildModelFromXML(stripped, flyer, root_joint)
             notes.append(
-                "pinocchio: URDF root link 'world' (MuJoCo's world body) and its fixed joint removed so "
-                "that the free joint moves the same link in both engines"
+                Finding(
+                    Kind.LOAD,
+                    "pinocchio",
+                    "link world",
+                    "URDF root link 'world' (MuJoCo's world body) and its fixed joint removed so that the free "
+                    "joint moves the same link in both engines",
+                )
             )
         elif root_joint:
             model = pin.buildModelFromUrdf(path, flyer, root_joint)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from koenig_check.engines.coupling import apply_joint_relations
+
 #: Half-width of the box free-joint positions and unlimited slides are drawn from.
 POSITION_RANGE = 1.0
 
@@ -23,7 +25,8 @@ def random_states(
     Limited hinges and slides are uniform within their range, unlimited hinges uniform in
     ``[-π, π]``, unlimited slides and free-joint positions uniform in ``[-1, 1]``, ball and free
     orientations uniform on SO(3); every velocity is normal with standard deviation
-    ``velocity_scale``.
+    ``velocity_scale``.  Joints coupled to others (URDF mimic, MJCF joint equalities) then follow
+    their leaders in position and velocity.
 
     Parameters
     ----------
@@ -58,4 +61,5 @@ def random_states(
                 lo, hi = -half, half
             qpos[:, adr] = rng.uniform(lo, hi, size=n)
     qvel = rng.normal(scale=velocity_scale, size=(n, model.nv))
+    qpos, qvel, _ = apply_joint_relations(model, qpos, qvel)
     return qpos, qvel

@@ -38,6 +38,7 @@ import pinocchio as pin
 from scipy.spatial.transform import Rotation
 
 from koenig_check.engines.errors import JointMismatch
+from koenig_check.findings import Finding, Kind
 
 _MJ_KIND = {
     mujoco.mjtJoint.mjJNT_FREE: "free",
@@ -250,7 +251,7 @@ class StateMap:
         Pinocchio sizes.
     segment_names : dict
         Pinocchio joint index -> canonical segment name (the last MuJoCo joint it carries).
-    notes : list of str
+    findings : list of Finding
         What the map compensates for.
     """
 
@@ -262,14 +263,14 @@ class StateMap:
         pin_nq: int,
         pin_nv: int,
         segment_names: dict[int, str],
-        notes: list[str] | None = None,
+        findings: list[Finding] | None = None,
     ) -> None:
         if nv != pin_nv:
             raise ValueError(f"state map: canonical nv={nv} but Pinocchio nv={pin_nv}")
         self.pairs = tuple(pairs)
         self.nq, self.nv, self.pin_nq, self.pin_nv = nq, nv, pin_nq, pin_nv
         self.segment_names = dict(segment_names)
-        self.notes = list(notes or [])
+        self.findings = list(findings or [])
         by_kind: dict[str, list[JointPair]] = {}
         for p in pairs:
             key = "unbounded" if p.pin_kind == "unbounded" else p.kind
@@ -525,7 +526,7 @@ def build_state_map(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = 
     seg_names: dict[int, str] = {}
     for p in pairs:
         seg_names[p.pin_joint] = p.name  # canonical order: the last joint of a body wins
-    notes: list[str] = []
+    notes: list[Finding] = []
 
     def make(ps: list[JointPair]) -> StateMap:
         return StateMap(ps, mj_model.nq, mj_model.nv, pin_model.nq, pin_model.nv, seg_names, notes)
@@ -551,12 +552,24 @@ def build_state_map(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = 
                 ref = float(mj_model.qpos0[pairs[k].qadr])
                 pairs[k] = replace(pairs[k], q_offset=ref)
                 notes.append(
-                    f"pinocchio: MJCF parser ignores ref={ref:.6g} of hinge {pairs[k].name!r} inside composite "
-                    f"joint {pin_model.names[joint]!r}; the state map offsets that coordinate"
+                    Finding(
+                        Kind.IGNORED_CONSTRUCT,
+                        "pinocchio",
+                        f"joint {pairs[k].name}",
+                        f"MJCF parser ignores the hinge's ref inside composite joint {pin_model.names[joint]!r}; "
+                        "the state map offsets that coordinate",
+                        {"ref": ref},
+                    )
                 )
         if best[0] > 1e-6:
             notes.append(
-                f"pinocchio: segment of composite joint {pin_model.names[joint]!r} does not reproduce MuJoCo's "
-                f"orientation at qpos0 (max rotation entry error {best[0]:.3g})"
+                Finding(
+                    Kind.FRAME,
+                    "pinocchio",
+                    f"joint {pin_model.names[joint]}",
+                    "the composite joint's segment does not reproduce MuJoCo's orientation at qpos0",
+                    {"max rotation entry error": best[0]},
+                    affects_energy=True,
+                )
             )
     return make(pairs)

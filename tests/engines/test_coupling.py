@@ -1,0 +1,83 @@
+"""Coupled joints are loaded, recorded as COUPLING findings, and sampled states satisfy joint relations.
+
+Expected states are hand computations of the file's relation: URDF mimic ``q_f = m q_l + o``,
+``q̇_f = m q̇_l``; MJCF joint equality ``y − y0 = a0 + a1 (x − x0) + a2 (x − x0)²``,
+``ẏ = (a1 + 2 a2 (x − x0)) ẋ`` with ``x0``, ``y0`` the joints' ``ref``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from koenig_check.api import compare, make_poses
+from koenig_check.engines import load_model, random_states
+from koenig_check.findings import Kind
+
+MODELS = Path(__file__).parent / "models"
+
+
+def _mimic(x: np.ndarray, xd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return -2.0 * x + 0.3, -2.0 * xd
+
+
+def _poly(x: np.ndarray, xd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    dx = x - 0.1
+    return 0.2 + 0.1 + 0.5 * dx - 0.8 * dx**2, (0.5 - 1.6 * dx) * xd
+
+
+RELATIONS = {"mimic_chain.urdf": _mimic, "joint_equality.xml": _poly}
+
+
+@pytest.fixture(scope="module", params=sorted(RELATIONS))
+def coupled(request):
+    return request.param, load_model(MODELS / request.param)
+
+
+def test_coupling_is_one_finding_that_does_not_change_the_energy(coupled) -> None:
+    _name, pair = coupled
+    (found,) = [f for f in pair.findings if f.kind is Kind.COUPLING]
+    assert found.engine == "both" and not found.affects_energy
+    assert "elbow" in found.element + str(found.values.get("follower", ""))
+    assert "shoulder" in str(found.values.get("leader"))
+    assert "satisfy" in found.hint
+
+
+@pytest.mark.parametrize("kind", ["random", "keyframes-like", "grid", "engine-sampler"])
+def test_sampled_states_satisfy_the_joint_relation(coupled, kind) -> None:
+    name, pair = coupled
+    model = pair.mujoco.model
+    if kind == "random":
+        ps = make_poses(model, "random", n_poses=30, seed=4)
+        qpos, qvel, notes = ps.qpos, ps.qvel, ps.notes
+    elif kind == "grid":
+        ps = make_poses(model, "grid", n_poses=5, grid_joints=("shoulder", "elbow"))
+        qpos, qvel, notes = ps.qpos, ps.qvel, ps.notes
+    elif kind == "engine-sampler":
+        qpos, qvel = random_states(model, 30, seed=4)
+        notes = ("position and velocity",)
+    else:
+        from koenig_check.engines.coupling import apply_joint_relations
+
+        rng = np.random.default_rng(1)
+        qpos, qvel, notes = apply_joint_relations(model, rng.normal(size=(7, 2)), rng.normal(size=(7, 2)))
+    shoulder, elbow = (int(model.joint(j).qposadr[0]) for j in ("shoulder", "elbow"))
+    y, yd = RELATIONS[name](qpos[:, shoulder], qvel[:, shoulder])
+    np.testing.assert_allclose(qpos[:, elbow], y, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(qvel[:, elbow], yd, rtol=1e-12, atol=1e-12)
+    assert np.any(qvel[:, shoulder] != 0)
+    assert any("position and velocity" in n for n in notes)
+
+
+def test_engines_agree_on_the_coupled_model(coupled) -> None:
+    name, _pair = coupled
+    check = compare(MODELS / name, n_poses=6, seed=2)
+    assert check.ok, check.reason()
+
+
+def test_allow_coupled_is_accepted_as_a_deprecated_no_op() -> None:
+    with pytest.warns(DeprecationWarning, match="deprecated"):
+        check = compare(MODELS / "mimic_chain.urdf", n_poses=3, allow_coupled=True)
+    assert check.ok, check.reason()

@@ -1,0 +1,77 @@
+"""Engine errors reach the user whole, on one line, naming the file, with what to do for known limitations."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from koenig_check.api import compare, make_poses
+from koenig_check.engines import ModelLoadError, load_model
+from koenig_check.engines.pinocchio_loader import parser_reason
+from koenig_check.findings import Kind
+
+MODELS = Path(__file__).parent / "models"
+
+
+@pytest.mark.parametrize(
+    ("name", "reason", "hint"),
+    [
+        ("hfield.xml", "hfields are not supported yet", "--pinocchio-model"),
+        ("include_worldbody.xml", "No such node (body)", "include_arm.xml"),
+    ],
+)
+def test_pinocchio_parse_error_gives_the_whole_reason_on_one_line(name: str, reason: str, hint: str) -> None:
+    path = MODELS / name
+    with pytest.raises(ModelLoadError) as info:
+        load_model(path)
+    msg = str(info.value)
+    assert "\n" not in msg and str(path) in msg and reason in msg and hint in msg
+    assert "From file" not in msg and ".cpp" not in msg
+    check = compare(path, n_poses=2)  # the batch route: same reason
+    assert not check.ok and reason in check.reason()
+
+
+def test_parser_reason_keeps_every_line_of_reason_and_drops_source_locations() -> None:
+    exc = ValueError(
+        "From file: /project/src/parsers/mjcf/mjcf-graph.cpp\nin function: void f()\nat line: 726\nmessage:\n"
+        "first reason\nsecond reason\n"
+    )
+    assert parser_reason(exc, ["Error: urdfdom says this", "Warning: not this"]) == (
+        "first reason; second reason; urdfdom says this"
+    )
+
+
+def test_mujoco_compile_error_is_whole_on_one_line(tmp_path: Path) -> None:
+    path = tmp_path / "bad.xml"
+    path.write_text("<mujoco><worldbody><body name='b'><joint type='nonsense'/></body></worldbody></mujoco>")
+    with pytest.raises(ModelLoadError) as info:
+        load_model(path)
+    msg = str(info.value)
+    assert "\n" not in msg and str(path) in msg and "nonsense" in msg and "line" in msg
+
+
+def test_floating_keyframes_pinocchio_refuses_are_dropped_for_pinocchio_and_said(tmp_path: Path) -> None:
+    path = MODELS / "keyframe_floating.xml"
+    with pytest.raises(ModelLoadError, match="Keyframe size does not match model size"):
+        import pinocchio as pin
+
+        from koenig_check.engines.pinocchio_loader import _build
+        from koenig_check.engines.sources import resolve_model
+
+        try:  # the limitation itself, straight from Pinocchio
+            pin.buildModelFromMJCFAndRootJoint(str(path), pin.JointModelFreeFlyer(), "root_joint")
+        except ValueError as exc:
+            raise ModelLoadError(str(exc)) from exc
+        _build(resolve_model(path), str(path), pin.JointModelFreeFlyer(), "root_joint", [])
+    before = sorted(p.name for p in MODELS.iterdir())
+    pair = load_model(path, floating=True)
+    assert sorted(p.name for p in MODELS.iterdir()) == before  # the keyframe-free copy is gone
+    (found,) = [f for f in pair.findings if f.kind is Kind.LOAD and f.element == "keyframe"]
+    assert found.engine == "pinocchio" and not found.affects_energy and "without the file's keyframes" in found.summary
+    assert pair.mujoco.model.nkey == 1  # MuJoCo keeps its keyframe
+    keys = make_poses(pair.mujoco.model, "keyframes")
+    assert keys.ids == ("key:bent",) and np.isclose(keys.qpos[0, -1], 0.4)
+    check = compare(path, floating=True, n_poses=4)
+    assert check.ok, check.reason()
