@@ -317,6 +317,19 @@ class DrakeEngine:
             tau[p] = self.plant.CalcInverseDynamics(self._context, a[p], forces)
         return self.state_map.force_to_canonical(qpos, tau)
 
+    def armature_per_dof(self) -> np.ndarray:
+        """Drake's reflected inertia of each canonical dof (actuators act on one-dof joints only).
+
+        Returns
+        -------
+        ndarray, shape (nv,)
+        """
+        out = np.zeros(self.nv)
+        for p in self.state_map.pairs:
+            if p.kind in ("hinge", "slide"):
+                out[p.vadr] = self._reflected[p.dv]
+        return out
+
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Drake joint type.
 
