@@ -197,7 +197,10 @@ def _odd_one_out(values: dict[str, np.ndarray], rtol: float, scale: Any = None) 
 def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence[str] = ()) -> Finding | None:
     """The known construct responsible for an engine's departure, from the model's findings.
 
-    Root causes that change the energy, about that engine, first those that explain the given segments.
+    Root causes that change the energy, about that engine, first those that explain the given segments;
+    for MuJoCo, first a compiler option (``compiler settotalmass``), which the two-engine parity may have
+    recorded against Pinocchio ("Pinocchio does not rescale"): with three engines, MuJoCo is the one that
+    applies it alone.
 
     Parameters
     ----------
@@ -212,6 +215,9 @@ def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence
     """
     own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
     roots = [f for f in own if f.root_cause] or [f for f in own if f.kind in (Kind.COMPILER, Kind.IGNORED_CONSTRUCT)]
+    if engine == "mujoco":  # a compiler option only MuJoCo applies, whichever engine the pair's finding blamed
+        options = [f for f in findings if f.kind is Kind.COMPILER and f.element.startswith("compiler ")]
+        roots = options + [f for f in roots if f not in options]
     if segments:
         hit = [f for f in roots if set(f.segments) & set(segments)]
         roots = hit or roots
@@ -377,3 +383,32 @@ def drake_usage(findings: Sequence[Finding]) -> str:
         if f.engine == "drake" and f.kind is Kind.LOAD and f.summary.startswith("Drake not used"):
             return f.summary
     return ""
+
+
+def parity_verdicts(pair: Any, engines: Sequence[str] | None, disagree: bool) -> tuple[list[Finding], list[Finding]]:
+    """Three-way import verdicts of a loaded model (per segment mass, COM, principal moments at ``qpos0``).
+
+    Parameters
+    ----------
+    pair : ModelPair
+    engines : sequence of str or None
+        As :attr:`LoadOptions.engines`.
+    disagree : bool
+        Whether MuJoCo and Pinocchio disagree (the import parity is not clean).
+
+    Returns
+    -------
+    verdicts : list of Finding
+    drake_findings : list of Finding
+        Drake's load findings, or why it was not used.
+    """
+    from koenig_check.parity import import_parity
+
+    drake = consult_drake(pair, engines, disagree)
+    if not drake.used:
+        return [], drake.findings
+    q0 = np.asarray(pair.mujoco.model.qpos0, dtype=float)[None]
+    zero = np.zeros((1, pair.mujoco.nv))
+    states = {e.engine: e.segment_states(q0, zero) for e in (*pair.engines, drake.engine)}
+    findings = list(pair.findings) + import_parity(pair).as_findings() + drake.findings
+    return import_verdicts(states, findings), drake.findings
