@@ -152,9 +152,34 @@ def armature_findings(pair: Any, drake: Any) -> list[Finding]:
     joints = [
         p.name for p in drake.state_map.pairs if arm[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
     ]
+    extension = [
+        p.name
+        for p in drake.state_map.pairs
+        if reflected[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
+    ]
+    out = []
+    if extension:
+        out.append(
+            Finding(
+                Kind.ARMATURE,
+                "drake",
+                "actuators of joints " + ", ".join(extension),
+                "reflected inertia (rotor inertia × gear ratio², Drake's URDF/MJCF actuator data) that MuJoCo's "
+                "armature does not match",
+                {
+                    "joints": extension,
+                    "drake": [float(reflected[p.vadr]) for p in drake.state_map.pairs if p.name in extension],
+                },
+                affects_energy=True,
+                root_cause=True,
+                segments=tuple(extension),
+            )
+        )
+    joints = [j for j in joints if j not in extension]
     if not joints or pair.source.format != "mjcf":
-        return []
+        return out
     return [
+        *out,
         Finding(
             Kind.IGNORED_CONSTRUCT,
             "drake",
@@ -168,7 +193,7 @@ def armature_findings(pair: Any, drake: Any) -> list[Finding]:
             affects_energy=True,
             root_cause=True,
             segments=tuple(joints),
-        )
+        ),
     ]
 
 
@@ -299,12 +324,15 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
 
 
 def import_verdicts(states: dict[str, Any], findings: Sequence[Finding], rtol: float = TIEBREAK_RTOL) -> list[Finding]:
-    """Three-way verdicts on each segment's mass, COM (reference pose) and central inertia.
+    """Three-way verdicts on each segment's mass, COM and central inertia (world axes) in one state.
+
+    Frames are not compared (each engine has its own segment frame: a body, a joint frame), only what
+    the mass distribution is in the world at the same canonical state.
 
     Parameters
     ----------
     states : dict of str to SegmentStates
-        Each engine's segment states at the reference configuration.
+        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``).
     findings : sequence of Finding
     rtol : float
 
@@ -319,12 +347,15 @@ def import_verdicts(states: dict[str, Any], findings: Sequence[Finding], rtol: f
     if not common:
         return []
     sel = {e: states[e].select(segments=common) for e in ENGINE_NAMES}
+    world_inertia = {
+        e: np.einsum("bij,bjk,blk->bil", s.rotation[0], s.inertia_body, s.rotation[0]) for e, s in sel.items()
+    }
     quantities = {
         "mass": ({e: s.mass for e, s in sel.items()}, None),
-        "COM": ({e: s.com_ref for e, s in sel.items()}, "length"),
-        "inertia": ({e: s.inertia_body for e, s in sel.items()}, "inertia"),
+        "COM": ({e: s.com[0] for e, s in sel.items()}, "length"),
+        "inertia": (world_inertia, "inertia"),
     }
-    size = max(float(np.abs(sel["mujoco"].com_ref).max()), 1.0)
+    size = max(float(np.abs(sel["mujoco"].com[0]).max()), 1.0)
     grouped: dict[tuple[str, str], list[tuple[str, dict[str, Any]]]] = {}
     for label, (vals, kind) in quantities.items():
         for b, name in enumerate(common):

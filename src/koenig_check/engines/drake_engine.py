@@ -149,7 +149,7 @@ class DrakeEngine:
             mass.append(m_tot)
             com.append(c)
             inertia.append(I_tot)
-            anchor.append(np.asarray(inboard[head].frame_on_child().GetFixedPoseInBodyFrame().translation()))
+            anchor.append(_anchor_in_body(inboard[head]))
         if massless:
             self.findings.append(
                 Finding(
@@ -344,6 +344,21 @@ class DrakeEngine:
         for p in self.state_map.pairs:
             groups.setdefault(kinds[p.kind], []).extend(range(p.vadr, p.vadr + width.get(p.kind, 1)))
         return {k: np.array(v, dtype=int) for k, v in groups.items()}
+
+
+def _anchor_in_body(joint: Any) -> np.ndarray:
+    """The joint's anchor as a point of the child body (MuJoCo's ``jnt_pos``), in the body frame.
+
+    The origin of the joint's frame on the child, except for a prismatic joint with a reference position:
+    Drake's MJCF parser puts that frame ``ref`` along the axis from the anchor (so that ``q = ref`` is the
+    file's pose; verified), and the anchor is ``p_BM − ref · axis``.
+    """
+    X_BM = joint.frame_on_child().GetFixedPoseInBodyFrame()
+    origin = np.asarray(X_BM.translation(), dtype=float)
+    if joint.type_name() == "prismatic":
+        axis_B = X_BM.rotation().matrix() @ np.asarray(joint.translation_axis(), dtype=float)
+        origin = origin - float(joint.get_default_translation()) * axis_B
+    return origin
 
 
 def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:

@@ -13,7 +13,8 @@ What Drake 1.51's parsers do, verified on the project's files and example-robot-
   ``LOAD`` finding says so.  It ignores ``<keyframe>``, joint ``<equality>``, height fields, the
   compiler's ``settotalmass``, and joint ``armature`` (each with a warning, except ``armature``, which it
   drops silently: Drake's analogue is the reflected inertia of an actuator, rotor inertia × gear ratio²).
-  A joint's ``ref`` is not an offset in Drake: the file's pose is Drake's ``q = 0``.  A ``ball`` joint is a
+  A joint's ``ref`` is honoured as MuJoCo does (the file's pose at ``q = ref``, Drake's default
+  position; for a slide, the joint frame on the child is put ``ref`` along the axis).  A ``ball`` joint is a
   ``BallRpyJoint`` (roll-pitch-yaw coordinates, angular velocity in the parent frame); a free joint is a
   ``QuaternionFloatingJoint`` named after its body, not after the joint.
 * URDF: a root link that no joint welds is given a floating joint by ``Finalize`` (the project's

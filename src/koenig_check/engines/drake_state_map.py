@@ -9,9 +9,10 @@ Drake 1.51's conventions (verified against MuJoCo's energy and kinematics):
   x-y-z angles of the child relative to the parent frame), ``v`` = the angular velocity *in the
   parent frame*; MuJoCo's ball has a quaternion and the angular velocity in the child frame.  The
   angles are singular at pitch ±π/2 (a MuJoCo quaternion there still maps, rates are not used).
-* ``RevoluteJoint``, ``PrismaticJoint``: one coordinate each; Drake ignores an MJCF joint's ``ref``
-  (the file's pose is Drake's ``q = 0``, MuJoCo's ``q = ref``): :func:`build_drake_state_map` finds
-  from both engines' kinematics at ``qpos0`` whether to offset those coordinates.
+* ``RevoluteJoint``, ``PrismaticJoint``: one coordinate each; Drake 1.51 honours an MJCF joint's ``ref``
+  as MuJoCo does (the file's pose at ``q = ref``, which is Drake's default position; verified), but
+  :func:`build_drake_state_map` still checks both engines' body poses at ``qpos0`` and offsets those
+  coordinates if a parser put the file's pose at ``q = 0`` instead (a ``LOAD`` finding then says so).
 
 Since ``d/dt (R ω_B) = R ω̇_B`` (``Ṙ ω_B = R (ω_B × ω_B) = 0``), Drake's velocities *and*
 accelerations are ``T(q) q̇`` and ``T(q) q̈`` with one orthogonal ``T``: a permutation with rotated
