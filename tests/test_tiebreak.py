@@ -55,6 +55,9 @@ def test_import_verdict_per_segment_names_the_segment() -> None:
     assert [f.engine for f in mass] == ["pinocchio"]
     assert mass[0].values["mujoco"] == pytest.approx(0.1) and mass[0].values["drake"] == pytest.approx(0.1)
     assert mass[0].segments == ("hinge",)
+    moments = [f for f in _verdicts(check) if f.element == "segment hinge principal moments"]
+    assert [f.engine for f in moments] == ["pinocchio"]
+    assert moments[0].values["mujoco"] == pytest.approx(moments[0].values["drake"], rel=1e-12)
 
 
 @needs_drake
@@ -144,3 +147,11 @@ def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.Mo
     with pytest.raises(SystemExit) as usage:  # a usage error, before any work (like argparse's)
         main(["compare", "gimbal.xml", "--engines", "mujoco,pinocchio,drake"])
     assert usage.value.code == 2
+
+
+def test_drake_reason_is_one_line_without_repeating_the_path() -> None:
+    from koenig_check.engines.drake_loader import one_line_reason
+
+    path = Path("/models/robot.urdf")
+    text = f"{path}:12: error: first line\n  second line\n\n{path}:14: error: ERROR: third"
+    assert one_line_reason(text, path) == "line 12: first line; second line; line 14: third"
