@@ -220,6 +220,7 @@ def compare_model(
         {e: r.states for e, r in runs.items()}, findings, rtol
     )
     comp.findings = verdicts + findings
+    comp.notes = [f"three engines: {f.message()}" for f in verdicts] + comp.notes
     return comp
 
 
