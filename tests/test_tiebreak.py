@@ -155,3 +155,20 @@ def test_drake_reason_is_one_line_without_repeating_the_path() -> None:
     path = Path("/models/robot.urdf")
     text = f"{path}:12: error: first line\n  second line\n\n{path}:14: error: ERROR: third"
     assert one_line_reason(text, path) == "line 12: first line; second line; line 14: third"
+
+
+@needs_drake
+def test_all_three_differ_each_construct_named() -> None:
+    """A + B < C: MuJoCo repairs it (asked), Pinocchio keeps it, Drake's parser replaces it (its own warning)."""
+    check = koenig_check.compare(
+        TIEBREAK / "unbalanced_inertia.urdf", n_poses=2, formulas=["exact"], repair_inertia=True
+    )
+    verdict = {f.element: f for f in _verdicts(check)}["segment swing principal moments"]
+    assert verdict.engine == "all"
+    assert (
+        verdict.summary == "all three engines differ; constructs: MuJoCo: link arm (repair); Drake: link arm (inertia)"
+    )
+    assert verdict.values["pinocchio"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)  # the file's moments
+    replaced = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.INERTIA]
+    assert [f.element for f in replaced] == ["link arm"] and replaced[0].segments == ("swing",)
+    assert replaced[0].values["moments in the file"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)

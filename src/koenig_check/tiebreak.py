@@ -262,11 +262,13 @@ def _verdict(
 ) -> Finding:
     """A ``VERDICT`` finding: who departs on ``what`` and why, or that all three differ."""
     if odd == "all":
+        causes = {e: departure_cause(findings, e, segments) for e in values}
+        known = "; ".join(f"{LABEL[e]}: {_construct(c)} ({c.kind.value})" for e, c in causes.items() if c is not None)
         return Finding(
             Kind.VERDICT,
             "all",
             what,
-            "all three engines differ",
+            "all three engines differ" + (f"; constructs: {known}" if known else ""),
             values,
             affects_energy=True,
             root_cause=True,

@@ -116,6 +116,7 @@ class DrakeEngine:
         order = {p.name: k for k, p in enumerate(self.state_map.pairs)}
         items = sorted(heads.items(), key=lambda kv: order[names[inboard[kv[0]].name()]])
         seg_names, bodies, mass, com, inertia, anchor, massless = [], [], [], [], [], [], []
+        self._segment_of_body = {}
         for head, members in items:
             name = names[inboard[head].name()]
             X_WH = plant.EvalBodyPoseInWorld(ctx, plant.get_body(BodyIndex(head)))
@@ -145,6 +146,7 @@ class DrakeEngine:
                 d = c_H - c
                 I_tot += I_H + m * (d @ d * np.eye(3) - np.outer(d, d))
             seg_names.append(name)
+            self._segment_of_body.update({plant.get_body(BodyIndex(b)).name(): name for b in members})
             bodies.append(head)
             mass.append(m_tot)
             com.append(c)
@@ -317,6 +319,15 @@ class DrakeEngine:
             tau[p] = self.plant.CalcInverseDynamics(self._context, a[p], forces)
         return self.state_map.force_to_canonical(qpos, tau)
 
+    def segment_of_body(self) -> dict[str, str]:
+        """Body name -> the segment it belongs to (bodies welded to the world and massless segments left out).
+
+        Returns
+        -------
+        dict of str to str
+        """
+        return dict(self._segment_of_body)
+
     def armature_per_dof(self) -> np.ndarray:
         """Drake's reflected inertia of each canonical dof (actuators act on one-dof joints only).
 
@@ -394,7 +405,15 @@ def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:
                 "Drake puts the file's pose at q = 0 (MuJoCo at q = ref): the state map offsets these coordinates",
             )
         )
-    return DrakeEngine(plant, state_map, source.path, np.asarray(mj_model.qpos0), findings)
+    engine = DrakeEngine(plant, state_map, source.path, np.asarray(mj_model.qpos0), findings)
+    if source.format == "urdf":
+        from koenig_check.engines.drake_inertia import replaced_inertias
+
+        warned = [
+            f.element.split(" ", 1)[1] for f in findings if f.element.startswith("link ") and "inertia" in f.summary
+        ]
+        engine.findings += replaced_inertias(plant, Path(source.path), warned, engine.segment_of_body())
+    return engine
 
 
 def free_top_joints(mj_model: mujoco.MjModel) -> dict[str, str]:
