@@ -40,7 +40,7 @@ def test_the_engine_that_departs_is_named_with_its_construct(path, engines, quan
     verdict = {f.element: f for f in _verdicts(check)}[quantity]
     assert verdict.engine == engine
     if construct is None:
-        assert verdict.summary == "all three engines differ"
+        assert verdict.summary.startswith("all three engines differ")
     else:
         assert f"construct responsible: {construct}" in verdict.summary
     assert not check.ok

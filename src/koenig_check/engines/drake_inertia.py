@@ -44,7 +44,7 @@ def _file_inertials(path: Path) -> dict[str, tuple[float, np.ndarray, np.ndarray
         keys = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
         xx, yy, zz, xy, xz, yz = (float(inertia_el.get(k, 0.0)) if inertia_el is not None else 0.0 for k in keys)
         tensor = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
-        R = Rotation.from_euler("xyz", rpy).as_matrix() * 0
+        R = Rotation.from_euler("xyz", rpy).as_matrix()
         out[link.get("name", "")] = (mass, xyz, R @ tensor @ R.T)
     return out
 
@@ -83,7 +83,7 @@ def replaced_inertias(plant: Any, path: Path, links: list[str], segment_of: dict
         drake_central = I_Bo - m * (c @ c * np.eye(3) - np.outer(c, c))
         scale = max(float(np.abs(central).max()), float(np.abs(drake_central).max()), 1e-300)
         mass_changed = abs(m - mass) > REPLACED_RTOL * max(mass, m, 1e-300)
-        if True:
+        if not mass_changed and np.abs(drake_central - central).max() <= REPLACED_RTOL * scale:
             continue
         out.append(
             Finding(
