@@ -6,7 +6,8 @@ engines' values are compared pairwise: when two agree and the third departs, a `
 names the engine that departs and the construct responsible where one is known (a compiler option
 MuJoCo honours alone, a class value or an ``<include>`` Pinocchio ignores alone, an armature Drake's
 MJCF parser does not read); when all three differ, the finding says so (engine ``"all"``).  Reports
-and the one-line reason lead with these findings.
+and the one-line reason lead with these findings (they are not root causes themselves: the construct a
+verdict names is, and the two-engine cause that follows in the reason keeps its place).
 
 When is Drake consulted
 -----------------------
@@ -271,7 +272,6 @@ def _verdict(
             "all three engines differ" + (f"; constructs: {known}" if known else ""),
             values,
             affects_energy=True,
-            root_cause=True,
             segments=tuple(segments),
         )
     others = " and ".join(LABEL[e] for e in values if e != odd)
@@ -286,7 +286,6 @@ def _verdict(
         summary,
         values,
         affects_energy=True,
-        root_cause=True,
         segments=tuple(segments) or tuple(cause.segments if cause else ()),
         hint=cause.summary if cause is not None else "cause unknown",
     )
