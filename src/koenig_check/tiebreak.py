@@ -130,6 +130,8 @@ def consult_drake(pair: Any, engines: Sequence[str] | None, disagree: bool) -> C
         engine = load_drake_engine(pair.source, pair.mujoco.model)
     except DrakeLoadError as err:
         return Consultation(findings=[_not_used(" ".join(str(err).split()))])
+    except ImportError as err:  # installed but not importable
+        return Consultation(findings=[_not_used(f"pydrake cannot be imported: {' '.join(str(err).split())}")])
     findings = list(engine.findings) + armature_findings(pair, engine)
     return Consultation(engine, findings)
 
