@@ -120,7 +120,6 @@ def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str)
 
 @needs_drake
 def test_drake_limits_are_findings_naming_the_element() -> None:
-    from koenig_check.engines import load_model
     from koenig_check.engines.drake_loader import load_drake
     from koenig_check.engines.sources import resolve_model
 
@@ -132,7 +131,9 @@ def test_drake_limits_are_findings_naming_the_element() -> None:
     check = koenig_check.compare(HERE / "engines" / "models" / "hinge_armature.xml", n_poses=1, engines=ALL)
     armature = [f for f in check.comparisons[0].findings if f.kind is Kind.IGNORED_CONSTRUCT and f.engine == "drake"]
     assert armature and armature[0].values["joints"] == ["spin"]
-    assert load_model("gimbal.urdf", check=False)  # Drake alone would float it: welded like the others (tested above)
+    plant, findings = load_drake(resolve_model("gimbal.urdf"))  # Drake alone would float the root link (nq 9)
+    assert plant.num_positions() == 2
+    assert [f.element for f in findings if "welded" in f.summary] == ["links base"]
 
 
 def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
