@@ -406,6 +406,7 @@ def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:
             )
         )
     engine = DrakeEngine(plant, state_map, source.path, np.asarray(mj_model.qpos0), findings)
+    engine.findings += anchor_findings(plant, mj_model, state_map)
     if source.format == "urdf":
         from koenig_check.engines.drake_inertia import replaced_inertias
 
@@ -435,4 +436,63 @@ def free_top_joints(mj_model: mujoco.MjModel) -> dict[str, str]:
         body = int(mj_model.jnt_bodyid[j])
         if mj_model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE and mj_model.body_parentid[body] == 0:
             out[mj_model.body(body).name] = names[j]
+    return out
+
+
+def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateMap) -> list[Finding]:
+    """Joints whose anchor Drake places elsewhere than MuJoCo, at ``qpos0`` (world frame).
+
+    Verified on Drake 1.51: for an MJCF body with several joints, Drake chains them through massless
+    bodies and puts the *first* joint's frame on the parent at the joint's ``pos`` *without the body's
+    own ``pos``*, so that joint turns about another point (the file's pose at ``q = ref`` is right;
+    the motion is not).  Each such joint is a root cause (engine ``drake``) naming both anchors.
+
+    Parameters
+    ----------
+    plant : pydrake.multibody.plant.MultibodyPlant
+    mj_model : mujoco.MjModel
+    state_map : DrakeStateMap
+
+    Returns
+    -------
+    list of Finding
+    """
+    from koenig_check.engines.state_map import mujoco_joint_names
+
+    data = mujoco.MjData(mj_model)
+    mujoco.mj_kinematics(mj_model, data)
+    context = plant.CreateDefaultContext()
+    plant.SetPositions(context, state_map.positions(np.asarray(mj_model.qpos0, dtype=float)[None])[0])
+    names = mujoco_joint_names(mj_model)
+    index = {n: k for k, n in enumerate(names)}
+    out = []
+    for p in state_map.pairs:
+        if p.kind == "free":
+            continue
+        k = index[p.name]
+        joint = plant.GetJointByName(p.drake_name)
+        where = np.asarray(joint.frame_on_parent().CalcPoseInWorld(context).translation(), dtype=float)
+        anchor = np.asarray(data.xanchor[k], dtype=float)
+        if np.abs(where - anchor).max() <= 1e-9 * max(1.0, float(np.abs(anchor).max())):
+            continue
+        body = int(mj_model.jnt_bodyid[k])
+        several = int(mj_model.body_jntnum[body]) > 1
+        last = names[int(mj_model.body_jntadr[body] + mj_model.body_jntnum[body] - 1)]
+        out.append(
+            Finding(
+                Kind.ANCHOR,
+                "drake",
+                f"joint {p.name}",
+                "Drake turns the joint about another point than MuJoCo"
+                + (
+                    " (first joint of a body with several joints: Drake's MJCF parser drops the body's pos for it)"
+                    if several
+                    else ""
+                ),
+                {"mujoco": np.round(anchor, 12).tolist(), "drake": np.round(where, 12).tolist()},
+                affects_energy=True,
+                root_cause=True,
+                segments=(last,),
+            )
+        )
     return out
