@@ -9,8 +9,9 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-from koenig_check import grid, poses
+from koenig_check import grid, poses, tiebreak
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
+from koenig_check.findings import Kind
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import RecordTable
 
@@ -44,8 +45,12 @@ class CrossCheck:
 
     @property
     def ok(self) -> bool:
-        """True when every model loaded and both engines agree with each other and with ``exact``."""
-        return not self.failures and all(p.agrees for p in self.parities)
+        """True when every model loaded and the engines agree with each other and with ``exact``.
+
+        With Drake consulted, an engine that departs from the other two (a ``VERDICT`` finding) counts.
+        """
+        verdicts = any(f.kind is Kind.VERDICT for c in self.comparisons for f in c.findings)
+        return not self.failures and all(p.agrees for p in self.parities) and not verdicts
 
     def add(self, comparison: ModelComparison) -> EngineParity:
         """Record one model's comparison with its summaries and engine parity.
@@ -68,7 +73,14 @@ class CrossCheck:
     def reason(self) -> str:
         """One line saying why :attr:`ok` is False (empty when it is True)."""
         parts = [f"{m}: {r}" for m, r in self.failures]
-        parts += [f"{p.model}: {p.reason}" for p in self.parities if not p.agrees]
+        for comparison, parity in zip(self.comparisons, self.parities, strict=True):
+            lead = tiebreak.lead_line(comparison.findings)
+            if lead or not parity.agrees:
+                text = "; ".join(t for t in (lead, "" if parity.agrees else parity.reason) if t)
+                unused = tiebreak.drake_usage(comparison.findings)
+                if not lead and unused:
+                    text += f"; {unused}"
+                parts.append(f"{parity.model}: {text}")
         return "; ".join(parts)
 
 
@@ -137,6 +149,7 @@ def compare_model(
     pose_file: str | Path | None = None,
     label: str | None = None,
     load_options: LoadOptions | None = None,
+    rtol: float = DEFAULT_RTOL,
     **load_kwargs: Any,
 ) -> ModelComparison:
     """Load one model into both engines and run the comparison grid on it.
@@ -154,7 +167,10 @@ def compare_model(
         Read the canonical states from a file (see :mod:`koenig_check.pose_file`).
     label : str, optional
     load_options : LoadOptions, optional
-        How the model is loaded (see :class:`koenig_check.engines.load_options.LoadOptions`).
+        How the model is loaded (see :class:`koenig_check.engines.load_options.LoadOptions`); its
+        ``engines`` decide whether Drake runs (:mod:`koenig_check.tiebreak`).
+    rtol : float
+        Tolerance under which engines agree (decides whether Drake is consulted by default).
     **load_kwargs
         The same options as keywords (``floating``, ``balance_inertia``, ``pinocchio_model``, ...);
         they override ``load_options``.
@@ -190,9 +206,21 @@ def compare_model(
         runs = {"mujoco": grid.run_engine(pair.mujoco, ps), "pinocchio": grid.run_engine(pair.pinocchio, ps)}
     except ValueError as err:  # an engine produced an invalid state: name the file
         raise ValueError(f"{pair.path}: {one_line(err)}") from err
+    disagree = tiebreak.engines_disagree(runs["mujoco"].rigid, runs["pinocchio"].rigid, rtol)
+    drake = tiebreak.consult_drake(pair, options.engines, disagree)
+    if drake.used:
+        try:
+            runs["drake"] = grid.run_engine(drake.engine, ps)
+        except ValueError as err:
+            raise ValueError(f"{pair.path}: Drake: {one_line(err)}") from err
     comp = grid.compare_runs(label or _label(model, options.floating), ps, runs, formulas)
-    comp.notes = list(pair.notes) + list(ps.notes) + comp.notes
-    comp.findings = list(pair.findings) + import_parity(pair).as_findings()
+    comp.notes = list(pair.notes) + [f.message() for f in drake.findings] + list(ps.notes) + comp.notes
+    findings = list(pair.findings) + import_parity(pair).as_findings() + drake.findings
+    verdicts = tiebreak.energy_verdicts(runs, findings, rtol) + tiebreak.import_verdicts(
+        {e: r.states for e, r in runs.items()}, findings, rtol
+    )
+    comp.findings = verdicts + findings
+    comp.notes = [f"three engines: {f.message()}" for f in verdicts] + comp.notes
     return comp
 
 
@@ -230,13 +258,14 @@ def compare(
         models = [models]
     options = dict(options)
     load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
+    tiebreak.check_engines(load.engines)
     result = CrossCheck(rtol=rtol)
     for model in models:
         label = _label(model, load.floating)
         if progress:
             progress(label)
         try:
-            comp = compare_model(model, label=label, load_options=load, **options)
+            comp = compare_model(model, label=label, load_options=load, rtol=rtol, **options)
         except Exception as err:  # recorded with its reason; the batch goes on
             if debug:
                 raise

@@ -169,7 +169,14 @@ def _finish(check, out: str | None, extra_figures: dict | None = None) -> int:
 
 def _load_options(args: argparse.Namespace) -> LoadOptions:
     """The load options of a command; ``--allow-coupled`` is accepted with a note and ignored."""
+    from koenig_check.tiebreak import DrakeUnavailableError, check_engines
+
     options = LoadOptions.from_namespace(args)
+    try:
+        check_engines(options.engines)
+    except DrakeUnavailableError as err:  # a usage error: refused before any work
+        print(f"koenig-check: error: {err}", file=sys.stderr)
+        raise SystemExit(2) from None
     if options.allow_coupled:
         print(f"koenig-check: note: {ALLOW_COUPLED_DEPRECATION}", file=sys.stderr)
         options = replace(options, allow_coupled=False)
@@ -212,13 +219,22 @@ def _cmd_demo(args: argparse.Namespace) -> int:
 def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.engines import load_model
     from koenig_check.parity import format_parity, import_parity
+    from koenig_check.tiebreak import parity_verdicts
 
-    pair = load_model(args.model, _load_options(args))
+    options = _load_options(args)
+    pair = load_model(args.model, options)
     report = import_parity(pair)
+    verdicts, drake_findings = parity_verdicts(pair, options.engines, disagree=not report.clean)
+    for f in verdicts + drake_findings:
+        print(f"three engines: {f.message()}" if f in verdicts else f.message())
     print(format_parity(report))
-    if report.clean:
+    if report.clean and not verdicts:
         return 0
-    print(f"koenig-check: import differences in {args.model}: {report.headline()}", file=sys.stderr)
+    lead = "; ".join(f.message() for f in verdicts)
+    print(
+        f"koenig-check: import differences in {args.model}: {'; '.join(t for t in (lead, report.headline()) if t)}",
+        file=sys.stderr,
+    )
     return 1
 
 

@@ -20,8 +20,9 @@ from types import MappingProxyType
 from typing import Any
 
 #: The engines a finding can concern.  ``both`` is a finding about the pair (a joint mapping, a
-#: coupling both engines ignore); ``file`` is a construct of the file itself.
-ENGINES = ("mujoco", "pinocchio", "drake", "both", "file")
+#: coupling both engines ignore); ``all`` is a three-engine verdict where every engine differs; ``file`` is a
+#: construct of the file itself.
+ENGINES = ("mujoco", "pinocchio", "drake", "both", "all", "file")
 
 
 class KoenigCheckError(Exception):
@@ -54,6 +55,8 @@ class Kind(str, Enum):
     IGNORED_CONSTRUCT = "ignored_construct"  # a file construct one engine's parser ignores
     # An engine disagreeing with itself (energy against ½ q̇ᵀ M q̇, RNEA against M q̈).
     SELF_CONSISTENCY = "self_consistency"
+    # Three engines compared: which one departs (koenig_check.tiebreak).
+    VERDICT = "verdict"
     # Nothing to compare.
     NOTHING_MOVES = "nothing_moves"
 

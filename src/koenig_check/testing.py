@@ -6,6 +6,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -48,7 +49,9 @@ def assert_energy_parity(
         How the model is loaded.
     **load_kwargs
         Any load option by name (:meth:`LoadOptions.names`: ``floating``, ``balance_inertia``, ...),
-        overriding ``load_options``.
+        overriding ``load_options``.  ``engines=("mujoco", "pinocchio", "drake")`` also requires Drake to
+        agree; by default Drake, when installed, is consulted only when the two engines disagree, and the
+        message then opens with the engine that departs and the construct responsible.
 
     Raises
     ------
@@ -62,7 +65,11 @@ def assert_energy_parity(
 
     if pinocchio_model is not None:
         load_kwargs["pinocchio_model"] = pinocchio_model
-    pair = load_model(model, load_options_from(load_options, load_kwargs))
+    from koenig_check.tiebreak import check_engines
+
+    options = load_options_from(load_options, load_kwargs)
+    check_engines(options.engines)
+    pair = load_model(model, options)
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     sa = pair.mujoco.segment_states(poses.qpos, poses.qvel)
     sb = pair.pinocchio.segment_states(poses.qpos, poses.qvel)
@@ -104,6 +111,19 @@ def assert_energy_parity(
                 f"armature energy at pose {poses.ids[k]}: MuJoCo {ka.armature[k]:.9g} J, "
                 f"Pinocchio {kb.armature[k]:.9g} J"
             )
+    from koenig_check import tiebreak
+
+    drake = tiebreak.consult_drake(pair, pair.options.engines, bool(problems))
+    if drake.used:
+        findings = pair.findings + import_parity(pair, rtol=rtol).as_findings() + drake.findings
+        energies = {"mujoco": ka, "pinocchio": kb, "drake": drake.engine.kinetic_energy(poses.qpos, poses.qvel)}
+        if not include_armature:
+            energies = {e: replace(k, armature=np.zeros_like(k.armature)) for e, k in energies.items()}
+        q0 = np.asarray(pair.mujoco.model.qpos0, dtype=float)[None]
+        states = {e.engine: e.segment_states(q0, np.zeros((1, pair.mujoco.nv))) for e in (*pair.engines, drake.engine)}
+        verdicts = tiebreak.energy_verdicts(energies, findings, rtol) + tiebreak.import_verdicts(states, findings, rtol)
+        if verdicts:
+            problems.insert(0, tiebreak.lead_line(verdicts))
     if problems:
         from koenig_check.grid import disagreement_cause
 

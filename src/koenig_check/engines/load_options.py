@@ -12,6 +12,9 @@ import os
 from dataclasses import dataclass, fields
 from typing import Any
 
+#: The engines koenig-check can run, in report order (Drake only with the optional extra ``[drake]``).
+ENGINE_NAMES = ("mujoco", "pinocchio", "drake")
+
 #: What the deprecated ``allow_coupled`` / ``--allow-coupled`` is told.
 ALLOW_COUPLED_DEPRECATION = (
     "allow_coupled (--allow-coupled) is deprecated and does nothing: coupled joints are loaded by default and "
@@ -37,6 +40,10 @@ class LoadOptions:
         Load Pinocchio from this other file of the same mechanism (e.g. the URDF twin of an MJCF).
     allow_coupled : bool
         Deprecated no-op kept for a while: coupled joints are loaded by default and recorded as findings.
+    engines : tuple of str, optional
+        The engines to run on every model: ``("mujoco", "pinocchio")`` or ``("mujoco", "pinocchio",
+        "drake")``.  ``None`` (default): MuJoCo and Pinocchio, and Drake as tie-breaker on a model where
+        they disagree, when Drake is installed (:mod:`koenig_check.tiebreak`).
     """
 
     floating: bool = False
@@ -44,8 +51,12 @@ class LoadOptions:
     repair_inertia: bool = False
     pinocchio_model: str | os.PathLike[str] | None = None
     allow_coupled: bool = False
+    engines: tuple[str, ...] | None = None
 
     def __post_init__(self) -> None:
+        if self.engines is not None:
+            names = (self.engines,) if isinstance(self.engines, str) else tuple(self.engines)
+            object.__setattr__(self, "engines", parse_engines(",".join(names)))
         for f in fields(self):
             value = getattr(self, f.name)
             if f.type == "bool" and not isinstance(value, bool):
@@ -101,6 +112,40 @@ class LoadOptions:
         return cls(**{name: getattr(args, name) for name in cls.names() if hasattr(args, name)})
 
 
+def parse_engines(text: str) -> tuple[str, ...]:
+    """Read an engine list such as ``"mujoco,pinocchio,drake"``.
+
+    Parameters
+    ----------
+    text : str
+        Comma-separated engine names; MuJoCo and Pinocchio are always run.
+
+    Returns
+    -------
+    tuple of str
+        In :data:`ENGINE_NAMES` order.
+
+    Raises
+    ------
+    ValueError
+        On an unknown name, or a list without MuJoCo and Pinocchio.
+    """
+    names = [n.strip().lower() for n in text.split(",") if n.strip()]
+    unknown = [n for n in names if n not in ENGINE_NAMES]
+    if unknown:
+        raise ValueError(f"engines: unknown {unknown}; choose among {list(ENGINE_NAMES)}")
+    if not {"mujoco", "pinocchio"} <= set(names):
+        raise ValueError(f"engines: mujoco and pinocchio are always run, got {names}")
+    return tuple(n for n in ENGINE_NAMES if n in names)
+
+
+def _engines_argument(text: str) -> tuple[str, ...]:
+    try:
+        return parse_engines(text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
+
+
 def add_load_arguments(parser: argparse.ArgumentParser) -> None:
     """Add every load option to a sub-command's parser.
 
@@ -123,3 +168,11 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
         "--pinocchio-model", help="load Pinocchio from this file instead (e.g. the URDF twin of an MJCF)"
     )
     group.add_argument("--allow-coupled", action="store_true", help=argparse.SUPPRESS)
+    group.add_argument(
+        "--engines",
+        type=_engines_argument,
+        default=None,
+        metavar="LIST",
+        help="engines to run on every model, e.g. mujoco,pinocchio,drake (default: Drake only as tie-breaker "
+        "where MuJoCo and Pinocchio disagree, when installed)",
+    )

@@ -26,6 +26,7 @@ from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.state_map import mujoco_coordinate_names
 from koenig_check.findings import KoenigCheckError
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
+from koenig_check.implied_dynamics.drake_column import add_drake_column
 from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix
 from koenig_check.implied_dynamics.errors import Discrepancy, discrepancy
 from koenig_check.implied_dynamics.kane import kane_mujoco, kane_pinocchio
@@ -272,7 +273,8 @@ def dynamics(
     velocity_scale : float
     **load_options
         :class:`~koenig_check.engines.load_options.LoadOptions` fields: ``floating``, ``balance_inertia``,
-        ``pinocchio_model``, ``allow_coupled``.
+        ``pinocchio_model``, ``allow_coupled``, ``engines`` (``("mujoco", "pinocchio", "drake")`` adds
+        Drake's column; by default Drake, when installed, only where MuJoCo and Pinocchio disagree).
 
     Returns
     -------
@@ -283,7 +285,12 @@ def dynamics(
     options = LoadOptions.pop_from(load_options)
     if load_options:
         raise TypeError(f"dynamics() got unexpected keyword arguments {sorted(load_options)}")
+    from koenig_check.tiebreak import check_engines
+
+    check_engines(options.engines)
     pair = load(model, options)
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     qacc = velocity_scale * _random_accelerations(pair.mujoco.nv, n_poses, seed)
-    return dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)
+    result = dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)
+    add_drake_column(result, pair, options.engines, ENGINE_PARITY)
+    return result

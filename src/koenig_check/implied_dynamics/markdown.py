@@ -11,7 +11,11 @@ from koenig_check.implied_dynamics.analysis import ENGINE_PARITY, ENGINES, Dynam
 from koenig_check.implied_dynamics.errors import Discrepancy
 from koenig_check.implied_dynamics.lagrange import CONFIGURATION_STEP, TIME_STEP_SCALE
 
-_COLUMNS = [(q, e) for q in ("M", "Q*") for e in ENGINES]
+
+def _columns(result: DynamicsResult) -> list[tuple[str, str]]:
+    """``(quantity, engine)`` columns: both engines, and Drake where it was run."""
+    engines = [*ENGINES, *(e for e in result.engine_mass if e not in ENGINES)]
+    return [(q, e) for q in ("M", "Q*") for e in engines]
 
 
 def _worst(errors: list[Discrepancy]) -> Discrepancy:
@@ -42,22 +46,29 @@ def terminal_lines(result: DynamicsResult) -> list[str]:
     list of str
     """
     P, nv = result.qvel.shape
+    columns = _columns(result)
     lines = [
         f"dynamics of {result.model}: {P} poses, {nv} dofs; largest relative error over poses and routes "
         "(M: Frobenius norm, Q*: Euclidean norm, per pose)",
-        f"{'formula':30s} " + " ".join(f"{q + ' vs ' + e:>15s}" for q, e in _COLUMNS) + "  worst entry",
+        f"{'formula':30s} " + " ".join(f"{q + ' vs ' + e:>15s}" for q, e in columns) + "  worst entry",
     ]
     for formula in result.formulas:
         if formula in result.refusals:
             lines.append(f"{formula:30s} refused: {result.refusals[formula]}")
             continue
-        cells = " ".join(f"{_cell(result, formula, q, e):>15s}" for q, e in _COLUMNS)
+        cells = " ".join(f"{_cell(result, formula, q, e):>15s}" for q, e in columns)
         lines.append(f"{formula:30s} {cells}  {_describe(result, _worst(result.errors_of(formula)))}")
     lines.append(
         f"{'engines (mujoco vs pinocchio)':30s} "
         f"{_cell(result, ENGINE_PARITY, 'M', 'pinocchio'):>15s} {'':>15s} "
         f"{_cell(result, ENGINE_PARITY, 'Q*', 'pinocchio'):>15s}"
     )
+    if "drake" in result.engine_mass:
+        lines.append(
+            f"{'engines (mujoco vs drake)':30s} {_cell(result, ENGINE_PARITY, 'M', 'drake'):>15s} {'':>15s} "
+            f"{_cell(result, ENGINE_PARITY, 'Q*', 'drake'):>15s}"
+        )
+    lines += [n for n in result.notes if n.startswith("drake: model: Drake not used")]
     return lines
 
 

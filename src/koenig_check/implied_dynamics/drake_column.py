@@ -1,0 +1,72 @@
+"""Drake's column in the dynamics check: its rigid mass matrix and inertia forces, against every route.
+
+Drake's ``CalcMassMatrix`` and ``CalcInverseDynamics`` include the reflected inertia of joint actuators
+(Drake's armature, on one-dof joints only, where Drake's velocity is the canonical one): it is taken
+out as each engine's own armature is, ``M − diag(I_refl)`` and ``τ − I_refl ⊙ q̈``.  Drake is run when
+``engines`` asks for it, or by default (when installed) when MuJoCo and Pinocchio disagree on ``M`` or
+``Q*`` (:mod:`koenig_check.tiebreak`); the result's notes say when it was not used.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from koenig_check.implied_dynamics.errors import discrepancy
+
+
+def drake_rigid_dynamics(
+    engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Drake's mass matrix and ``Q* = −(τ − τ_reflected)`` with its reflected inertia taken out.
+
+    Parameters
+    ----------
+    engine : DrakeEngine
+    qpos : ndarray, shape (P, nq)
+    qvel, qacc : ndarray, shape (P, nv)
+
+    Returns
+    -------
+    M : ndarray, shape (P, nv, nv)
+    Q : ndarray, shape (P, nv)
+    """
+    reflected = engine.armature_per_dof()
+    M = engine.mass_matrix(qpos) - np.diag(reflected)
+    Q = -(engine.inverse_dynamics(qpos, qvel, qacc) - qacc * reflected)
+    return M, Q
+
+
+def add_drake_column(result: Any, pair: Any, engines: Sequence[str] | None, parity_label: str) -> None:
+    """Compare every route of a dynamics result with Drake, and Drake with MuJoCo, when Drake is used.
+
+    Parameters
+    ----------
+    result : DynamicsResult
+        Extended in place: ``engine_mass["drake"]``, ``engine_forces["drake"]``, discrepancies against
+        Drake, and a note when Drake was not used.
+    pair : ModelPair
+    engines : sequence of str or None
+        As :attr:`LoadOptions.engines`.
+    parity_label : str
+        The pseudo-formula under which engines are compared with each other.
+    """
+    from koenig_check.tiebreak import consult_drake
+
+    disagree = any(
+        e.formula == parity_label and e.max_rel_error > (result.m_rtol if e.quantity == "M" else result.q_rtol)
+        for e in result.errors
+    )
+    drake = consult_drake(pair, engines, disagree)
+    result.notes += [f.message() for f in drake.findings]
+    if not drake.used:
+        return
+    M, Q = drake_rigid_dynamics(drake.engine, result.qpos, result.qvel, result.qacc)
+    result.engine_mass["drake"], result.engine_forces["drake"] = M, Q
+    for (name, route), r in list(result.routes.items()):
+        result.errors.append(discrepancy(r.M, M, name, route, "drake"))
+        result.errors.append(discrepancy(r.Q, Q, name, route, "drake"))
+    result.errors.append(discrepancy(result.engine_mass["mujoco"], M, parity_label, "mujoco", "drake"))
+    result.errors.append(discrepancy(result.engine_forces["mujoco"], Q, parity_label, "mujoco", "drake"))

@@ -1,0 +1,448 @@
+"""Drake as tie-breaker: when MuJoCo and Pinocchio disagree on a file, a third engine says which one departs.
+
+Two engines that disagree cannot say which is right; three can.  For each comparison (rigid-body
+energy, reflected-inertia/armature energy, and per segment mass, COM and central inertia) the three
+engines' values are compared pairwise: when two agree and the third departs, a ``VERDICT`` finding
+names the engine that departs and the construct responsible where one is known (a compiler option
+MuJoCo honours alone, a class value or an ``<include>`` Pinocchio ignores alone, an armature Drake's
+MJCF parser does not read); when all three differ, the finding says so (engine ``"all"``).  Reports
+and the one-line reason lead with these findings (they are not root causes themselves: the construct a
+verdict names is, and the two-engine cause that follows in the reason keeps its place).
+
+When is Drake consulted
+-----------------------
+``engines=None`` (the default): only when Drake is installed *and* MuJoCo and Pinocchio disagree on a
+model, so agreeing models cost nothing extra.  ``engines=("mujoco", "pinocchio", "drake")``: on every
+model.  ``engines=("mujoco", "pinocchio")``: never.  Whenever Drake is not used, a ``LOAD`` finding
+(engine ``drake``) says why: not installed, not needed, not asked for, or refused by Drake (its whole
+reason on one line, naming the file).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from koenig_check.engines.load_options import ENGINE_NAMES
+from koenig_check.findings import Finding, Kind, KoenigCheckError
+
+#: How engines are named for people.
+LABEL = {"mujoco": "MuJoCo", "pinocchio": "Pinocchio", "drake": "Drake"}
+#: Default relative tolerance under which two engines "agree".
+TIEBREAK_RTOL = 1e-9
+
+
+class DrakeUnavailableError(KoenigCheckError, ValueError):
+    """Drake was asked for (``--engines …,drake``) but ``pydrake`` cannot be imported."""
+
+
+def check_engines(engines: Sequence[str] | None) -> None:
+    """Refuse, before any work, an engine list that asks for Drake when it is not installed.
+
+    Parameters
+    ----------
+    engines : sequence of str or None
+
+    Raises
+    ------
+    DrakeUnavailableError
+    """
+    from koenig_check.engines.drake_loader import drake_available
+
+    if engines is not None and "drake" in engines and not drake_available():
+        raise DrakeUnavailableError(
+            "engines: drake asked for but pydrake is not installed (pip install 'koenig-check[drake]')"
+        )
+
+
+@dataclass
+class Consultation:
+    """The outcome of asking for Drake on one model.
+
+    Attributes
+    ----------
+    engine : DrakeEngine or None
+        The loaded adapter, or ``None`` when Drake was not used.
+    findings : list of Finding
+        Drake's load findings, or one ``LOAD`` finding saying why Drake was not used.
+    """
+
+    engine: Any = None
+    findings: list[Finding] = field(default_factory=list)
+
+    @property
+    def used(self) -> bool:
+        """Whether Drake was loaded."""
+        return self.engine is not None
+
+
+def _not_used(why: str, **values: Any) -> Finding:
+    return Finding(Kind.LOAD, "drake", "model", f"Drake not used: {why}", values)
+
+
+def engines_disagree(mj_rigid: np.ndarray, pin_rigid: np.ndarray, rtol: float = TIEBREAK_RTOL) -> bool:
+    """Whether MuJoCo's and Pinocchio's rigid-body energies differ beyond ``rtol`` at some pose.
+
+    Parameters
+    ----------
+    mj_rigid, pin_rigid : ndarray, shape (P,)
+    rtol : float
+
+    Returns
+    -------
+    bool
+    """
+    return bool(np.any(~_close(np.asarray(mj_rigid), np.asarray(pin_rigid), rtol)))
+
+
+def consult_drake(pair: Any, engines: Sequence[str] | None, disagree: bool) -> Consultation:
+    """Load Drake on a model when asked for, or by default when the two engines disagree.
+
+    Parameters
+    ----------
+    pair : ModelPair
+        The model loaded in MuJoCo and Pinocchio.
+    engines : sequence of str or None
+        The engines asked for (``None``: Drake as tie-breaker when installed and needed).
+    disagree : bool
+        Whether MuJoCo and Pinocchio disagree on this model.
+
+    Returns
+    -------
+    Consultation
+    """
+    from koenig_check.engines.drake_loader import DrakeLoadError, drake_available
+
+    if engines is not None and "drake" not in engines:
+        return Consultation(findings=[_not_used("not asked for (engines: " + ", ".join(engines) + ")")])
+    if not drake_available():
+        return Consultation(findings=[_not_used("not installed (pip install 'koenig-check[drake]')")])
+    if engines is None and not disagree:
+        return Consultation(findings=[_not_used("not needed, MuJoCo and Pinocchio agree")])
+    if pair.options.pinocchio_model is not None:
+        return Consultation(findings=[_not_used("Pinocchio was given another file (--pinocchio-model)")])
+    from koenig_check.engines.drake_engine import load_drake_engine
+
+    try:
+        engine = load_drake_engine(pair.source, pair.mujoco.model)
+    except DrakeLoadError as err:
+        return Consultation(findings=[_not_used(" ".join(str(err).split()))])
+    except ImportError as err:  # installed but not importable
+        return Consultation(findings=[_not_used(f"pydrake cannot be imported: {' '.join(str(err).split())}")])
+    findings = list(engine.findings) + armature_findings(pair, engine)
+    return Consultation(engine, findings)
+
+
+def armature_findings(pair: Any, drake: Any) -> list[Finding]:
+    """Joints whose armature MuJoCo has but Drake's model lacks (Drake's MJCF parser reads no ``armature``).
+
+    Parameters
+    ----------
+    pair : ModelPair
+    drake : DrakeEngine
+
+    Returns
+    -------
+    list of Finding
+        One ``IGNORED_CONSTRUCT`` root cause naming the joints, when any.
+    """
+    mj = pair.mujoco
+    arm = np.asarray(mj.model.dof_armature, dtype=float)
+    reflected = drake.armature_per_dof()
+    joints = [
+        p.name for p in drake.state_map.pairs if arm[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
+    ]
+    extension = [
+        p.name
+        for p in drake.state_map.pairs
+        if reflected[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
+    ]
+    out = []
+    if extension:
+        out.append(
+            Finding(
+                Kind.ARMATURE,
+                "drake",
+                "actuators of joints " + ", ".join(extension),
+                "reflected inertia (rotor inertia × gear ratio², Drake's URDF/MJCF actuator data) that MuJoCo's "
+                "armature does not match",
+                {
+                    "joints": extension,
+                    "drake": [float(reflected[p.vadr]) for p in drake.state_map.pairs if p.name in extension],
+                },
+                affects_energy=True,
+                root_cause=True,
+                segments=tuple(extension),
+            )
+        )
+    joints = [j for j in joints if j not in extension]
+    if not joints or pair.source.format != "mjcf":
+        return out
+    return [
+        *out,
+        Finding(
+            Kind.IGNORED_CONSTRUCT,
+            "drake",
+            "joint armature",
+            "Drake's MJCF parser does not read a joint's armature (its analogue is an actuator's reflected "
+            "inertia, rotor inertia × gear ratio²)",
+            {
+                "joints": joints,
+                "mujoco armature": [float(arm[p.vadr]) for p in drake.state_map.pairs if p.name in joints],
+            },
+            affects_energy=True,
+            root_cause=True,
+            segments=tuple(joints),
+        ),
+    ]
+
+
+def _close(a: np.ndarray, b: np.ndarray, rtol: float, scale: np.ndarray | float | None = None) -> np.ndarray:
+    ref = np.maximum(np.abs(a), np.abs(b)) if scale is None else scale
+    return np.abs(a - b) <= rtol * np.maximum(ref, 1e-300)
+
+
+def _odd_one_out(values: dict[str, np.ndarray], rtol: float, scale: Any = None) -> str | None:
+    """``None`` when all agree, the engine that departs when two agree, ``"all"`` when all differ."""
+    names = list(values)
+    agree = {
+        (a, b): bool(np.all(_close(values[a], values[b], rtol, scale)))
+        for i, a in enumerate(names)
+        for b in names[i + 1 :]
+    }
+    if all(agree.values()):
+        return None
+    for odd in names:
+        rest = [n for n in names if n != odd]
+        if agree[tuple(rest)] if tuple(rest) in agree else agree[(rest[1], rest[0])]:
+            return odd
+    return "all"
+
+
+def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence[str] = ()) -> Finding | None:
+    """The known construct responsible for an engine's departure, from the model's findings.
+
+    Root causes that change the energy, about that engine, first those that explain the given segments;
+    for MuJoCo, first a compiler option (``compiler settotalmass``), which the two-engine parity may have
+    recorded against Pinocchio ("Pinocchio does not rescale"): with three engines, MuJoCo is the one that
+    applies it alone.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+    engine : str
+    segments : sequence of str
+        Segments whose values depart (empty: any).
+
+    Returns
+    -------
+    Finding or None
+    """
+    own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
+    roots = [f for f in own if f.root_cause] or [f for f in own if f.kind in (Kind.COMPILER, Kind.IGNORED_CONSTRUCT)]
+    if engine == "mujoco":  # a compiler option only MuJoCo applies, whichever engine the pair's finding blamed
+        options = [f for f in findings if f.kind is Kind.COMPILER and f.element.startswith("compiler ")]
+        roots = options + [f for f in roots if f not in options]
+    if segments:
+        hit = [f for f in roots if set(f.segments) & set(segments)]
+        roots = hit or roots
+    return roots[0] if roots else None
+
+
+def _construct(cause: Finding) -> str:
+    """The construct a cause names: ``compiler settotalmass`` rather than the body it altered."""
+    if cause.kind is Kind.COMPILER and cause.engine == "mujoco":
+        if float(cause.values.get("settotalmass", -1) or -1) > 0:
+            return "compiler settotalmass"
+    return cause.element
+
+
+def _verdict(
+    what: str, odd: str, values: dict[str, float], findings: Sequence[Finding], segments: Sequence[str] = ()
+) -> Finding:
+    """A ``VERDICT`` finding: who departs on ``what`` and why, or that all three differ."""
+    if odd == "all":
+        causes = {e: departure_cause(findings, e, segments) for e in values}
+        known = "; ".join(f"{LABEL[e]}: {_construct(c)} ({c.kind.value})" for e, c in causes.items() if c is not None)
+        return Finding(
+            Kind.VERDICT,
+            "all",
+            what,
+            "all three engines differ" + (f"; constructs: {known}" if known else ""),
+            values,
+            affects_energy=True,
+            segments=tuple(segments),
+        )
+    others = " and ".join(LABEL[e] for e in values if e != odd)
+    cause = departure_cause(findings, odd, segments)
+    summary = f"{LABEL[odd]} departs ({others} agree)"
+    if cause is not None:
+        summary += f"; construct responsible: {_construct(cause)}"
+    return Finding(
+        Kind.VERDICT,
+        odd,
+        what,
+        summary,
+        values,
+        affects_energy=True,
+        segments=tuple(segments) or tuple(cause.segments if cause else ()),
+        hint=cause.summary if cause is not None else "cause unknown",
+    )
+
+
+def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: float = TIEBREAK_RTOL) -> list[Finding]:
+    """Three-way verdicts on the rigid-body energy and the armature (reflected-inertia) energy.
+
+    Parameters
+    ----------
+    runs : dict of str to EngineRun
+        Needs ``"mujoco"``, ``"pinocchio"`` and ``"drake"``; otherwise nothing is said.
+    findings : sequence of Finding
+        The model's findings (causes are looked up there).
+    rtol : float
+
+    Returns
+    -------
+    list of Finding
+        At most one per quantity, with the values at the pose of largest spread.
+    """
+    if not all(e in runs for e in ENGINE_NAMES):
+        return []
+    out = []
+    rigid = {e: np.asarray(runs[e].rigid, dtype=float) for e in ENGINE_NAMES}
+    odd = _odd_one_out(rigid, rtol)
+    if odd is not None:
+        k = int(np.argmax(np.ptp(np.stack(list(rigid.values())), axis=0)))
+        out.append(_verdict("rigid-body energy", odd, {e: float(v[k]) for e, v in rigid.items()}, findings))
+    arm = {e: np.asarray(runs[e].armature, dtype=float) for e in ENGINE_NAMES}
+    scale = np.abs(rigid["mujoco"]) + np.abs(arm["mujoco"])
+    odd = _odd_one_out(arm, rtol, scale)
+    if odd is not None:
+        k = int(np.argmax(np.ptp(np.stack(list(arm.values())), axis=0)))
+        out.append(_verdict("armature energy", odd, {e: float(v[k]) for e, v in arm.items()}, findings))
+    return out
+
+
+def import_verdicts(states: dict[str, Any], findings: Sequence[Finding], rtol: float = TIEBREAK_RTOL) -> list[Finding]:
+    """Three-way verdicts on each segment's mass, COM and central inertia (world axes) in one state.
+
+    Frames are not compared (each engine has its own segment frame: a body, a joint frame), only what
+    the mass distribution is in the world at the same canonical state.
+
+    Parameters
+    ----------
+    states : dict of str to SegmentStates
+        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``).
+    findings : sequence of Finding
+    rtol : float
+
+    Returns
+    -------
+    list of Finding
+        One per quantity and departing engine (segments grouped), with the worst segment's values.
+    """
+    if not all(e in states for e in ENGINE_NAMES):
+        return []
+    common = [n for n in states["mujoco"].names if all(n in states[e].names for e in ENGINE_NAMES)]
+    if not common:
+        return []
+    sel = {e: states[e].select(segments=common) for e in ENGINE_NAMES}
+    world_inertia = {
+        e: np.einsum("bij,bjk,blk->bil", s.rotation[0], s.inertia_body, s.rotation[0]) for e, s in sel.items()
+    }
+    quantities = {
+        "mass": ({e: s.mass for e, s in sel.items()}, None),
+        "COM": ({e: s.com[0] for e, s in sel.items()}, "length"),
+        "inertia": (world_inertia, "inertia"),
+    }
+    size = max(float(np.abs(sel["mujoco"].com[0]).max()), 1.0)
+    grouped: dict[tuple[str, str], list[tuple[str, dict[str, Any]]]] = {}
+    for label, (vals, kind) in quantities.items():
+        for b, name in enumerate(common):
+            per = {e: np.asarray(v[b], dtype=float) for e, v in vals.items()}
+            scale = size if kind == "length" else None
+            if kind == "inertia":
+                scale = max(float(np.abs(per["mujoco"]).max()), float(np.abs(per["pinocchio"]).max()))
+            odd = _odd_one_out(per, rtol, scale)
+            if odd is not None:
+                shown = {e: _shown(v) for e, v in per.items()}
+                grouped.setdefault((label, odd), []).append((name, shown))
+    out = []
+    for (label, odd), items in grouped.items():
+        segments = [n for n, _ in items]
+        what = "principal moments" if label == "inertia" else label
+        element = f"segment {segments[0]} {what}" + (f" (+{len(segments) - 1} segments)" if len(segments) > 1 else "")
+        out.append(_verdict(element, odd, items[0][1], findings, segments))
+    return out
+
+
+def _shown(value: np.ndarray) -> Any:
+    """A value for a finding: a float, a point, or an inertia's principal moments."""
+    if value.ndim == 0:
+        return float(value)
+    if value.ndim == 2:
+        return np.round(np.linalg.eigvalsh(0.5 * (value + value.T)), 12).tolist()
+    return np.round(value, 12).tolist()
+
+
+def lead_line(findings: Sequence[Finding]) -> str:
+    """The verdicts, one after the other, for the head of a one-line reason (empty when none).
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+
+    Returns
+    -------
+    str
+    """
+    return "; ".join(f.message() for f in findings if f.kind is Kind.VERDICT)
+
+
+def drake_usage(findings: Sequence[Finding]) -> str:
+    """Why Drake was not used on a model, from its findings (empty when it was used).
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+
+    Returns
+    -------
+    str
+    """
+    for f in findings:
+        if f.engine == "drake" and f.kind is Kind.LOAD and f.summary.startswith("Drake not used"):
+            return f.summary
+    return ""
+
+
+def parity_verdicts(pair: Any, engines: Sequence[str] | None, disagree: bool) -> tuple[list[Finding], list[Finding]]:
+    """Three-way import verdicts of a loaded model (per segment mass, COM, principal moments at ``qpos0``).
+
+    Parameters
+    ----------
+    pair : ModelPair
+    engines : sequence of str or None
+        As :attr:`LoadOptions.engines`.
+    disagree : bool
+        Whether MuJoCo and Pinocchio disagree (the import parity is not clean).
+
+    Returns
+    -------
+    verdicts : list of Finding
+    drake_findings : list of Finding
+        Drake's load findings, or why it was not used.
+    """
+    from koenig_check.parity import import_parity
+
+    drake = consult_drake(pair, engines, disagree)
+    if not drake.used:
+        return [], drake.findings
+    q0 = np.asarray(pair.mujoco.model.qpos0, dtype=float)[None]
+    zero = np.zeros((1, pair.mujoco.nv))
+    states = {e.engine: e.segment_states(q0, zero) for e in (*pair.engines, drake.engine)}
+    findings = list(pair.findings) + import_parity(pair).as_findings() + drake.findings
+    return import_verdicts(states, findings), drake.findings

@@ -1,0 +1,182 @@
+"""Drake as tie-breaker: which engine departs, the construct responsible, and when Drake is (not) used."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+import koenig_check
+from koenig_check.cli import main
+from koenig_check.findings import Kind
+from koenig_check.testing import assert_energy_parity
+from koenig_check.tiebreak import DrakeUnavailableError
+
+HERE = Path(__file__).parent
+TIEBREAK = HERE / "models" / "tiebreak"
+HAS_DRAKE = importlib.util.find_spec("pydrake") is not None
+needs_drake = pytest.mark.skipif(not HAS_DRAKE, reason="Drake (the optional extra [drake]) is not installed")
+ALL = ("mujoco", "pinocchio", "drake")
+
+#: (file, engines, quantity, engine that departs, construct named)
+WHO_DEPARTS = [
+    (TIEBREAK / "settotalmass.xml", None, "rigid-body energy", "mujoco", "compiler settotalmass"),
+    (HERE / "models" / "causes" / "class_mass.xml", None, "rigid-body energy", "pinocchio", "geom pole"),
+    (HERE / "engines" / "models" / "hinge_armature.xml", ALL, "armature energy", "drake", "joint armature"),
+    (TIEBREAK / "rotor_inertia.urdf", ALL, "armature energy", "drake", "actuators of joints spin"),
+    (
+        HERE / "models" / "causes" / "class_joint_pos_explicit.xml",
+        ALL,
+        "rigid-body energy",
+        "drake",
+        "joint vertebra_1_extend",
+    ),
+    (TIEBREAK / "all_differ.xml", None, "rigid-body energy", "all", None),
+]
+
+
+def _verdicts(check: koenig_check.api.CrossCheck) -> list:
+    return [f for f in check.comparisons[0].findings if f.kind is Kind.VERDICT]
+
+
+@needs_drake
+@pytest.mark.parametrize(("path", "engines", "quantity", "engine", "construct"), WHO_DEPARTS, ids=lambda x: str(x))
+def test_the_engine_that_departs_is_named_with_its_construct(path, engines, quantity, engine, construct) -> None:
+    check = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=engines)
+    verdict = {f.element: f for f in _verdicts(check)}[quantity]
+    assert verdict.engine == engine
+    if construct is None:
+        assert verdict.summary.startswith("all three engines differ")
+    else:
+        assert f"construct responsible: {construct}" in verdict.summary
+    assert not check.ok
+    assert check.reason().startswith(f"{path.name}: {verdict.message()}")  # the reason leads with it
+    assert "\n" not in check.reason()
+
+
+@needs_drake
+def test_import_verdict_per_segment_names_the_segment() -> None:
+    check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
+    mass = [f for f in _verdicts(check) if f.element == "segment hinge mass"]
+    assert [f.engine for f in mass] == ["pinocchio"]
+    assert mass[0].values["mujoco"] == pytest.approx(0.1) and mass[0].values["drake"] == pytest.approx(0.1)
+    assert mass[0].segments == ("hinge",)
+    moments = [f for f in _verdicts(check) if f.element == "segment hinge principal moments"]
+    assert [f.engine for f in moments] == ["pinocchio"]
+    assert moments[0].values["mujoco"] == pytest.approx(moments[0].values["drake"], rel=1e-12)
+
+
+@needs_drake
+def test_agreeing_models_do_not_load_drake_by_default() -> None:
+    check = koenig_check.compare("gimbal.xml", n_poses=2, formulas=["exact"])
+    assert set(check.comparisons[0].runs) == {"mujoco", "pinocchio"}
+    assert any("Drake not used: not needed" in f.summary for f in check.comparisons[0].findings)
+    asked = koenig_check.compare("gimbal.xml", n_poses=2, formulas=["exact"], engines=ALL)
+    assert set(asked.comparisons[0].runs) == set(ALL)
+    assert asked.ok and not _verdicts(asked)
+
+
+@needs_drake
+def test_assert_energy_parity_leads_with_the_departing_engine() -> None:
+    with pytest.raises(
+        AssertionError, match=r"energy parity fails \(rtol 1e-09\): mujoco: rigid-body energy: MuJoCo departs"
+    ):
+        assert_energy_parity(TIEBREAK / "settotalmass.xml", n_poses=3)
+    with pytest.raises(AssertionError, match="Drake departs"):
+        assert_energy_parity(HERE / "engines" / "models" / "hinge_armature.xml", n_poses=3, engines=ALL)
+    assert_energy_parity("gimbal.urdf", n_poses=3, engines=ALL)
+
+
+@needs_drake
+def test_cli_engines_option_on_compare_and_parity(capsys: pytest.CaptureFixture[str]) -> None:
+    assert (
+        main(["compare", "gimbal.xml", "--poses", "2", "--formulas", "exact", "--engines", "mujoco,pinocchio,drake"])
+        == 0
+    )
+    assert main(["parity", str(TIEBREAK / "settotalmass.xml")]) == 1
+    err = capsys.readouterr().err
+    assert "mujoco: segment spin mass: MuJoCo departs (Pinocchio and Drake agree)" in err.splitlines()[-1]
+
+
+@needs_drake
+@pytest.mark.parametrize(
+    ("model", "text"),
+    [
+        (
+            "talos",
+            "talos_reduced.urdf: Drake cannot load the file: line 1386: Joint 'gripper_left_inner_double_joint' "
+            "which has 0 DOF cannot mimic joint 'gripper_left_joint' which has 1 DOF.",
+        ),
+    ],
+)
+def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str) -> None:
+    from koenig_check.engines import load_model
+    from koenig_check.engines.drake_engine import load_drake_engine
+    from koenig_check.engines.drake_loader import DrakeLoadError
+
+    pair = load_model(model, check=False)
+    with pytest.raises(DrakeLoadError) as info:
+        load_drake_engine(pair.source, pair.mujoco.model)
+    message = str(info.value)
+    assert "\n" not in message and message.startswith(str(pair.source.path)) and message.endswith(text)
+    check = koenig_check.compare(model, n_poses=1, formulas=["exact"], engines=ALL)
+    found = [f.summary for f in check.comparisons[0].findings if f.engine == "drake"]
+    assert found == [f"Drake not used: {message}"]
+
+
+@needs_drake
+def test_drake_limits_are_findings_naming_the_element() -> None:
+    from koenig_check.engines.drake_loader import load_drake
+    from koenig_check.engines.sources import resolve_model
+
+    _, findings = load_drake(resolve_model("anymal_b_simple/anymal"))
+    negative = [f for f in findings if "negative" in f.summary]
+    assert [f.element for f in negative] == ["link base"] and "\n" not in negative[0].message()
+    _, findings = load_drake(resolve_model(HERE / "models" / "causes" / "class_mass.xml"))
+    assert [f.element for f in findings if "model name" in f.summary] == ["mujoco model"]
+    check = koenig_check.compare(HERE / "engines" / "models" / "hinge_armature.xml", n_poses=1, engines=ALL)
+    armature = [f for f in check.comparisons[0].findings if f.kind is Kind.IGNORED_CONSTRUCT and f.engine == "drake"]
+    assert armature and armature[0].values["joints"] == ["spin"]
+    plant, findings = load_drake(resolve_model("gimbal.urdf"))  # Drake alone would float the root link (nq 9)
+    assert plant.num_positions() == 2
+    assert [f.element for f in findings if "welded" in f.summary] == ["links base"]
+
+
+def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
+    import koenig_check.engines.drake_loader as loader
+
+    monkeypatch.setattr(loader, "drake_available", lambda: False)
+    check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
+    assert set(check.comparisons[0].runs) == {"mujoco", "pinocchio"}
+    assert "Drake not used: not installed" in check.reason()
+    with pytest.raises(DrakeUnavailableError, match="pydrake is not installed"):
+        koenig_check.compare("gimbal.xml", engines=ALL)
+    with pytest.raises(SystemExit) as usage:  # a usage error, before any work (like argparse's)
+        main(["compare", "gimbal.xml", "--engines", "mujoco,pinocchio,drake"])
+    assert usage.value.code == 2
+
+
+def test_drake_reason_is_one_line_without_repeating_the_path() -> None:
+    from koenig_check.engines.drake_loader import one_line_reason
+
+    path = Path("/models/robot.urdf")
+    text = f"{path}:12: error: first line\n  second line\n\n{path}:14: error: ERROR: third"
+    assert one_line_reason(text, path) == "line 12: first line; second line; line 14: third"
+
+
+@needs_drake
+def test_all_three_differ_each_construct_named() -> None:
+    """A + B < C: MuJoCo repairs it (asked), Pinocchio keeps it, Drake's parser replaces it (its own warning)."""
+    check = koenig_check.compare(
+        TIEBREAK / "unbalanced_inertia.urdf", n_poses=2, formulas=["exact"], repair_inertia=True
+    )
+    verdict = {f.element: f for f in _verdicts(check)}["segment swing principal moments"]
+    assert verdict.engine == "all"
+    assert (
+        verdict.summary == "all three engines differ; constructs: MuJoCo: link arm (repair); Drake: link arm (inertia)"
+    )
+    assert verdict.values["pinocchio"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)  # the file's moments
+    replaced = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.INERTIA]
+    assert [f.element for f in replaced] == ["link arm"] and replaced[0].segments == ("swing",)
+    assert replaced[0].values["moments in the file"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)
