@@ -80,7 +80,7 @@ class Consultation:
 
 
 def _not_used(why: str, **values: Any) -> Finding:
-    return Finding(Kind.LOAD, "drake", "model", f"Drake not used: {why}", values)
+    return Finding(Kind.ENGINE_NOT_USED, "drake", "model", f"Drake not used: {why}", values)
 
 
 def engines_disagree(mj_rigid: np.ndarray, pin_rigid: np.ndarray, rtol: float = TIEBREAK_RTOL) -> bool:
@@ -414,7 +414,7 @@ def drake_usage(findings: Sequence[Finding]) -> str:
     str
     """
     for f in findings:
-        if f.engine == "drake" and f.kind is Kind.LOAD and f.summary.startswith("Drake not used"):
+        if f.engine == "drake" and f.kind is Kind.ENGINE_NOT_USED:
             return f.summary
     return ""
 

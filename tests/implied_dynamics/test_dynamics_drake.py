@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 import koenig_check
+from koenig_check.findings import Kind
 from koenig_check.implied_dynamics.analysis import ENGINE_PARITY
 from koenig_check.implied_dynamics.markdown import terminal_lines
 
@@ -30,4 +31,6 @@ def test_exact_agrees_with_drake_by_every_route(model: str) -> None:
 def test_drake_not_run_where_the_engines_agree_by_default() -> None:
     dyn = koenig_check.dynamics("gimbal.xml", n_poses=2, formulas=["exact"])
     assert "drake" not in dyn.engine_mass
-    assert any("Drake not used: not needed" in n for n in dyn.notes)
+    assert any(
+        f.kind is Kind.ENGINE_NOT_USED and f.summary.startswith("Drake not used: not needed") for f in dyn.findings
+    )

@@ -24,7 +24,7 @@ import numpy as np
 from koenig_check.engines import ModelPair, load_model
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.state_map import mujoco_coordinate_names
-from koenig_check.findings import KoenigCheckError
+from koenig_check.findings import Finding, KoenigCheckError
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
 from koenig_check.implied_dynamics.drake_column import add_drake_column
 from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix
@@ -81,7 +81,9 @@ class DynamicsResult:
     m_rtol, q_rtol : float
         Tolerances of the verdict on ``exact``.
     notes : list of str
-        The model's load notes.
+        The model's load notes, for people.
+    findings : list of Finding
+        The same as typed records (and Drake's, when it was consulted).
     """
 
     model: str
@@ -97,6 +99,7 @@ class DynamicsResult:
     m_rtol: float = M_RTOL
     q_rtol: float = Q_RTOL
     notes: list[str] = field(default_factory=list)
+    findings: list[Finding] = field(default_factory=list)
 
     @property
     def formulas(self) -> list[str]:
@@ -190,6 +193,7 @@ def dynamics_of_pair(
         m_rtol=m_rtol,
         q_rtol=q_rtol,
         notes=list(pair.notes),
+        findings=list(pair.findings),
     )
     engines = dict(zip(ENGINES, pair.engines, strict=True))
     for name, eng in engines.items():

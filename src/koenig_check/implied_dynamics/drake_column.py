@@ -60,6 +60,7 @@ def add_drake_column(result: Any, pair: Any, engines: Sequence[str] | None, pari
         for e in result.errors
     )
     drake = consult_drake(pair, engines, disagree)
+    result.findings += drake.findings
     result.notes += [f.message() for f in drake.findings]
     if not drake.used:
         return

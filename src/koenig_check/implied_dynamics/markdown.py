@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from koenig_check.findings import Kind
 from koenig_check.implied_dynamics.analysis import ENGINE_PARITY, ENGINES, DynamicsResult
 from koenig_check.implied_dynamics.errors import Discrepancy
 from koenig_check.implied_dynamics.lagrange import CONFIGURATION_STEP, TIME_STEP_SCALE
@@ -68,7 +69,7 @@ def terminal_lines(result: DynamicsResult) -> list[str]:
             f"{'engines (mujoco vs drake)':30s} {_cell(result, ENGINE_PARITY, 'M', 'drake'):>15s} {'':>15s} "
             f"{_cell(result, ENGINE_PARITY, 'Q*', 'drake'):>15s}"
         )
-    lines += [n for n in result.notes if n.startswith("drake: model: Drake not used")]
+    lines += [f.message() for f in result.findings if f.kind is Kind.ENGINE_NOT_USED]
     return lines
 
 
