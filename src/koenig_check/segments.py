@@ -131,6 +131,28 @@ class SegmentStates:
                 where = f" at pose {idx[0]}" if R.ndim == 4 else ""
                 raise ValueError(f"SegmentStates.{name}: segment {self.names[seg]!r}{where} is not a proper rotation")
 
+    @classmethod
+    def trusted(cls, **values: object) -> SegmentStates:
+        """Build from arrays an engine adapter has just computed, without re-validating them.
+
+        For internal paths only (the engines' sweeps), where the shapes are correct by
+        construction and the physics was checked when the model was loaded.
+
+        Parameters
+        ----------
+        **values
+            Every field of the dataclass.
+
+        Returns
+        -------
+        SegmentStates
+        """
+        obj = object.__new__(cls)
+        for f in fields(cls):
+            value = values[f.name]
+            object.__setattr__(obj, f.name, tuple(value) if f.name == "names" else value)  # type: ignore[arg-type]
+        return obj
+
     # ------------------------------------------------------------------ shape
     @property
     def n_poses(self) -> int:

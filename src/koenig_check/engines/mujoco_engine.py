@@ -150,19 +150,35 @@ class MujocoEngine:
         self._inertia = symmetrize(inertia[keep])
         self._ref = self._sweep(m.qpos0[None], np.zeros((1, m.nv)))
 
-    def _sweep(self, qpos: np.ndarray, qvel: np.ndarray) -> dict[str, np.ndarray]:
-        """Run the engine pose by pose, copy its body arrays whole, then pick the segments (vectorized)."""
+    def _sweep(self, qpos: np.ndarray, qvel: np.ndarray, energies: bool = False) -> dict[str, np.ndarray]:
+        """Run the engine once per pose, copy its body arrays whole into preallocated arrays.
+
+        With ``energies``, the same pass also evaluates ``mj_makeM`` + ``mj_energyVel`` on the
+        armature-free copy of the model (``rigid``) and on the model itself (``reported``), the
+        quantities of :meth:`kinetic_energy`, without running the kinematics again.
+        """
         m, d = self.model, self._data
         P, nb = qpos.shape[0], m.nbody
         xpos, xmat = np.empty((P, nb, 3)), np.empty((P, nb, 9))
         cvel, sub = np.empty((P, nb, 6)), np.empty((P, nb, 3))
+        rigid, reported = np.empty(P), np.empty(P)
+        m_rigid, m_energy = self._m_rigid, self._m_energy
+        kinematics, com_pos, com_vel = mujoco.mj_kinematics, mujoco.mj_comPos, mujoco.mj_comVel
+        make_m, energy_vel = mujoco.mj_makeM, mujoco.mj_energyVel
         for p in range(P):
             d.qpos[:] = qpos[p]
             d.qvel[:] = qvel[p]
-            mujoco.mj_kinematics(m, d)
-            mujoco.mj_comPos(m, d)
-            mujoco.mj_comVel(m, d)
+            kinematics(m, d)
+            com_pos(m, d)
+            com_vel(m, d)
             xpos[p], xmat[p], cvel[p], sub[p] = d.xpos, d.xmat, d.cvel, d.subtree_com
+            if energies:
+                make_m(m_rigid, d)
+                energy_vel(m_rigid, d)
+                rigid[p] = d.energy[1]
+                make_m(m_energy, d)
+                energy_vel(m_energy, d)
+                reported[p] = d.energy[1]
         idx = self._seg_body
         out = {
             "xpos": xpos[:, idx],
@@ -171,7 +187,65 @@ class MujocoEngine:
             "ref": sub[:, self._seg_root],
         }
         out["anchor"] = out["xpos"] + np.einsum("pbij,bj->pbi", out["xmat"], self._anchor_local)
+        if energies:
+            out["rigid"], out["reported"] = rigid, reported
         return out
+
+    def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
+        R = s["xmat"]
+        com = s["xpos"] + np.einsum("pbij,bj->pbi", R, self._com_local)
+        omega, v_ref = s["cvel"][..., :3], s["cvel"][..., 3:]
+        ref = self._ref
+        return (SegmentStates.trusted if trusted else SegmentStates)(
+            names=self.segment_names,
+            mass=self._mass,
+            inertia_body=self._inertia,
+            com=com,
+            v_com=v_ref + np.cross(omega, com - s["ref"]),
+            rotation=R,
+            omega=omega,
+            pole=s["anchor"],
+            v_pole=v_ref + np.cross(omega, s["anchor"] - s["ref"]),
+            rotation_ref=ref["xmat"][0],
+            com_ref=ref["xpos"][0] + np.einsum("bij,bj->bi", ref["xmat"][0], self._com_local),
+            pole_ref=ref["anchor"][0],
+        )
+
+    def _points(self, s: dict[str, np.ndarray], points: np.ndarray) -> np.ndarray:
+        local = self._com_local[:, None, :] + points
+        world = s["xpos"][:, :, None, :] + np.einsum("pbij,bkj->pbki", s["xmat"], local)
+        omega, v_ref = s["cvel"][:, :, None, :3], s["cvel"][:, :, None, 3:]
+        return v_ref + np.cross(omega, world - s["ref"][:, :, None, :])
+
+    def sweep(
+        self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray | None = None
+    ) -> tuple[SegmentStates, np.ndarray | None, EnergyParts]:
+        """Segment states, point velocities and energies from one pass of the engine per pose.
+
+        The internal path of the comparison grid: the states are not validated again (the
+        model was checked at load), and every quantity is read once per pose.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+        points : ndarray, shape (B, K, 3), optional
+            Offsets from each segment's COM, in the segment's axes.
+
+        Returns
+        -------
+        states : SegmentStates
+        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
+        energy : EnergyParts
+            The same quantities as :meth:`kinetic_energy`.
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        s = self._sweep(qpos, qvel, energies=True)
+        pv = None if points is None else self._points(s, check_points(points, len(self.segment_names)))
+        energy = EnergyParts(
+            rigid=s["rigid"], armature=0.5 * (qvel**2) @ self.model.dof_armature, reported=s["reported"]
+        )
+        return self._states(s, trusted=True), pv, energy
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return MuJoCo's segment states for a batch of canonical states.
@@ -186,25 +260,7 @@ class MujocoEngine:
         SegmentStates
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
-        s = self._sweep(qpos, qvel)
-        R = s["xmat"]
-        com = s["xpos"] + np.einsum("pbij,bj->pbi", R, self._com_local)
-        omega, v_ref = s["cvel"][..., :3], s["cvel"][..., 3:]
-        ref = self._ref
-        return SegmentStates(
-            names=self.segment_names,
-            mass=self._mass,
-            inertia_body=self._inertia,
-            com=com,
-            v_com=v_ref + np.cross(omega, com - s["ref"]),
-            rotation=R,
-            omega=omega,
-            pole=s["anchor"],
-            v_pole=v_ref + np.cross(omega, s["anchor"] - s["ref"]),
-            rotation_ref=ref["xmat"][0],
-            com_ref=ref["xpos"][0] + np.einsum("bij,bj->bi", ref["xmat"][0], self._com_local),
-            pole_ref=ref["anchor"][0],
-        )
+        return self._states(self._sweep(qpos, qvel))
 
     def point_velocities(
         self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray, method: str = "spatial"
@@ -227,14 +283,11 @@ class MujocoEngine:
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         pts = check_points(points, len(self.segment_names))
-        local = self._com_local[:, None, :] + pts
         if method == "spatial":
-            s = self._sweep(qpos, qvel)
-            world = s["xpos"][:, :, None, :] + np.einsum("pbij,bkj->pbki", s["xmat"], local)
-            omega, v_ref = s["cvel"][:, :, None, :3], s["cvel"][:, :, None, 3:]
-            return v_ref + np.cross(omega, world - s["ref"][:, :, None, :])
+            return self._points(self._sweep(qpos, qvel), pts)
         if method != "jacobian":
             raise ValueError(f"method must be 'spatial' or 'jacobian', got {method!r}")
+        local = self._com_local[:, None, :] + pts
         m, d = self.model, self._data
         P, (B, K, _) = qpos.shape[0], pts.shape
         out = np.empty((P, B, K, 3))
