@@ -15,6 +15,7 @@ from typing import Literal
 import numpy as np
 
 from koenig_check.formulas.angles import Convention, paper_angles
+from koenig_check.formulas.cache import memo
 from koenig_check.formulas.exact import translational
 from koenig_check.segments import SegmentStates, second_moments
 
@@ -124,7 +125,7 @@ def alyushin_current(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B)
     """
-    axial, centrifugal = _moments(states.inertia_world())
+    axial, centrifugal = memo(states, "moments_world", lambda: _moments(states.inertia_world()))
     return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
 
 
@@ -152,7 +153,7 @@ def alyushin_paper(
     dtheta = paper_angles(states, convention, angles)
     I_ref = states.inertia_world_ref()
     axial = np.broadcast_to(np.diagonal(I_ref, axis1=-2, axis2=-1), states.omega.shape)
-    centrifugal = centrifugal_update_33(second_moments(I_ref), dtheta)
+    centrifugal = centrifugal_update_33(memo(states, "second_moments_ref", lambda: second_moments(I_ref)), dtheta)
     return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
 
 
@@ -184,15 +185,25 @@ def alyushin_pole(
     -------
     ndarray, shape (P, B)
     """
-    trans = 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_pole, states.v_pole)
+    trans = memo(
+        states,
+        "translational_pole",
+        lambda: 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_pole, states.v_pole),
+    )
     if recipe == "current":
         I_P = shift_inertia(states.mass, states.inertia_world(), states.com - states.pole)
         axial, centrifugal = _moments(I_P)
     elif recipe == "paper":
         dtheta = paper_angles(states, convention, angles)
-        I_P_ref = shift_inertia(states.mass, states.inertia_world_ref(), states.com_ref - states.pole_ref)
+        I_P_ref = memo(
+            states,
+            "pole_inertia_ref",
+            lambda: shift_inertia(states.mass, states.inertia_world_ref(), states.com_ref - states.pole_ref),
+        )
         axial = np.broadcast_to(np.diagonal(I_P_ref, axis1=-2, axis2=-1), states.omega.shape)
-        centrifugal = centrifugal_update_33(second_moments(I_P_ref), dtheta)
+        centrifugal = centrifugal_update_33(
+            memo(states, "pole_second_moments_ref", lambda: second_moments(I_P_ref)), dtheta
+        )
     else:
         raise ValueError(f"unknown recipe {recipe!r}; choose one of {RECIPES}")
     return trans + rotational_energy_30(states.omega, axial, centrifugal)

@@ -18,15 +18,17 @@ from __future__ import annotations
 from typing import Literal
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
+from koenig_check.formulas.cache import SharedStates, memo
 from koenig_check.segments import SegmentStates
+
+States = SegmentStates | SharedStates
 
 Convention = Literal["rotvec", "euler_xyz", "integrated"]
 CONVENTIONS: tuple[str, ...] = ("rotvec", "euler_xyz", "integrated")
 
 
-def delta_rotation(states: SegmentStates) -> np.ndarray:
+def delta_rotation(states: States) -> np.ndarray:
     """Return the rotation from the reference to the current pose, ``ΔR = R R_ref^T``.
 
     Parameters
@@ -37,14 +39,99 @@ def delta_rotation(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3, 3)
     """
-    return states.rotation @ np.swapaxes(states.rotation_ref, -1, -2)[None]
+    return memo(
+        states, "delta_rotation", lambda: states.rotation @ np.swapaxes(states.rotation_ref, -1, -2)[None]
+    )
 
 
-def _as_rotation(matrices: np.ndarray) -> Rotation:
-    return Rotation.from_matrix(matrices.reshape(-1, 3, 3))
+def quaternion_of(R: np.ndarray) -> np.ndarray:
+    """Unit quaternions ``(x, y, z, w)`` with ``w >= 0`` of rotation matrices (Shepperd's method).
+
+    For each matrix the largest of ``1 + tr R`` and ``1 + 2 R_kk − tr R`` selects a numerically
+    stable formula, as in ``scipy.spatial.transform.Rotation.from_matrix`` (same numbers to rounding).
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+    """
+    R = np.asarray(R, dtype=float)
+    flat = R.reshape(-1, 3, 3)
+    d = np.stack([flat[:, 0, 0], flat[:, 1, 1], flat[:, 2, 2]], axis=-1)
+    tr = d.sum(axis=-1)
+    choice = np.argmax(np.concatenate([d, tr[:, None]], axis=-1), axis=-1)
+    q = np.empty((flat.shape[0], 4))
+    for i in range(3):  # the i-th diagonal entry is the largest
+        rows = choice == i
+        if not rows.any():
+            continue
+        j, k = (i + 1) % 3, (i + 2) % 3
+        m = flat[rows]
+        q[rows, i] = 1.0 - tr[rows] + 2.0 * m[:, i, i]
+        q[rows, j] = m[:, j, i] + m[:, i, j]
+        q[rows, k] = m[:, k, i] + m[:, i, k]
+        q[rows, 3] = m[:, k, j] - m[:, j, k]
+    rows = choice == 3  # the trace is the largest
+    if rows.any():
+        m = flat[rows]
+        q[rows, 0] = m[:, 2, 1] - m[:, 1, 2]
+        q[rows, 1] = m[:, 0, 2] - m[:, 2, 0]
+        q[rows, 2] = m[:, 1, 0] - m[:, 0, 1]
+        q[rows, 3] = 1.0 + tr[rows]
+    q /= np.linalg.norm(q, axis=-1, keepdims=True)
+    q *= np.where(q[:, 3:] < 0, -1.0, 1.0)
+    return q.reshape(*R.shape[:-2], 4)
 
 
-def rotvec_angles(states: SegmentStates) -> np.ndarray:
+def rotvec_of(R: np.ndarray) -> np.ndarray:
+    """Rotation vectors of rotation matrices (angle in [0, π] times the unit axis).
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    q = quaternion_of(R)
+    v, w = q[..., :3], q[..., 3]
+    angle = 2.0 * np.arctan2(np.linalg.norm(v, axis=-1), w)
+    small = angle <= 1e-3
+    a2 = angle**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        scale = np.where(small, 2.0 + a2 / 12.0 + 7.0 * a2**2 / 2880.0, angle / np.sin(angle / 2.0))
+    return scale[..., None] * v
+
+
+def euler_xyz_of(R: np.ndarray) -> np.ndarray:
+    """Extrinsic x-y-z angles ``(a, b, c)`` with ``R = R_z(c) R_y(b) R_x(a)``, ``b`` in [−π/2, π/2].
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        At gimbal lock (``|b| = π/2``) the split between ``a`` and ``c`` is not unique; ``c`` is
+        set to 0 there.
+    """
+    R = np.asarray(R, dtype=float)
+    b = np.arctan2(-R[..., 2, 0], np.hypot(R[..., 0, 0], R[..., 1, 0]))
+    a = np.arctan2(R[..., 2, 1], R[..., 2, 2])
+    c = np.arctan2(R[..., 1, 0], R[..., 0, 0])
+    lock = np.hypot(R[..., 0, 0], R[..., 1, 0]) < 1e-12
+    if np.any(lock):  # only a - c (b > 0) or a + c (b < 0) is defined: keep c = 0
+        a = np.where(lock, np.arctan2(-R[..., 1, 2], R[..., 1, 1]), a)
+        c = np.where(lock, 0.0, c)
+    return np.stack([a, b, c], axis=-1)
+
+
+def rotvec_angles(states: States) -> np.ndarray:
     """Δθ as the world-axis components of the rotation vector of ``R R_ref^T``.
 
     Parameters
@@ -55,11 +142,10 @@ def rotvec_angles(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3)
     """
-    dR = delta_rotation(states)
-    return _as_rotation(dR).as_rotvec().reshape(dR.shape[:-1])
+    return memo(states, "rotvec_angles", lambda: rotvec_of(delta_rotation(states)))
 
 
-def euler_xyz_angles(states: SegmentStates) -> np.ndarray:
+def euler_xyz_angles(states: States) -> np.ndarray:
     """Δθ as extrinsic x-y-z Euler angles of ``R R_ref^T``.
 
     Parameters
@@ -71,8 +157,7 @@ def euler_xyz_angles(states: SegmentStates) -> np.ndarray:
     ndarray, shape (P, B, 3)
         ``(a, b, c)`` with ``ΔR = R_z(c) R_y(b) R_x(a)``.
     """
-    dR = delta_rotation(states)
-    return _as_rotation(dR).as_euler("xyz").reshape(dR.shape[:-1])
+    return memo(states, "euler_xyz_angles", lambda: euler_xyz_of(delta_rotation(states)))
 
 
 def integrate_angular_velocity(omega: np.ndarray, times: np.ndarray) -> np.ndarray:
@@ -101,7 +186,7 @@ def integrate_angular_velocity(omega: np.ndarray, times: np.ndarray) -> np.ndarr
     return np.concatenate([np.zeros_like(omega[:1]), np.cumsum(steps, axis=0)], axis=0)
 
 
-def paper_angles(states: SegmentStates, convention: Convention, angles: np.ndarray | None = None) -> np.ndarray:
+def paper_angles(states: States, convention: Convention, angles: np.ndarray | None = None) -> np.ndarray:
     """Return Δθ (P, B, 3) for a convention, validating a caller-supplied path integral.
 
     Parameters
