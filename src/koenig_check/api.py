@@ -6,11 +6,14 @@ import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from koenig_check import grid, poses
+from koenig_check import grid, pipeline, poses
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import RecordTable
+
+if TYPE_CHECKING:
+    from koenig_check.report import RecordSink
 
 POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
 
@@ -138,6 +141,13 @@ def compare_model(
     pose_file: str | Path | None = None,
     pinocchio_model: str | Path | None = None,
     label: str | None = None,
+    rtol: float = DEFAULT_RTOL,
+    records: str = "totals",
+    jobs: int = 1,
+    client: Any = None,
+    sink: RecordSink | None = None,
+    keep_records: bool | None = None,
+    chunk_poses: int | None = None,
 ) -> ModelComparison:
     """Load one model into both engines and run the comparison grid on it.
 
@@ -161,6 +171,20 @@ def compare_model(
     pinocchio_model : str or Path, optional
         A different file of the same robot for Pinocchio (e.g. the URDF twin of an MJCF).
     label : str, optional
+    rtol : float
+        Tolerance of the over/under counts in the summaries.
+    records : {"totals", "segments", "none"}
+        Which records to keep: totals per pose, also per segment, or none (summaries only).
+    jobs : int
+        Run the pose chunks in this many local processes (same results as one process).
+    client : dask.distributed.Client, optional
+        Run the pose chunks on a Dask cluster (extra ``[cluster]``).
+    sink : RecordSink, optional
+        Receives the records chunk by chunk as they are computed (e.g. a Parquet file).
+    keep_records : bool, optional
+        Keep the records in memory too (default: only without a sink).
+    chunk_poses : int, optional
+        Poses per chunk (default: about 32,768 segment-poses per chunk).
 
     Returns
     -------
@@ -181,25 +205,66 @@ def compare_model(
         allow_coupled=allow_coupled,
         pinocchio_source=pinocchio_model,
     )
+    source = pipeline.ModelSource.of(
+        model,
+        floating=floating,
+        balance_inertia=balance_inertia,
+        allow_coupled=allow_coupled,
+        pinocchio_source=pinocchio_model,
+    )
+    pipeline.remember(source, pair)
     if pose_file is not None:
         from koenig_check.pose_file import load_pose_file
 
         pose_set = load_pose_file(pose_file, pair.mujoco.model)
-    ps = pose_set or make_poses(
-        pair.mujoco.model,
-        pose_kind,
-        n_poses=n_poses,
-        seed=seed,
-        velocity_scale=velocity_scale,
-        grid_joints=grid_joints,
-        duration=duration,
+    random = None
+    if pose_set is None and pose_kind == "random":
+        poses.check_random(n_poses, seed, velocity_scale)
+        random = pipeline.RandomRange(0, n_poses, seed, velocity_scale)
+    elif pose_set is None:
+        pose_set = make_poses(
+            pair.mujoco.model,
+            pose_kind,
+            n_poses=n_poses,
+            seed=seed,
+            velocity_scale=velocity_scale,
+            grid_joints=grid_joints,
+            duration=duration,
+        )
+    label = label or _label(model, floating)
+    names, skipped = grid.formula_names(formulas, pose_set is not None and pose_set.times is not None)
+    tasks = pipeline.plan(
+        source,
+        label,
+        names,
+        records,
+        rtol,
+        len(pair.mujoco.segment_names),
+        poses=pose_set,
+        random=random,
+        size=chunk_poses,
     )
-    try:
-        runs = {"mujoco": grid.run_engine(pair.mujoco, ps), "pinocchio": grid.run_engine(pair.pinocchio, ps)}
-    except ValueError as err:  # an engine produced an invalid state: name the file
-        raise ValueError(f"{pair.path}: {one_line(err)}") from err
-    comp = grid.compare_runs(label or _label(model, floating), ps, runs, formulas)
-    comp.notes = list(pair.notes) + list(ps.notes) + comp.notes
+    keep = sink is None if keep_records is None else keep_records
+    stats, kept = None, []
+    for result in pipeline.run_tasks(tasks, jobs=jobs, client=client):
+        if stats is None:
+            stats = result.stats
+        else:
+            stats.merge(result.stats)
+        if result.records is not None:
+            if sink is not None:
+                sink.write(result.records)
+            if keep:
+                kept.append(result.records)
+    comp = grid.finish_comparison(
+        label,
+        pose_set,
+        stats,
+        RecordTable.concat(RecordTable(t) for t in kept),
+        list(pair.notes) + list(pose_set.notes if pose_set is not None else ()) + skipped,
+        grid.ENGINES,
+        pose_kind=pose_set.kind if pose_set is not None else "random",
+    )
     comp.import_summary = import_parity(pair).headline()
     return comp
 
@@ -227,7 +292,7 @@ def compare(
     **options
         Passed to :func:`compare_model` (``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
         ``floating``, ``balance_inertia``, ``allow_coupled``, ``velocity_scale``, ``grid_joints``, ``duration``,
-        ``pose_set``, ``pose_file``).
+        ``pose_set``, ``pose_file``, ``records``, ``jobs``, ``client``, ``sink``, ``chunk_poses``).
 
     Returns
     -------
@@ -241,7 +306,7 @@ def compare(
         if progress:
             progress(label)
         try:
-            comp = compare_model(model, label=label, **options)
+            comp = compare_model(model, label=label, rtol=rtol, **options)
         except Exception as err:  # recorded with its reason; the batch goes on
             if debug:
                 raise

@@ -74,6 +74,4 @@ def test_numpy_euler_angles_match_scipy(rng: np.random.Generator) -> None:
     a, c = 0.4, 0.0  # gimbal lock: b = ±π/2, c set to 0, a carries the rest
     for b in (np.pi / 2, -np.pi / 2):
         lock = Rotation.from_euler("xyz", [a, b, c]).as_matrix()
-        np.testing.assert_allclose(
-            Rotation.from_euler("xyz", euler_xyz_of(lock)).as_matrix(), lock, atol=1e-12
-        )
+        np.testing.assert_allclose(Rotation.from_euler("xyz", euler_xyz_of(lock)).as_matrix(), lock, atol=1e-12)

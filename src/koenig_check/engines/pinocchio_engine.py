@@ -116,9 +116,10 @@ class PinocchioEngine:
         reported = np.empty(P) if energies else None
         jacobians, kinetic = pin.computeJointJacobians, pin.computeKineticEnergy
         m_rigid, d_rigid = self._m_rigid, self._d_rigid
+        Jp = J if m.nv > 1 else J[..., 0]  # the bindings hand a 6 x 1 Jacobian out as a vector
         for p in range(P):
             jacobians(m, d, q[p])
-            J[p] = d.J
+            Jp[p] = d.J
             H[p] = [M.homogeneous for M in d.oMi.tolist()]
             if energies:
                 reported[p] = kinetic(m, d, q[p], v[p])

@@ -39,9 +39,7 @@ def delta_rotation(states: States) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3, 3)
     """
-    return memo(
-        states, "delta_rotation", lambda: states.rotation @ np.swapaxes(states.rotation_ref, -1, -2)[None]
-    )
+    return memo(states, "delta_rotation", lambda: states.rotation @ np.swapaxes(states.rotation_ref, -1, -2)[None])
 
 
 def quaternion_of(R: np.ndarray) -> np.ndarray:

@@ -1,0 +1,294 @@
+"""The pipeline at scale: a model's poses cut into chunks, each chunk a pure function, run anywhere.
+
+A :class:`ChunkTask` names everything a chunk needs — the model source and its load options, the
+formulas, the record mode, the tolerance and the pose range (seeded random poses ``start`` to
+``stop``, or the poses themselves) — and :func:`run_chunk` turns it into a
+:class:`~koenig_check.grid.ChunkResult`: mergeable statistics and, when asked, records.  The same
+tasks run in this process, in local processes (``jobs``) or on a Dask cluster (``client``); the
+results are merged in pose order, so every way gives the same summaries and records.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import Executor, ProcessPoolExecutor
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from koenig_check.grid import ChunkResult, EngineRun, evaluate_chunk, run_engine
+from koenig_check.poses import PoseSet, random_pose_range
+
+#: Segment-poses per chunk (poses × segments): memory per chunk stays near constant across models.
+CHUNK_SEGMENT_POSES = 32_768
+#: Bounds on the poses of a chunk.
+CHUNK_MIN, CHUNK_MAX = 256, 4096
+
+
+def chunk_size(n_segments: int) -> int:
+    """The default number of poses per chunk for a model with ``n_segments`` segments.
+
+    Parameters
+    ----------
+    n_segments : int
+
+    Returns
+    -------
+    int
+    """
+    return int(np.clip(CHUNK_SEGMENT_POSES // max(n_segments, 1), CHUNK_MIN, CHUNK_MAX))
+
+
+@dataclass(frozen=True)
+class ModelSource:
+    """A model file or name and the options of :func:`koenig_check.engines.load_model`.
+
+    Attributes
+    ----------
+    model : str
+    options : tuple of (str, object)
+        Keyword arguments of ``load_model``, sorted (hashable: a process loads each source once).
+    """
+
+    model: str
+    options: tuple[tuple[str, Any], ...] = ()
+
+    @classmethod
+    def of(cls, model: Any, **options: Any) -> ModelSource:
+        """Build from a model and keyword options (``None`` values dropped).
+
+        Parameters
+        ----------
+        model : str or path
+        **options
+            ``floating``, ``balance_inertia``, ``allow_coupled``, ``pinocchio_source``.
+
+        Returns
+        -------
+        ModelSource
+        """
+        opts = tuple(sorted((k, str(v) if k == "pinocchio_source" else v) for k, v in options.items() if v is not None))
+        return cls(str(model), opts)
+
+
+@dataclass(frozen=True)
+class RandomRange:
+    """Poses ``start`` to ``stop − 1`` of the seeded random sequence (see :func:`random_pose_range`)."""
+
+    start: int
+    stop: int
+    seed: int
+    velocity_scale: float
+
+
+@dataclass(frozen=True)
+class ChunkTask:
+    """Everything one chunk needs; :func:`run_chunk` of it is a pure function.
+
+    Attributes
+    ----------
+    source : ModelSource
+    label : str
+        Model label written in the records.
+    formulas : tuple of str
+        Formulas to evaluate (already resolved, see :func:`koenig_check.grid.formula_names`).
+    records : {"segments", "totals", "none"}
+    rtol : float
+    index : int
+        Position of the chunk in the model's poses.
+    poses : RandomRange or PoseSet
+    """
+
+    source: ModelSource
+    label: str
+    formulas: tuple[str, ...]
+    records: str
+    rtol: float
+    index: int
+    poses: RandomRange | PoseSet
+
+
+_PAIRS: dict[ModelSource, Any] = {}
+
+
+def remember(source: ModelSource, pair: Any) -> None:
+    """Let this process's chunks reuse a model already loaded.
+
+    Parameters
+    ----------
+    source : ModelSource
+    pair : koenig_check.engines.ModelPair
+    """
+    _PAIRS.clear()  # one model at a time: memory stays bounded over many models
+    _PAIRS[source] = pair
+
+
+def loaded(source: ModelSource) -> Any:
+    """The model pair of a source, loaded once per process.
+
+    Parameters
+    ----------
+    source : ModelSource
+
+    Returns
+    -------
+    koenig_check.engines.ModelPair
+    """
+    pair = _PAIRS.get(source)
+    if pair is None:
+        from koenig_check.engines import load_model
+
+        pair = load_model(source.model, **dict(source.options))
+        remember(source, pair)
+    return pair
+
+
+def _check_finite(path: Any, runs: dict[str, EngineRun], poses: PoseSet) -> None:
+    for name, run in runs.items():
+        s = run.states
+        for field_name in ("com", "v_com", "rotation", "omega", "pole", "v_pole"):
+            arr = getattr(s, field_name)
+            if not np.isfinite(arr).all():
+                p, b = np.argwhere(~np.isfinite(arr))[0][:2]
+                raise ValueError(
+                    f"{path}: {name} gives a non-finite {field_name} for segment {s.names[b]!r} at pose {poses.ids[p]}"
+                )
+        for what in ("rigid", "armature"):
+            arr = getattr(run, what)
+            if not np.isfinite(arr).all():
+                p = int(np.flatnonzero(~np.isfinite(arr))[0])
+                raise ValueError(f"{path}: {name} gives a non-finite {what} energy at pose {poses.ids[p]}")
+
+
+def run_chunk(task: ChunkTask) -> ChunkResult:
+    """Evaluate one chunk: both engines' states and energies, every formula, statistics and records.
+
+    Parameters
+    ----------
+    task : ChunkTask
+
+    Returns
+    -------
+    ChunkResult
+    """
+    pair = loaded(task.source)
+    poses = task.poses
+    if isinstance(poses, RandomRange):
+        poses = random_pose_range(pair.mujoco.model, poses.start, poses.stop, poses.seed, poses.velocity_scale)
+    try:
+        runs = {"mujoco": run_engine(pair.mujoco, poses), "pinocchio": run_engine(pair.pinocchio, poses)}
+    except ValueError as err:  # an engine produced an invalid state: name the file
+        raise ValueError(f"{pair.path}: {' '.join(str(err).split())}") from err
+    _check_finite(pair.path, runs, poses)
+    return evaluate_chunk(task.label, poses, runs, task.formulas, task.records, task.rtol, task.index)
+
+
+def plan(
+    source: ModelSource,
+    label: str,
+    formulas: Iterable[str],
+    records: str,
+    rtol: float,
+    n_segments: int,
+    poses: PoseSet | None = None,
+    random: RandomRange | None = None,
+    size: int | None = None,
+) -> list[ChunkTask]:
+    """Cut a model's poses into chunk tasks.
+
+    Parameters
+    ----------
+    source : ModelSource
+    label : str
+    formulas : iterable of str
+    records : {"segments", "totals", "none"}
+    rtol : float
+    n_segments : int
+        Sets the default chunk size (:func:`chunk_size`).
+    poses : PoseSet, optional
+        Poses held in memory, sliced into chunks; a path (``times``) stays one chunk, because
+        the ``integrated`` angles integrate along all of it.
+    random : RandomRange, optional
+        Otherwise: the range of seeded random poses.
+    size : int, optional
+        Poses per chunk.
+
+    Returns
+    -------
+    list of ChunkTask
+    """
+    size = size or chunk_size(n_segments)
+    if size < 1:
+        raise ValueError(f"chunk size must be >= 1, got {size}")
+    formulas = tuple(formulas)
+
+    def task(index: int, chunk: RandomRange | PoseSet) -> ChunkTask:
+        return ChunkTask(source, label, formulas, records, rtol, index, chunk)
+
+    if poses is not None:
+        if poses.times is not None or poses.n_poses <= size:
+            return [task(0, poses)]
+        return [
+            task(k, _slice(poses, start, min(start + size, poses.n_poses)))
+            for k, start in enumerate(range(0, poses.n_poses, size))
+        ]
+    if random is None:
+        raise ValueError("plan needs poses or a random range")
+    return [
+        task(k, RandomRange(start, min(start + size, random.stop), random.seed, random.velocity_scale))
+        for k, start in enumerate(range(random.start, random.stop, size))
+    ]
+
+
+def _slice(poses: PoseSet, start: int, stop: int) -> PoseSet:
+    return PoseSet(poses.qpos[start:stop], poses.qvel[start:stop], poses.ids[start:stop], poses.kind)
+
+
+def _windowed(submit: Callable[[ChunkTask], Any], result: Callable[[Any], ChunkResult], tasks, window: int):
+    pending: deque = deque()
+    for t in tasks:
+        pending.append(submit(t))
+        if len(pending) >= window:
+            yield result(pending.popleft())
+    while pending:
+        yield result(pending.popleft())
+
+
+def run_tasks(tasks: list[ChunkTask], jobs: int = 1, client: Any = None) -> Iterator[ChunkResult]:
+    """Run chunk tasks and yield their results in task order.
+
+    At most about two chunks per worker are in flight, so memory stays bounded whatever the
+    number of chunks.
+
+    Parameters
+    ----------
+    tasks : list of ChunkTask
+    jobs : int
+        Local processes (1: this process).
+    client : dask.distributed.Client, optional
+        Run the chunks on this Dask cluster instead.
+
+    Yields
+    ------
+    ChunkResult
+    """
+    if client is not None:
+        workers = max(len(client.scheduler_info().get("workers", {})), 1)
+        yield from _windowed(
+            lambda t: client.submit(run_chunk, t, pure=False), lambda f: f.result(), tasks, 2 * workers
+        )
+        return
+    if jobs <= 1 or len(tasks) <= 1:
+        for t in tasks:
+            yield run_chunk(t)
+        return
+    with _pool(jobs) as pool:
+        yield from _windowed(lambda t: pool.submit(run_chunk, t), lambda f: f.result(), tasks, 2 * jobs)
+
+
+def _pool(jobs: int) -> Executor:
+    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+    return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context(method))
