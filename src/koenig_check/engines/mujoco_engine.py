@@ -34,6 +34,7 @@ import numpy as np
 from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import mujoco_joint_names
+from koenig_check.kernels import cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates
 
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
@@ -186,14 +187,14 @@ class MujocoEngine:
             "cvel": cvel[:, idx],
             "ref": sub[:, self._seg_root],
         }
-        out["anchor"] = out["xpos"] + np.einsum("pbij,bj->pbi", out["xmat"], self._anchor_local)
+        out["anchor"] = out["xpos"] + rotate(out["xmat"], self._anchor_local)
         if energies:
             out["rigid"], out["reported"] = rigid, reported
         return out
 
     def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
         R = s["xmat"]
-        com = s["xpos"] + np.einsum("pbij,bj->pbi", R, self._com_local)
+        com = s["xpos"] + rotate(R, self._com_local)
         omega, v_ref = s["cvel"][..., :3], s["cvel"][..., 3:]
         ref = self._ref
         return (SegmentStates.trusted if trusted else SegmentStates)(
@@ -201,11 +202,11 @@ class MujocoEngine:
             mass=self._mass,
             inertia_body=self._inertia,
             com=com,
-            v_com=v_ref + np.cross(omega, com - s["ref"]),
+            v_com=v_ref + cross(omega, com - s["ref"]),
             rotation=R,
             omega=omega,
             pole=s["anchor"],
-            v_pole=v_ref + np.cross(omega, s["anchor"] - s["ref"]),
+            v_pole=v_ref + cross(omega, s["anchor"] - s["ref"]),
             rotation_ref=ref["xmat"][0],
             com_ref=ref["xpos"][0] + np.einsum("bij,bj->bi", ref["xmat"][0], self._com_local),
             pole_ref=ref["anchor"][0],
@@ -213,9 +214,9 @@ class MujocoEngine:
 
     def _points(self, s: dict[str, np.ndarray], points: np.ndarray) -> np.ndarray:
         local = self._com_local[:, None, :] + points
-        world = s["xpos"][:, :, None, :] + np.einsum("pbij,bkj->pbki", s["xmat"], local)
+        world = (s["xpos"] - s["ref"])[:, :, None, :] + rotate_points(s["xmat"], local)
         omega, v_ref = s["cvel"][:, :, None, :3], s["cvel"][:, :, None, 3:]
-        return v_ref + np.cross(omega, world - s["ref"][:, :, None, :])
+        return v_ref + cross(omega, world)
 
     def sweep(
         self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray | None = None

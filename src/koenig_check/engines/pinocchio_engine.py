@@ -26,6 +26,7 @@ import pinocchio as pin
 from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import StateMap
+from koenig_check.kernels import cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates
 
 
@@ -124,24 +125,24 @@ class PinocchioEngine:
             if energies:
                 reported[p] = kinetic(m, d, q[p], v[p])
                 rigid[p] = kinetic(m_rigid, d_rigid, q[p], v[p])
-        twists = np.einsum("pak,pk,kb->pba", J, v, self._support)
+        twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
         return H[:, idx], twists, rigid, reported
 
     def _states(self, H: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
         R, origin = H[..., :3, :3], H[..., :3, 3]
         v_origin, omega = T[..., :3], T[..., 3:]
-        com = origin + np.einsum("pbij,bj->pbi", R, self._lever)
+        com = origin + rotate(R, self._lever)
         R0 = self._ref[..., :3, :3]
         return (SegmentStates.trusted if trusted else SegmentStates)(
             names=self.segment_names,
             mass=self._mass,
             inertia_body=self._inertia,
             com=com,
-            v_com=v_origin + np.cross(omega, com),
+            v_com=v_origin + cross(omega, com),
             rotation=R,
             omega=omega,
             pole=origin,
-            v_pole=v_origin + np.cross(omega, origin),
+            v_pole=v_origin + cross(omega, origin),
             rotation_ref=R0,
             com_ref=self._ref[..., :3, 3] + np.einsum("bij,bj->bi", R0, self._lever),
             pole_ref=self._ref[..., :3, 3],
@@ -175,8 +176,8 @@ class PinocchioEngine:
         pv = None
         if points is not None:
             r = self._lever[:, None, :] + check_points(points, len(self.segment_names))  # (B, K, 3), joint axes
-            world = H[:, :, None, :3, 3] + np.einsum("pbij,bkj->pbki", H[..., :3, :3], r)
-            pv = T[:, :, None, :3] + np.cross(T[:, :, None, 3:], world)
+            world = H[:, :, None, :3, 3] + rotate_points(H[..., :3, :3], r)
+            pv = T[:, :, None, :3] + cross(T[:, :, None, 3:], world)
         energy = EnergyParts(rigid=rigid, armature=0.5 * (v**2) @ np.asarray(self.model.armature), reported=reported)
         return self._states(H, T, trusted=True), pv, energy
 

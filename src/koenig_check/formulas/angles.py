@@ -57,28 +57,21 @@ def quaternion_of(R: np.ndarray) -> np.ndarray:
     ndarray, shape (..., 4)
     """
     R = np.asarray(R, dtype=float)
-    flat = R.reshape(-1, 3, 3)
-    d = np.stack([flat[:, 0, 0], flat[:, 1, 1], flat[:, 2, 2]], axis=-1)
-    tr = d.sum(axis=-1)
-    choice = np.argmax(np.concatenate([d, tr[:, None]], axis=-1), axis=-1)
-    q = np.empty((flat.shape[0], 4))
-    for i in range(3):  # the i-th diagonal entry is the largest
-        rows = choice == i
-        if not rows.any():
-            continue
-        j, k = (i + 1) % 3, (i + 2) % 3
-        m = flat[rows]
-        q[rows, i] = 1.0 - tr[rows] + 2.0 * m[:, i, i]
-        q[rows, j] = m[:, j, i] + m[:, i, j]
-        q[rows, k] = m[:, k, i] + m[:, i, k]
-        q[rows, 3] = m[:, k, j] - m[:, j, k]
-    rows = choice == 3  # the trace is the largest
-    if rows.any():
-        m = flat[rows]
-        q[rows, 0] = m[:, 2, 1] - m[:, 1, 2]
-        q[rows, 1] = m[:, 0, 2] - m[:, 2, 0]
-        q[rows, 2] = m[:, 1, 0] - m[:, 0, 1]
-        q[rows, 3] = 1.0 + tr[rows]
+    r = R.reshape(-1, 9)
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = r.T
+    tr = r00 + r11 + r22
+    # The four candidates (x, y, z, w) of Shepperd's method, computed for every matrix, then one is picked.
+    cand = np.stack(
+        [
+            np.stack([1.0 - tr + 2.0 * r00, r10 + r01, r20 + r02, r21 - r12], axis=-1),
+            np.stack([r01 + r10, 1.0 - tr + 2.0 * r11, r21 + r12, r02 - r20], axis=-1),
+            np.stack([r02 + r20, r12 + r21, 1.0 - tr + 2.0 * r22, r10 - r01], axis=-1),
+            np.stack([r21 - r12, r02 - r20, r10 - r01, 1.0 + tr], axis=-1),
+        ],
+        axis=1,
+    )
+    choice = np.argmax(np.stack([r00, r11, r22, tr], axis=-1), axis=-1)
+    q = cand[np.arange(r.shape[0]), choice]
     q /= np.linalg.norm(q, axis=-1, keepdims=True)
     q *= np.where(q[:, 3:] < 0, -1.0, 1.0)
     return q.reshape(*R.shape[:-2], 4)
@@ -86,6 +79,10 @@ def quaternion_of(R: np.ndarray) -> np.ndarray:
 
 def rotvec_of(R: np.ndarray) -> np.ndarray:
     """Rotation vectors of rotation matrices (angle in [0, π] times the unit axis).
+
+    From the skew part ``(R − Rᵀ)/2 = sin θ [u]×`` and the trace, ``θ = atan2(sin θ, cos θ)``;
+    where ``sin θ`` is small and ``θ`` near π (the skew part loses the axis), from the unit
+    quaternion (:func:`quaternion_of`), as ``scipy``'s ``as_rotvec``.
 
     Parameters
     ----------
@@ -95,14 +92,24 @@ def rotvec_of(R: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (..., 3)
     """
-    q = quaternion_of(R)
-    v, w = q[..., :3], q[..., 3]
-    angle = 2.0 * np.arctan2(np.linalg.norm(v, axis=-1), w)
+    R = np.asarray(R, dtype=float)
+    r = R.reshape(-1, 9)
+    skew = np.stack([r[:, 7] - r[:, 5], r[:, 2] - r[:, 6], r[:, 3] - r[:, 1]], axis=-1)  # 2 sin θ u
+    two_sin = np.linalg.norm(skew, axis=-1)
+    cos = 0.5 * (r[:, 0] + r[:, 4] + r[:, 8] - 1.0)
+    angle = np.arctan2(0.5 * two_sin, cos)
     small = angle <= 1e-3
     a2 = angle**2
     with np.errstate(divide="ignore", invalid="ignore"):
-        scale = np.where(small, 2.0 + a2 / 12.0 + 7.0 * a2**2 / 2880.0, angle / np.sin(angle / 2.0))
-    return scale[..., None] * v
+        scale = np.where(small, 0.5 + a2 / 12.0 + 7.0 * a2**2 / 720.0, angle / two_sin)  # θ / (2 sin θ)
+    out = scale[:, None] * skew
+    hard = (two_sin < 0.2) & (cos < 0)  # θ within ~6° of π
+    if hard.any():
+        q = quaternion_of(r[hard].reshape(-1, 3, 3))
+        v, w = q[:, :3], q[:, 3]
+        half = np.arctan2(np.linalg.norm(v, axis=-1), w)
+        out[hard] = (2.0 * half / np.sin(half))[:, None] * v
+    return out.reshape(*R.shape[:-2], 3)
 
 
 def euler_xyz_of(R: np.ndarray) -> np.ndarray:

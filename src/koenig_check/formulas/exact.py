@@ -58,5 +58,6 @@ def exact(states: SegmentStates) -> np.ndarray:
         Per-segment energy; the total is the sum over the last axis.
     """
     w_body = body_angular_velocity(states)
-    rot = 0.5 * np.einsum("pbi,bij,pbj->pb", w_body, states.inertia_body, w_body)
+    I_w = (states.inertia_body[None] @ w_body[..., None])[..., 0]
+    rot = 0.5 * np.einsum("pbi,pbi->pb", w_body, I_w)
     return translational(states) + rot

@@ -86,5 +86,5 @@ def planar(
             f"planar (eq. 16): segment {states.names[b]!r} at pose {p} is not in plane-parallel motion "
             f"with normal {np.round(n[b], 6).tolist()}: {what}"
         )
-    J_n = np.einsum("bi,pbij,bj->pb", n, states.inertia_world(), n)
+    J_n = np.einsum("pbi,bi->pb", (states.inertia_world() @ n[None, :, :, None])[..., 0], n)
     return translational(states) + 0.5 * w_n**2 * J_n

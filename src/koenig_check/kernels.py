@@ -1,0 +1,55 @@
+"""Small batched vector kernels, faster than their generic numpy forms on (..., 3) arrays.
+
+``numpy.cross`` and ``numpy.einsum`` with a broadcast matrix operand are general but slow on
+millions of 3-vectors; these do the same arithmetic with elementwise operations and ``matmul``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product over the last axis, broadcasting like ``numpy.cross``.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
+def rotate(R: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``R v`` for batches of matrices and vectors: ``einsum("...ij,...j->...i")``.
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+    v : ndarray, shape (..., 3), broadcastable against ``R``'s batch axes
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    return (R @ v[..., None])[..., 0]
+
+
+def rotate_points(R: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """``R r_k`` for K points per matrix: ``einsum("pbij,bkj->pbki")``.
+
+    Parameters
+    ----------
+    R : ndarray, shape (P, B, 3, 3)
+    points : ndarray, shape (B, K, 3)
+
+    Returns
+    -------
+    ndarray, shape (P, B, K, 3)
+    """
+    return np.swapaxes(R @ np.swapaxes(points, -1, -2)[None], -1, -2)
