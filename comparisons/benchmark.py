@@ -17,9 +17,9 @@ after the other, each in a fresh Python process (so that each one's peak memory 
     with ``--jobs J``: (b) in J processes (wall clock).
 
 Each measurement is timed inside its process after the Python imports (loading the model and
-drawing the poses included, as a user pays them).  The ratios b/a and c/a are the result; seconds depend on the shared machine.  Peak
-memory is the process's own ``ru_maxrss``.  The machine is shared: each figure is the best of
-``--repeat`` interleaved repetitions.
+drawing the poses included, as a user pays them).  The ratios b/a and c/a are the result; seconds
+depend on the shared machine.  Peak memory is the process's own ``ru_maxrss``.  The machine is
+shared: each figure is the best of ``--repeat`` interleaved repetitions.
 
 Usage::
 

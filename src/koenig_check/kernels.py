@@ -53,3 +53,29 @@ def rotate_points(R: np.ndarray, points: np.ndarray) -> np.ndarray:
     ndarray, shape (P, B, K, 3)
     """
     return np.swapaxes(R @ np.swapaxes(points, -1, -2)[None], -1, -2)
+
+
+def congruence(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
+    """``R I Rᵀ`` for batches of rotations and symmetric matrices, symmetric by construction.
+
+    One ``matmul`` for ``A = R I``, then the six distinct entries of ``A Rᵀ`` elementwise
+    (``matmul`` of stacked 3 × 3 matrices pays a per-matrix overhead that dominates here).
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+    inertia : ndarray, shape (..., 3, 3), broadcastable against ``R``; symmetric
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+    """
+    A = R @ inertia
+    out = np.empty(A.shape)
+    for i in range(3):
+        for j in range(i, 3):
+            v = A[..., i, 0] * R[..., j, 0] + A[..., i, 1] * R[..., j, 1] + A[..., i, 2] * R[..., j, 2]
+            out[..., i, j] = v
+            if i != j:
+                out[..., j, i] = v
+    return out

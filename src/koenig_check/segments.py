@@ -173,8 +173,9 @@ class SegmentStates:
         ndarray, shape (P, B, 3, 3)
             ``R I_body R^T``.
         """
-        R = self.rotation
-        return R @ self.inertia_body[None] @ np.swapaxes(R, -1, -2)
+        from koenig_check.kernels import congruence
+
+        return congruence(self.rotation, self.inertia_body[None])
 
     def inertia_world_ref(self) -> np.ndarray:
         """Return the central inertia tensor in world axes at the reference configuration.
@@ -184,8 +185,9 @@ class SegmentStates:
         ndarray, shape (B, 3, 3)
             ``R_ref I_body R_ref^T``.
         """
-        R = self.rotation_ref
-        return R @ self.inertia_body @ np.swapaxes(R, -1, -2)
+        from koenig_check.kernels import congruence
+
+        return congruence(self.rotation_ref, self.inertia_body)
 
     def select(self, poses: np.ndarray | slice | None = None, segments: list[str] | None = None) -> SegmentStates:
         """Return a subset of poses and/or segments.

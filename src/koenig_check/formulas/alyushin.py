@@ -43,7 +43,8 @@ def rotational_energy_30(omega: np.ndarray, axial: np.ndarray, centrifugal: np.n
     """
     wx, wy, wz = omega[..., 0], omega[..., 1], omega[..., 2]
     i_yz, i_zx, i_xy = centrifugal[..., 0], centrifugal[..., 1], centrifugal[..., 2]
-    return 0.5 * np.einsum("...i,...i->...", omega**2, axial) - wy * wz * i_yz - wx * wz * i_zx - wy * wx * i_xy
+    axial_part = wx * wx * axial[..., 0] + wy * wy * axial[..., 1] + wz * wz * axial[..., 2]
+    return 0.5 * axial_part - wy * wz * i_yz - wx * wz * i_zx - wy * wx * i_xy
 
 
 def centrifugal_of(S: np.ndarray) -> np.ndarray:
