@@ -243,6 +243,7 @@ def compare_model(
         poses=pose_set,
         random=random,
         size=chunk_poses,
+        planar_normals=pipeline.probe_normals(pair, pose_set, random) if "planar" in names else None,
     )
     keep = sink is None if keep_records is None else keep_records
     stats, kept = None, []
@@ -256,11 +257,14 @@ def compare_model(
                 sink.write(result.records)
             if keep:
                 kept.append(result.records)
+    kept_records = RecordTable.concat(RecordTable(t) for t in kept)
+    for formula, source in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks
+        kept_records = kept_records.where(~kept_records.mask(formula=formula, source=source))
     comp = grid.finish_comparison(
         label,
         pose_set,
         stats,
-        RecordTable.concat(RecordTable(t) for t in kept),
+        kept_records,
         list(pair.notes) + list(pose_set.notes if pose_set is not None else ()) + skipped,
         grid.ENGINES,
         pose_kind=pose_set.kind if pose_set is not None else "random",

@@ -155,7 +155,9 @@ def _points_for(engine: Any) -> np.ndarray | None:
     return offsets
 
 
-def _evaluate(name: str, run: EngineRun, states: Any, angles: np.ndarray | None) -> np.ndarray:
+def _evaluate(name: str, run: EngineRun, states: Any, angles: np.ndarray | None, normal=None, ids=None) -> np.ndarray:
+    if name == "planar" and (normal is not None or ids is not None):
+        return FORMULAS[name].func(states, normal=normal, pose_labels=ids)
     if name == "point_masses":
         if run.point_velocities is None:
             return FORMULAS[name].func(run.states)  # raises, naming the non-physical segment
@@ -207,6 +209,7 @@ def evaluate_chunk(
     records: str = "totals",
     rtol: float = DEFAULT_RTOL,
     index: int = 0,
+    planar_normals: dict[str, np.ndarray] | None = None,
 ) -> ChunkResult:
     """Every formula on every engine's states of one chunk: statistics and records, from arrays.
 
@@ -224,6 +227,9 @@ def evaluate_chunk(
     rtol : float
     index : int
         The chunk's position, kept in the result.
+    planar_normals : dict of str to ndarray (B, 3), optional
+        Per state source, the plane normals of eq. (16), fixed for every chunk of a model (by
+        default ``planar`` infers them from the chunk's own states).
 
     Returns
     -------
@@ -249,7 +255,8 @@ def evaluate_chunk(
         B = len(seg_names)
         for f_code, name in enumerate(names):
             try:
-                per_segment = _evaluate(name, run, shared, angles)
+                normal = (planar_normals or {}).get(source)
+                per_segment = _evaluate(name, run, shared, angles, normal, ids)
             except NotPlaneParallelError as err:
                 stats.refusals[(name, source)] = str(err)
                 continue

@@ -100,6 +100,8 @@ class ChunkTask:
     index : int
         Position of the chunk in the model's poses.
     poses : RandomRange or PoseSet
+    planar_normals : dict, optional
+        Per engine, the plane normals of eq. (16) for every chunk of the model (see :func:`probe_normals`).
     """
 
     source: ModelSource
@@ -109,6 +111,7 @@ class ChunkTask:
     rtol: float
     index: int
     poses: RandomRange | PoseSet
+    planar_normals: dict[str, np.ndarray] | None = None
 
 
 _PAIRS: dict[ModelSource, Any] = {}
@@ -183,7 +186,39 @@ def run_chunk(task: ChunkTask) -> ChunkResult:
     except ValueError as err:  # an engine produced an invalid state: name the file
         raise ValueError(f"{pair.path}: {' '.join(str(err).split())}") from err
     _check_finite(pair.path, runs, poses)
-    return evaluate_chunk(task.label, poses, runs, task.formulas, task.records, task.rtol, task.index)
+    return evaluate_chunk(
+        task.label, poses, runs, task.formulas, task.records, task.rtol, task.index, task.planar_normals
+    )
+
+
+#: Poses from which the plane normals of eq. (16) are inferred, the same for every chunking.
+PROBE_POSES = 256
+
+
+def probe_normals(pair: Any, poses: PoseSet | None, random: RandomRange | None) -> dict[str, np.ndarray]:
+    """Per engine, the plane normals of eq. (16) inferred from the model's first poses.
+
+    ``planar`` infers its normal from a batch; a model cut into chunks fixes it once, from the
+    first :data:`PROBE_POSES` poses, so that every chunking refuses or accepts alike.
+
+    Parameters
+    ----------
+    pair : koenig_check.engines.ModelPair
+    poses : PoseSet, optional
+    random : RandomRange, optional
+
+    Returns
+    -------
+    dict of str to ndarray (B, 3)
+    """
+    from koenig_check.formulas.planar import infer_normals
+
+    if poses is not None:
+        probe = _slice(poses, 0, min(poses.n_poses, PROBE_POSES))
+    else:
+        stop = min(random.stop, random.start + PROBE_POSES)
+        probe = random_pose_range(pair.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
+    return {e.engine: infer_normals(e.segment_states(probe.qpos, probe.qvel)) for e in pair.engines}
 
 
 def plan(
@@ -196,6 +231,7 @@ def plan(
     poses: PoseSet | None = None,
     random: RandomRange | None = None,
     size: int | None = None,
+    planar_normals: dict[str, np.ndarray] | None = None,
 ) -> list[ChunkTask]:
     """Cut a model's poses into chunk tasks.
 
@@ -215,6 +251,8 @@ def plan(
         Otherwise: the range of seeded random poses.
     size : int, optional
         Poses per chunk.
+    planar_normals : dict, optional
+        See :func:`probe_normals`.
 
     Returns
     -------
@@ -226,7 +264,7 @@ def plan(
     formulas = tuple(formulas)
 
     def task(index: int, chunk: RandomRange | PoseSet) -> ChunkTask:
-        return ChunkTask(source, label, formulas, records, rtol, index, chunk)
+        return ChunkTask(source, label, formulas, records, rtol, index, chunk, planar_normals)
 
     if poses is not None:
         if poses.times is not None or poses.n_poses <= size:

@@ -152,7 +152,7 @@ def write_records_parquet(path: Path, records: RecordTable) -> Path:
 
 
 #: Record files of runs up to this many rows are also written as CSV and inside records.json.
-SMALL_RUN_ROWS = 200_000
+SMALL_RUN_ROWS = 50_000
 
 
 class RecordSink(Protocol):
