@@ -103,9 +103,17 @@ def run_one(kind: str, model: str, n_poses: int, jobs: int) -> dict:
         else:
             _report(model, n_poses)
     seconds = time.perf_counter() - start
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024  # Linux: KiB
-    children = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024
-    return {"seconds": seconds, "peak_bytes": max(peak, children)}
+    children = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024  # --jobs workers (Linux: KiB)
+    return {"seconds": seconds, "peak_bytes": max(peak_rss(), children)}
+
+
+def peak_rss() -> int:
+    """This process's peak resident memory, bytes (Linux ``VmHWM``: ``ru_maxrss`` carries a parent's over exec)."""
+    try:
+        status = Path("/proc/self/status").read_text()
+        return int(status.split("VmHWM:")[1].split()[0]) * 1024
+    except OSError:
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
 
 
 def measure(kind: str, model: str, n_poses: int, jobs: int = 1) -> dict:

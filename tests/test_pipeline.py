@@ -110,7 +110,12 @@ from koenig_check.report import RecordFiles
 files = RecordFiles(sys.argv[2])
 check = koenig_check.compare("talos", n_poses=int(sys.argv[1]), allow_coupled=True, sink=files, debug=True)
 files.close()
-print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, files.rows, check.ok)
+try:  # this process's own peak (ru_maxrss would carry the parent's over fork + exec on Linux)
+    status = open("/proc/self/status").read()
+    peak = int(status.split("VmHWM:")[1].split()[0]) * 1024
+except OSError:
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+print(peak, files.rows, check.ok)
 """
 #: Stated bound on the peak memory of 2×10^4 Talos poses, streamed: whole-table memory took ~9 GB.
 MEMORY_BOUND = 1 << 30
