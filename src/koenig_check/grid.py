@@ -133,8 +133,8 @@ def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
     """
     sweep = getattr(engine, "sweep", None)
     if sweep is not None:
-        states, pv, energy = sweep(poses.qpos, poses.qvel, _points_for(engine))
-        return EngineRun(engine.engine, states, np.asarray(energy.rigid), np.asarray(energy.armature), pv)
+        states, pv, rigid, armature = sweep(poses.qpos, poses.qvel, _points_for(engine))
+        return EngineRun(engine.engine, states, rigid, armature, pv)
     states = engine.segment_states(poses.qpos, poses.qvel)
     energy = engine.kinetic_energy(poses.qpos, poses.qvel)
     try:

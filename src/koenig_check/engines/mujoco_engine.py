@@ -155,15 +155,15 @@ class MujocoEngine:
         """Run the engine once per pose, copy its body arrays whole into preallocated arrays.
 
         With ``energies``, the same pass also evaluates ``mj_makeM`` + ``mj_energyVel`` on the
-        armature-free copy of the model (``rigid``) and on the model itself (``reported``), the
-        quantities of :meth:`kinetic_energy`, without running the kinematics again.
+        armature-free copy of the model (``rigid``, as :meth:`kinetic_energy` does), without
+        running the kinematics again.
         """
         m, d = self.model, self._data
         P, nb = qpos.shape[0], m.nbody
         xpos, xmat = np.empty((P, nb, 3)), np.empty((P, nb, 9))
         cvel, sub = np.empty((P, nb, 6)), np.empty((P, nb, 3))
-        rigid, reported = np.empty(P), np.empty(P)
-        m_rigid, m_energy = self._m_rigid, self._m_energy
+        rigid = np.empty(P)
+        m_rigid = self._m_rigid
         kinematics, com_pos, com_vel = mujoco.mj_kinematics, mujoco.mj_comPos, mujoco.mj_comVel
         make_m, energy_vel = mujoco.mj_makeM, mujoco.mj_energyVel
         for p in range(P):
@@ -177,9 +177,6 @@ class MujocoEngine:
                 make_m(m_rigid, d)
                 energy_vel(m_rigid, d)
                 rigid[p] = d.energy[1]
-                make_m(m_energy, d)
-                energy_vel(m_energy, d)
-                reported[p] = d.energy[1]
         idx = self._seg_body
         out = {
             "xpos": xpos[:, idx],
@@ -189,7 +186,7 @@ class MujocoEngine:
         }
         out["anchor"] = out["xpos"] + rotate(out["xmat"], self._anchor_local)
         if energies:
-            out["rigid"], out["reported"] = rigid, reported
+            out["rigid"] = rigid
         return out
 
     def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
@@ -220,8 +217,8 @@ class MujocoEngine:
 
     def sweep(
         self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray | None = None
-    ) -> tuple[SegmentStates, np.ndarray | None, EnergyParts]:
-        """Segment states, point velocities and energies from one pass of the engine per pose.
+    ) -> tuple[SegmentStates, np.ndarray | None, np.ndarray, np.ndarray]:
+        """Segment states, point velocities and energy from one pass of the engine per pose.
 
         The internal path of the comparison grid: the states are not validated again (the
         model was checked at load), and every quantity is read once per pose.
@@ -237,16 +234,13 @@ class MujocoEngine:
         -------
         states : SegmentStates
         point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
-        energy : EnergyParts
-            The same quantities as :meth:`kinetic_energy`.
+        rigid, armature : ndarray, shape (P,)
+            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         s = self._sweep(qpos, qvel, energies=True)
         pv = None if points is None else self._points(s, check_points(points, len(self.segment_names)))
-        energy = EnergyParts(
-            rigid=s["rigid"], armature=0.5 * (qvel**2) @ self.model.dof_armature, reported=s["reported"]
-        )
-        return self._states(s, trusted=True), pv, energy
+        return self._states(s, trusted=True), pv, s["rigid"], 0.5 * (qvel**2) @ self.model.dof_armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return MuJoCo's segment states for a batch of canonical states.

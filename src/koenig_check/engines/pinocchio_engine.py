@@ -99,7 +99,7 @@ class PinocchioEngine:
 
     def _sweep_world(
         self, q: np.ndarray, v: np.ndarray, energies: bool = False
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray | None]:
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         """Run ``computeJointJacobians`` once per pose; return oMi (P, B, 4, 4) and world twists (P, B, 6).
 
         The twist of joint ``i`` is ``J_world[:, support(i)] v``: ``(v_O, ω)`` with ``v_O`` the
@@ -114,7 +114,6 @@ class PinocchioEngine:
         H = np.empty((P, m.njoints, 4, 4))
         J = np.empty((P, 6, m.nv))
         rigid = np.empty(P) if energies else None
-        reported = np.empty(P) if energies else None
         jacobians, kinetic = pin.computeJointJacobians, pin.computeKineticEnergy
         m_rigid, d_rigid = self._m_rigid, self._d_rigid
         Jp = J if m.nv > 1 else J[..., 0]  # the bindings hand a 6 x 1 Jacobian out as a vector
@@ -123,10 +122,9 @@ class PinocchioEngine:
             Jp[p] = d.J
             H[p] = [M.homogeneous for M in d.oMi.tolist()]
             if energies:
-                reported[p] = kinetic(m, d, q[p], v[p])
                 rigid[p] = kinetic(m_rigid, d_rigid, q[p], v[p])
         twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
-        return H[:, idx], twists, rigid, reported
+        return H[:, idx], twists, rigid
 
     def _states(self, H: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
         R, origin = H[..., :3, :3], H[..., :3, 3]
@@ -150,8 +148,8 @@ class PinocchioEngine:
 
     def sweep(
         self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray | None = None
-    ) -> tuple[SegmentStates, np.ndarray | None, EnergyParts]:
-        """Segment states, point velocities and energies from one pass of the engine per pose.
+    ) -> tuple[SegmentStates, np.ndarray | None, np.ndarray, np.ndarray]:
+        """Segment states, point velocities and energy from one pass of the engine per pose.
 
         The internal path of the comparison grid: the states are not validated again, and the
         point velocities come from the same world twists as the states (``v_O + ω × p``).
@@ -167,19 +165,19 @@ class PinocchioEngine:
         -------
         states : SegmentStates
         point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
-        energy : EnergyParts
-            The same quantities as :meth:`kinetic_energy`.
+        rigid, armature : ndarray, shape (P,)
+            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
-        H, T, rigid, reported = self._sweep_world(q, v, energies=True)
+        H, T, rigid = self._sweep_world(q, v, energies=True)
         pv = None
         if points is not None:
             r = self._lever[:, None, :] + check_points(points, len(self.segment_names))  # (B, K, 3), joint axes
             world = H[:, :, None, :3, 3] + rotate_points(H[..., :3, :3], r)
             pv = T[:, :, None, :3] + cross(T[:, :, None, 3:], world)
-        energy = EnergyParts(rigid=rigid, armature=0.5 * (v**2) @ np.asarray(self.model.armature), reported=reported)
-        return self._states(H, T, trusted=True), pv, energy
+        armature = 0.5 * (v**2) @ np.asarray(self.model.armature)
+        return self._states(H, T, trusted=True), pv, rigid, armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return Pinocchio's segment states for a batch of canonical states.
@@ -195,7 +193,7 @@ class PinocchioEngine:
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
-        H, T, _, _ = self._sweep_world(q, v)
+        H, T, _ = self._sweep_world(q, v)
         return self._states(H, T)
 
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
