@@ -176,3 +176,17 @@ def test_bad_scale_flags_are_usage_errors(flag: list[str], capsys: pytest.Captur
         main(["compare", str(FREE_BALL_HINGE), *flag])
     assert exc.value.code == 2
     assert flag[0] in capsys.readouterr().err
+
+
+def test_scheduler_flag_runs_the_chunks_on_a_dask_cluster(tmp_path: Path) -> None:
+    distributed = pytest.importorskip("distributed")
+    from koenig_check.cli import main
+
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as c:
+        code = main(["compare", str(FREE_BALL_HINGE), "--poses", "40", "--seed", "5", "--scheduler",
+                     c.scheduler_address, "--out", str(tmp_path / "dask")])  # fmt: skip
+    assert code == 0
+    assert main(["compare", str(FREE_BALL_HINGE), "--poses", "40", "--seed", "5", "--out", str(tmp_path / "one")]) == 0
+    a = json.loads((tmp_path / "dask" / "records.json").read_text())
+    b = json.loads((tmp_path / "one" / "records.json").read_text())
+    assert a["summaries"] == b["summaries"] and a["records"] == b["records"] and a["parity"] == b["parity"]
