@@ -225,7 +225,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             pose_file=args.pose_file,
             debug=args.debug,
             pinocchio_model=args.pinocchio_model,
-            records=args.records,
+            records=args.records if args.out or figures_need_records else "none",  # nothing else reads them
             jobs=args.jobs,
             client=client,
             sink=sink,

@@ -79,3 +79,24 @@ def congruence(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
             if i != j:
                 out[..., j, i] = v
     return out
+
+
+def times_transpose(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
+    """``R R_refᵀ`` for a batch ``R`` (..., 3, 3) and matrices ``R_ref`` broadcast against it, elementwise.
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+    R_ref : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+    """
+    out = np.empty(np.broadcast_shapes(R.shape, R_ref.shape))
+    for i in range(3):
+        for j in range(3):
+            out[..., i, j] = (
+                R[..., i, 0] * R_ref[..., j, 0] + R[..., i, 1] * R_ref[..., j, 1] + R[..., i, 2] * R_ref[..., j, 2]
+            )
+    return out

@@ -134,8 +134,12 @@ def shift_inertia(mass: np.ndarray, inertia_c: np.ndarray, offset: np.ndarray) -
 
 
 def _moments(inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Axial moments (diagonal) and centrifugal moments (second-moment products)."""
-    return np.diagonal(inertia, axis1=-2, axis2=-1), centrifugal_of(second_moments(inertia))
+    """Axial moments (diagonal) and centrifugal moments (second-moment products).
+
+    The off-diagonal second moments are the negated off-diagonal inertia entries (eq. 27), exactly.
+    """
+    centrifugal = -np.stack([inertia[..., 1, 2], inertia[..., 0, 2], inertia[..., 0, 1]], axis=-1)
+    return np.diagonal(inertia, axis1=-2, axis2=-1), centrifugal
 
 
 def alyushin_current(states: SegmentStates) -> np.ndarray:

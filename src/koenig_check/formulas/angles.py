@@ -20,6 +20,7 @@ from typing import Literal
 import numpy as np
 
 from koenig_check.formulas.cache import SharedStates, memo
+from koenig_check.kernels import times_transpose
 from koenig_check.segments import SegmentStates
 
 States = SegmentStates | SharedStates
@@ -39,7 +40,7 @@ def delta_rotation(states: States) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3, 3)
     """
-    return memo(states, "delta_rotation", lambda: states.rotation @ np.swapaxes(states.rotation_ref, -1, -2)[None])
+    return memo(states, "delta_rotation", lambda: times_transpose(states.rotation, states.rotation_ref[None]))
 
 
 def quaternion_of(R: np.ndarray) -> np.ndarray:
