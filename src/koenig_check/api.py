@@ -231,43 +231,20 @@ def compare_model(
             grid_joints=grid_joints,
             duration=duration,
         )
-    label = label or _label(model, floating)
-    names, skipped = grid.formula_names(formulas, pose_set is not None and pose_set.times is not None)
-    tasks = pipeline.plan(
+    comp = pipeline.run_model(
+        pair,
         source,
-        label,
-        names,
-        records,
-        rtol,
-        len(pair.mujoco.segment_names),
-        poses=pose_set,
+        label or _label(model, floating),
+        formulas,
+        pose_set=pose_set,
         random=random,
-        size=chunk_poses,
-        planar_normals=pipeline.probe_normals(pair, pose_set, random) if "planar" in names else None,
-    )
-    keep = sink is None if keep_records is None else keep_records
-    stats, kept = None, []
-    for result in pipeline.run_tasks(tasks, jobs=jobs, client=client):
-        if stats is None:
-            stats = result.stats
-        else:
-            stats.merge(result.stats)
-        if result.records is not None:
-            if sink is not None:
-                sink.write(result.records)
-            if keep:
-                kept.append(result.records)
-    kept_records = RecordTable.concat(RecordTable(t) for t in kept)
-    for formula, source in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks
-        kept_records = kept_records.where(~kept_records.mask(formula=formula, source=source))
-    comp = grid.finish_comparison(
-        label,
-        pose_set,
-        stats,
-        kept_records,
-        list(pair.notes) + list(pose_set.notes if pose_set is not None else ()) + skipped,
-        grid.ENGINES,
-        pose_kind=pose_set.kind if pose_set is not None else "random",
+        records=records,
+        rtol=rtol,
+        jobs=jobs,
+        client=client,
+        sink=sink,
+        keep_records=keep_records,
+        chunk_poses=chunk_poses,
     )
     comp.import_summary = import_parity(pair).headline()
     return comp

@@ -19,8 +19,18 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.grid import ChunkResult, EngineRun, evaluate_chunk, run_engine
+from koenig_check.grid import (
+    ENGINES,
+    ChunkResult,
+    EngineRun,
+    ModelComparison,
+    evaluate_chunk,
+    finish_comparison,
+    formula_names,
+    run_engine,
+)
 from koenig_check.poses import PoseSet, random_pose_range
+from koenig_check.records import RecordTable
 
 #: Segment-poses per chunk (poses × segments): memory per chunk stays near constant across models.
 CHUNK_SEGMENT_POSES = 32_768
@@ -330,3 +340,84 @@ def run_tasks(tasks: list[ChunkTask], jobs: int = 1, client: Any = None) -> Iter
 def _pool(jobs: int) -> Executor:
     method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
     return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context(method))
+
+
+def run_model(
+    pair: Any,
+    source: ModelSource,
+    label: str,
+    formulas: Iterable[str] | None = None,
+    *,
+    pose_set: PoseSet | None = None,
+    random: RandomRange | None = None,
+    records: str = "totals",
+    rtol: float = 1e-9,
+    jobs: int = 1,
+    client: Any = None,
+    sink: Any = None,
+    keep_records: bool | None = None,
+    chunk_poses: int | None = None,
+) -> ModelComparison:
+    """Run a loaded model's poses chunk by chunk; merge the statistics, stream the records.
+
+    Parameters
+    ----------
+    pair : koenig_check.engines.ModelPair
+        The model, loaded here (chunks run here reuse it; other processes load ``source``).
+    source : ModelSource
+    label : str
+    formulas : iterable of str, optional
+        Default: all (path-dependent ones only on a path).
+    pose_set : PoseSet, optional
+        Poses held in memory; otherwise ``random``.
+    random : RandomRange, optional
+    records : {"totals", "segments", "none"}
+    rtol : float
+    jobs : int
+        Local processes.
+    client : dask.distributed.Client, optional
+    sink : RecordSink, optional
+        Receives each chunk's records in pose order.
+    keep_records : bool, optional
+        Keep the records in memory too (default: only without a sink).
+    chunk_poses : int, optional
+        Poses per chunk (default :func:`chunk_size`).
+
+    Returns
+    -------
+    ModelComparison
+    """
+    remember(source, pair)
+    names, skipped = formula_names(formulas, pose_set is not None and pose_set.times is not None)
+    tasks = plan(
+        source,
+        label,
+        names,
+        records,
+        rtol,
+        len(pair.mujoco.segment_names),
+        poses=pose_set,
+        random=random,
+        size=chunk_poses,
+        planar_normals=probe_normals(pair, pose_set, random) if "planar" in names else None,
+    )
+    keep = sink is None if keep_records is None else keep_records
+    stats, kept = None, []
+    for result in run_tasks(tasks, jobs=jobs, client=client):
+        if stats is None:
+            stats = result.stats
+        else:
+            stats.merge(result.stats)
+        if result.records is not None:
+            if sink is not None:
+                sink.write(result.records)
+            if keep:
+                kept.append(result.records)
+    kept_records = RecordTable.concat(RecordTable(t) for t in kept)
+    for formula, engine in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks
+        accepted = kept_records.mask(formula=formula, source=engine)
+        if accepted.any():
+            kept_records = kept_records.where(~accepted)
+    notes = list(pair.notes) + list(pose_set.notes if pose_set is not None else ()) + skipped
+    kind = pose_set.kind if pose_set is not None else "random"
+    return finish_comparison(label, pose_set, stats, kept_records, notes, ENGINES, pose_kind=kind)
