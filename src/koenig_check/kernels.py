@@ -100,3 +100,31 @@ def times_transpose(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
                 R[..., i, 0] * R_ref[..., j, 0] + R[..., i, 1] * R_ref[..., j, 1] + R[..., i, 2] * R_ref[..., j, 2]
             )
     return out
+
+
+def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """Velocities of points fixed in rigid segments, ``v_C + ω × (R r_k)``.
+
+    A point set symmetric about the centre of mass (the second half the negated first half, as the
+    equimomental points) costs half: ``v_C ± ω × (R r_k)``.
+
+    Parameters
+    ----------
+    v_com, omega : ndarray, shape (P, B, 3)
+        Centre-of-mass velocity and angular velocity, world frame.
+    R : ndarray, shape (P, B, 3, 3)
+        World ← segment.
+    offsets : ndarray, shape (B, K, 3)
+        From the centre of mass, segment axes.
+
+    Returns
+    -------
+    ndarray, shape (P, B, K, 3)
+    """
+    K = offsets.shape[1]
+    half = K // 2
+    if K % 2 == 0 and np.array_equal(offsets[:, half:], -offsets[:, :half]):
+        u = cross(omega[:, :, None, :], rotate_points(R, offsets[:, :half]))
+        v = v_com[:, :, None, :]
+        return np.concatenate([v + u, v - u], axis=2)
+    return v_com[:, :, None, :] + cross(omega[:, :, None, :], rotate_points(R, offsets))

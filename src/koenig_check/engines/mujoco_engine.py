@@ -34,7 +34,7 @@ import numpy as np
 from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import mujoco_joint_names
-from koenig_check.kernels import cross, rotate, rotate_points
+from koenig_check.kernels import body_point_velocities, cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates
 
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
@@ -239,8 +239,12 @@ class MujocoEngine:
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         s = self._sweep(qpos, qvel, energies=True)
-        pv = None if points is None else self._points(s, check_points(points, len(self.segment_names)))
-        return self._states(s, trusted=True), pv, s["rigid"], 0.5 * (qvel**2) @ self.model.dof_armature
+        states = self._states(s, trusted=True)
+        pv = None
+        if points is not None:
+            pts = check_points(points, len(self.segment_names))
+            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
+        return states, pv, s["rigid"], 0.5 * (qvel**2) @ self.model.dof_armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return MuJoCo's segment states for a batch of canonical states.

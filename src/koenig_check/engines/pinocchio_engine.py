@@ -26,7 +26,7 @@ import pinocchio as pin
 from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import StateMap
-from koenig_check.kernels import cross, rotate, rotate_points
+from koenig_check.kernels import body_point_velocities, cross, rotate
 from koenig_check.segments import SegmentStates
 
 
@@ -171,13 +171,13 @@ class PinocchioEngine:
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         H, T, rigid = self._sweep_world(q, v, energies=True)
+        states = self._states(H, T, trusted=True)
         pv = None
         if points is not None:
-            r = self._lever[:, None, :] + check_points(points, len(self.segment_names))  # (B, K, 3), joint axes
-            world = H[:, :, None, :3, 3] + rotate_points(H[..., :3, :3], r)
-            pv = T[:, :, None, :3] + cross(T[:, :, None, 3:], world)
+            pts = check_points(points, len(self.segment_names))
+            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
         armature = 0.5 * (v**2) @ np.asarray(self.model.armature)
-        return self._states(H, T, trusted=True), pv, rigid, armature
+        return states, pv, rigid, armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return Pinocchio's segment states for a batch of canonical states.
