@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 
 from koenig_check.formulas import FORMULAS
 from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison, relative_error
-from koenig_check.records import FULL_SCHEMA, RECORD_FIELDS, RecordTable, with_derived
+from koenig_check.records import FULL_SCHEMA, RECORD_FIELDS, TEXT_FIELDS, RecordTable, with_derived
 from koenig_check.stats import QuantileSketch
 
 if TYPE_CHECKING:
@@ -190,7 +190,9 @@ class RecordFiles:
         self.csv_rows = csv_rows
         self.rows = 0
         self._small: list[pa.Table] | None = [] if csv_rows > 0 else None
-        self._writer = pq.ParquetWriter(self.parquet, FULL_SCHEMA)
+        # Dictionary pages for the text columns only: the float columns are all distinct, and trying a
+        # dictionary for them first doubles the writing time.
+        self._writer = pq.ParquetWriter(self.parquet, FULL_SCHEMA, use_dictionary=list(TEXT_FIELDS))
         self.written: list[Path] = []
 
     def write(self, table: pa.Table) -> None:
