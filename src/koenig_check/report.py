@@ -134,23 +134,6 @@ def write_records_csv(path: Path, records: RecordTable) -> Path:
     return path
 
 
-def write_records_parquet(path: Path, records: RecordTable) -> Path:
-    """Write tidy records as Parquet: categorical columns stored as dictionary codes.
-
-    Parameters
-    ----------
-    path : Path
-    records : RecordTable
-
-    Returns
-    -------
-    Path
-    """
-    with RecordFiles(path.parent, name=path.stem, csv_rows=0) as files:
-        files.write(records.table)
-    return path
-
-
 #: Record files of runs up to this many rows are also written as CSV and inside records.json.
 SMALL_RUN_ROWS = 50_000
 
@@ -349,10 +332,12 @@ def error_distribution_figure(comparisons: Sequence[ModelComparison], path: Path
     ax.set_yticks(np.arange(len(formulas)), formulas)
     ax.invert_yaxis()
     ax.set_xlabel(
-        f"log10 relative error of total kinetic energy (dimensionless; exact agreement drawn at {LOG_FLOOR:g}); "
-        "boxes: quartiles, whiskers: min and max"
+        f"log10 relative error of total kinetic energy (dimensionless; exact agreement drawn at {LOG_FLOOR:g})"
     )
-    ax.set_title("Relative error of each formula against the engines' own kinetic energy, all models and poses")
+    ax.set_title(
+        "Relative error of each formula against the engines' own kinetic energy, all models and poses\n"
+        "(boxes: quartiles; whiskers: minimum and maximum)"
+    )
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=2, frameon=False)
     ax.grid(True, axis="x", alpha=0.3)
     fig.savefig(path, dpi=110)
