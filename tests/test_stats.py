@@ -62,3 +62,18 @@ def test_zero_and_infinite_errors_have_their_own_bins(monkeypatch: pytest.Monkey
     monkeypatch.setattr(stats, "EXACT_LIMIT", 4)
     s = _sketch([np.zeros(6), np.full(3, np.inf)])
     assert s.median() == 0.0 and s.quantile(1.0) == np.inf
+
+
+def test_a_compacted_sketch_answers_and_merges_the_same(rng: np.random.Generator, monkeypatch) -> None:
+    monkeypatch.setattr(stats, "EXACT_LIMIT", 100)
+    values = 10.0 ** rng.uniform(-16, -2, size=3000)
+    s = _sketch(np.array_split(values, 7))
+    before = [s.quantile(q) for q in (0.0, 0.25, 0.5, 0.9, 1.0)]
+    s.compact()
+    assert isinstance(s._counts, tuple) and s._counts[0].size < 3000
+    assert [s.quantile(q) for q in (0.0, 0.25, 0.5, 0.9, 1.0)] == before
+    pooled = QuantileSketch()
+    pooled.merge(s)
+    pooled.merge(_sketch([values[:50]]))
+    assert pooled.n == 3050
+    assert pooled.median() == _sketch([values, values[:50]]).median()

@@ -413,6 +413,7 @@ def run_model(
                 sink.write(result.records)
             if keep:
                 kept.append(result.records)
+    stats.compact()
     kept_records = RecordTable.concat(RecordTable(t) for t in kept)
     for formula, engine in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks
         accepted = kept_records.mask(formula=formula, source=engine)

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 #: Values kept exactly per group before the quantile sketch switches to bins.
-EXACT_LIMIT = 1 << 17
+EXACT_LIMIT = 1 << 14
 #: Logarithmic bins per decade of the quantile sketch (relative error of a quantile ≤ 0.058 %).
 BINS_PER_DECADE = 2000
 #: The binned range, decades: values below 10**LOG_MIN count as 0, at or above 10**LOG_MAX as inf.
@@ -53,7 +53,7 @@ class QuantileSketch:
         self.n = 0
         self.nan = 0
         self._values: list[np.ndarray] | None = []
-        self._counts: np.ndarray | None = None
+        self._counts: np.ndarray | tuple[np.ndarray, np.ndarray] | None = None  # dense, or (bins, counts)
 
     @property
     def exact(self) -> bool:
@@ -98,6 +98,19 @@ class QuantileSketch:
         else:
             self._counts += self._count(values)
 
+    def compact(self) -> None:
+        """Keep only the occupied bins (a finished model's sketch: memory follows the spread of its values)."""
+        if isinstance(self._counts, np.ndarray):
+            occupied = np.flatnonzero(self._counts)
+            self._counts = (occupied, self._counts[occupied])
+
+    def _dense(self) -> np.ndarray:
+        if isinstance(self._counts, tuple):
+            dense = np.zeros(_NBINS + 2, dtype=np.int64)
+            dense[self._counts[0]] = self._counts[1]
+            self._counts = dense
+        return self._counts
+
     def merge(self, other: QuantileSketch) -> None:
         """Add every value of another sketch.
 
@@ -112,11 +125,14 @@ class QuantileSketch:
             return
         if self._values is not None:
             self._to_bins()
+        counts = self._dense()
         if other._values is not None:
             for v in other._values:
-                self._counts += self._count(v)
+                counts += self._count(v)
+        elif isinstance(other._counts, tuple):
+            np.add.at(counts, other._counts[0], other._counts[1])
         else:
-            self._counts += other._counts
+            counts += other._counts
 
     def _bin_value(self, k: int) -> float:
         if k == 0:
@@ -143,7 +159,7 @@ class QuantileSketch:
             return float(np.quantile(np.concatenate(self._values), q))
         pos = q * (self.n - 1)
         lo, hi = int(np.floor(pos)), int(np.ceil(pos))
-        cum = np.cumsum(self._counts)
+        cum = np.cumsum(self._dense())
         a = self._bin_value(int(np.searchsorted(cum, lo + 1)))
         b = self._bin_value(int(np.searchsorted(cum, hi + 1)))
         return a if a == b else a + (b - a) * (pos - lo)
@@ -322,6 +338,11 @@ class ModelStats:
         self.parity.merge(other.parity)
         for key, reason in other.refusals.items():
             self.refusals.setdefault(key, reason)
+
+    def compact(self) -> None:
+        """Shrink the binned sketches of a finished model to their occupied bins."""
+        for g in self.groups.values():
+            g.sketch.compact()
 
     def kept_groups(self) -> dict[tuple[str, str, str], GroupStats]:
         """The groups of formulas that did not refuse on that source in any chunk.
