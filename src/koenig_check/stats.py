@@ -70,12 +70,13 @@ class QuantileSketch:
     def _to_bins(self) -> None:
         counts = np.zeros(_NBINS + 2, dtype=np.int64)
         for v in self._values or []:
-            counts += self._count(v)
+            self._count_into(counts, v)
         self._values, self._counts = None, counts
 
     @classmethod
-    def _count(cls, values: np.ndarray) -> np.ndarray:
-        return np.bincount(cls._bins(values), minlength=_NBINS + 2)
+    def _count_into(cls, counts: np.ndarray, values: np.ndarray) -> None:
+        bins, n = np.unique(cls._bins(values), return_counts=True)
+        counts[bins] += n
 
     def add(self, values: np.ndarray) -> None:
         """Add values.
@@ -96,7 +97,7 @@ class QuantileSketch:
             if self.n > EXACT_LIMIT:
                 self._to_bins()
         else:
-            self._counts += self._count(values)
+            self._count_into(self._dense(), values)
 
     def compact(self) -> None:
         """Keep only the occupied bins (a finished model's sketch: memory follows the spread of its values)."""
@@ -128,7 +129,7 @@ class QuantileSketch:
         counts = self._dense()
         if other._values is not None:
             for v in other._values:
-                counts += self._count(v)
+                self._count_into(counts, v)
         elif isinstance(other._counts, tuple):
             np.add.at(counts, other._counts[0], other._counts[1])
         else:
