@@ -1,103 +1,207 @@
-"""Throughput of the full cross-check as a ratio against the bare engine loop, measured in the same run.
+"""Throughput of the cross-check against the bare engine loop, measured in one run, interleaved.
 
-The bare loop is what any energy check must call at least: per pose, MuJoCo's
-``mj_kinematics``, ``mj_comPos``, ``mj_comVel``, ``mj_makeM``, ``mj_energyVel``, and Pinocchio's
-``forwardKinematics`` and ``computeKineticEnergy``.  The cross-check is everything
-``koenig-check compare`` does for a model once it is loaded: segment states, energies and point
-velocities from both engines (``run_engine``) and every formula on both engines' states with tidy
-records (``compare_runs``).  Each timing is the best of ``--repeat`` runs (the machines are shared
-and noisy); the ratio, not the seconds, is the result.
+Per model (example-robot-data ``ur5`` and ``talos``) and per repetition, three measurements run one
+after the other, each in a fresh Python process (so that each one's peak memory is its own):
 
-Usage: python comparisons/benchmark.py [--poses 200] [--repeat 5] [--out comparisons/benchmark.md]
+(a) bare
+    the bare engine loop: load the model, draw the seeded poses, then per pose set the state,
+    MuJoCo's ``mj_kinematics`` + ``mj_comPos`` + ``mj_makeM`` + ``mj_energyVel`` and Pinocchio's
+    ``computeKineticEnergy``;
+(b) api
+    the full default cross-check through the public API, ``koenig_check.compare(model, n_poses=N)``
+    (load, both engines' segment states, every default formula, summaries, engine parity), no file
+    output;
+(c) report
+    the same with the default report written, ``koenig-check compare MODEL --poses N --out DIR``;
+(b2) api, jobs=J
+    with ``--jobs J``: (b) in J processes (wall clock).
+
+Each measurement is timed inside its process after the Python imports (loading the model and
+drawing the poses included, as a user pays them).  The ratios b/a and c/a are the result; seconds
+depend on the shared machine.  Peak memory is the process's own ``ru_maxrss``.  The machine is
+shared: each figure is the best of ``--repeat`` interleaved repetitions.
+
+Usage::
+
+    python comparisons/benchmark.py [--poses 100000] [--repeat 1] [--jobs 2] [--out comparisons/benchmark.md]
+    python comparisons/benchmark.py --smoke       # a few poses, nothing written (run by the test suite)
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import platform
+import resource
+import subprocess
+import sys
+import tempfile
 import time
 from pathlib import Path
 
-import mujoco
-import numpy as np
-import pinocchio as pin
-
-from koenig_check import grid
-from koenig_check.demo import builtin_models
-from koenig_check.engines import load_model
-from koenig_check.poses import random_poses
-
-ROBOTS = ["ur5", "panda", "talos"]
+ROBOTS = ("ur5", "talos")
+KINDS = ("bare", "api", "report")
 
 
-def best_of(fn, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return min(times)
+def _bare(model: str, n_poses: int) -> None:
+    import mujoco
+    import pinocchio as pin
 
+    from koenig_check.engines import load_model
+    from koenig_check.poses import random_poses
 
-def bare_loop(pair, qpos: np.ndarray, qvel: np.ndarray) -> None:
+    pair = load_model(model, allow_coupled=True)
+    poses = random_poses(pair.mujoco.model, n_poses, seed=0)
     m = pair.mujoco.model
-    d = mujoco.MjData(m)
     m.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
+    d = mujoco.MjData(m)
     pm = pair.pinocchio.model
     pd = pm.createData()
-    q_pin, v_pin = pair.state_map.to_pinocchio(qpos, qvel)
-    for p in range(qpos.shape[0]):
-        d.qpos[:], d.qvel[:] = qpos[p], qvel[p]
+    q_pin, v_pin = pair.state_map.to_pinocchio(poses.qpos, poses.qvel)
+    for p in range(n_poses):
+        d.qpos[:], d.qvel[:] = poses.qpos[p], poses.qvel[p]
         mujoco.mj_kinematics(m, d)
         mujoco.mj_comPos(m, d)
-        mujoco.mj_comVel(m, d)
         mujoco.mj_makeM(m, d)
         mujoco.mj_energyVel(m, d)
-        pin.forwardKinematics(pm, pd, q_pin[p], v_pin[p])
-        pin.computeKineticEnergy(pm, pd)
+        pin.computeKineticEnergy(pm, pd, q_pin[p], v_pin[p])
 
 
-def cross_check(pair, poses) -> None:
-    runs = {"mujoco": grid.run_engine(pair.mujoco, poses), "pinocchio": grid.run_engine(pair.pinocchio, poses)}
-    grid.compare_runs("bench", poses, runs)
+def _api(model: str, n_poses: int, jobs: int) -> None:
+    import koenig_check
+
+    options = {"jobs": jobs} if jobs > 1 else {}
+    check = koenig_check.compare(model, n_poses=n_poses, seed=0, allow_coupled=True, debug=True, **options)
+    if not check.comparisons:
+        raise SystemExit(f"{model}: {check.reason()}")
+
+
+def _report(model: str, n_poses: int) -> None:
+    from koenig_check.cli import main
+
+    with tempfile.TemporaryDirectory() as out:
+        code = main(["compare", model, "--poses", str(n_poses), "--allow-coupled", "--out", out])
+        size = sum(f.stat().st_size for f in Path(out).iterdir())
+    print(json.dumps({"exit": code, "report_bytes": size}), file=sys.stderr)
+
+
+def run_one(kind: str, model: str, n_poses: int, jobs: int) -> dict:
+    """Run one measurement in this process; return seconds and peak memory."""
+    import contextlib
+    import io
+
+    import koenig_check.cli
+    import koenig_check.engines
+    import koenig_check.report  # noqa: F401  (imports are not the measurement; loading the model is)
+
+    start = time.perf_counter()
+    with contextlib.redirect_stdout(io.StringIO()):
+        if kind == "bare":
+            _bare(model, n_poses)
+        elif kind == "api":
+            _api(model, n_poses, jobs)
+        else:
+            _report(model, n_poses)
+    seconds = time.perf_counter() - start
+    children = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024  # --jobs workers (Linux: KiB)
+    return {"seconds": seconds, "peak_bytes": max(peak_rss(), children)}
+
+
+def peak_rss() -> int:
+    """This process's peak resident memory, bytes (Linux ``VmHWM``: ``ru_maxrss`` carries a parent's over exec)."""
+    try:
+        status = Path("/proc/self/status").read_text()
+        return int(status.split("VmHWM:")[1].split()[0]) * 1024
+    except OSError:
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+
+
+def measure(kind: str, model: str, n_poses: int, jobs: int = 1) -> dict:
+    """Run one measurement in a fresh process."""
+    proc = subprocess.run(
+        [sys.executable, __file__, "--one", kind, model, str(n_poses), str(jobs)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    if proc.returncode != 0:
+        raise SystemExit(f"benchmark {kind} {model}: failed\n{proc.stderr[-3000:]}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def _table(results: dict, n_poses: int, jobs: int) -> list[str]:
+    head = "| model | poses | (a) bare loop, poses/s | (b) API, poses/s | (c) with report, poses/s | b/a | c/a |"
+    sep = "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
+    if jobs > 1:
+        head += f" b/a, --jobs {jobs} (wall) |"
+        sep += " ---: |"
+    head += " peak memory a / b / c (MiB) |"
+    sep += " ---: |"
+    lines = [head, sep]
+    nan = {"seconds": float("nan"), "peak_bytes": float("nan")}
+    for model, r in results.items():
+        r = {k: r.get(k, nan) for k in (*KINDS, "jobs")}
+        a, b, c = (r[k]["seconds"] for k in KINDS)
+        cells = [model, f"{n_poses:,}", f"{n_poses / a:,.0f}", f"{n_poses / b:,.0f}", f"{n_poses / c:,.0f}"]
+        cells += [f"{b / a:.2f}", f"{c / a:.2f}"]
+        if jobs > 1:
+            cells.append(f"{r['jobs']['seconds'] / a:.2f}")
+        cells.append(" / ".join(f"{r[k]['peak_bytes'] / 2**20:,.0f}" for k in KINDS))
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--poses", type=int, default=200)
-    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--poses", type=int, default=100_000, help="seeded random poses per model (default 10^5)")
+    parser.add_argument("--repeat", type=int, default=1, help="interleaved repetitions; the best is kept")
+    parser.add_argument("--jobs", type=int, default=1, help="also time the API with this many processes")
+    parser.add_argument("--models", nargs="+", default=list(ROBOTS))
     parser.add_argument("--out", type=Path, default=Path(__file__).with_name("benchmark.md"))
+    parser.add_argument("--kinds", nargs="+", choices=KINDS, default=list(KINDS), help="measurements to run")
+    parser.add_argument("--smoke", action="store_true", help="a few poses, print only (for the test suite)")
+    parser.add_argument("--one", nargs=4, metavar=("KIND", "MODEL", "POSES", "JOBS"), help=argparse.SUPPRESS)
     args = parser.parse_args()
-    rows = []
-    targets = [(p.name, p) for p in builtin_models() if p.suffix == ".xml"] + [(r, r) for r in ROBOTS]
-    for label, target in targets:
-        pair = load_model(target)
-        poses = random_poses(pair.mujoco.model, args.poses, seed=0)
-        bare = best_of(lambda pair=pair, poses=poses: bare_loop(pair, poses.qpos, poses.qvel), args.repeat)
-        full = best_of(lambda pair=pair, poses=poses: cross_check(pair, poses), args.repeat)
-        extract = best_of(
-            lambda pair=pair, poses=poses: (
-                pair.mujoco.segment_states(poses.qpos, poses.qvel),
-                pair.pinocchio.segment_states(poses.qpos, poses.qvel),
-            ),
-            args.repeat,
-        )
-        rows.append((label, pair.mujoco.nv, len(pair.mujoco.segment_names), bare, extract, full))
-        print(f"{label:22s} bare {bare * 1e3:8.2f} ms  states {extract / bare:5.1f}x  full {full / bare:5.1f}x")
-    lines = [
+    if args.one:
+        kind, model, n, jobs = args.one
+        print(json.dumps(run_one(kind, model, int(n), int(jobs))))
+        return
+    if args.smoke:
+        args.poses, args.repeat = 20, 1
+    results: dict[str, dict] = {}
+    for _ in range(args.repeat):
+        for model in args.models:
+            best = results.setdefault(model, {})
+            kinds = [*args.kinds, "jobs"] if args.jobs > 1 else list(args.kinds)
+            for kind in kinds:
+                r = measure("api" if kind == "jobs" else kind, model, args.poses, args.jobs if kind == "jobs" else 1)
+                if kind not in best or r["seconds"] < best[kind]["seconds"]:
+                    best[kind] = r
+                print(f"{model:6s} {kind:6s} {r['seconds']:9.2f} s  {r['peak_bytes'] / 2**20:8.0f} MiB", flush=True)
+    lines = _table(results, args.poses, args.jobs)
+    print("\n".join(lines))
+    if args.smoke:
+        return
+    import mujoco
+    import pinocchio
+
+    doc = [
         "# Benchmark: the cross-check against the bare engine loop",
         "",
-        f"{args.poses} random poses per model, best of {args.repeat} runs, Python {platform.python_version()}, "
-        f"MuJoCo {mujoco.__version__}, Pinocchio {pin.__version__}, {platform.machine()}.",
-        "Ratios are the result; the milliseconds depend on the (shared) machine.",
+        f"Command: `python comparisons/benchmark.py --poses {args.poses} --repeat {args.repeat}"
+        + (f" --jobs {args.jobs}" if args.jobs > 1 else "")
+        + "`",
         "",
-        "| model | nv | segments | bare engine loop (ms) | segment states, both engines (× bare) | full cross-check, "
-        "all formulas and records (× bare) |",
-        "| --- | ---: | ---: | ---: | ---: | ---: |",
+        f"Seeded random poses, best of {args.repeat} interleaved repetition(s), each measurement in a fresh process, "
+        f"loading included. Python {platform.python_version()}, MuJoCo {mujoco.__version__}, "
+        f"Pinocchio {pinocchio.__version__}, {platform.machine()}, shared 2-core machine. "
+        "(a) bare engine loop, (b) `koenig_check.compare` (default formulas, summaries, parity, records kept as "
+        "totals), (c) `koenig-check compare MODEL --out DIR` (report written). Ratios are the result.",
+        "",
+        *lines,
+        "",
     ]
-    for label, nv, nseg, bare, extract, full in rows:
-        lines.append(f"| {label} | {nv} | {nseg} | {bare * 1e3:.2f} | {extract / bare:.1f} | {full / bare:.1f} |")
-    args.out.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    args.out.write_text("\n".join(doc), encoding="utf-8")
     print(f"written {args.out}")
 
 

@@ -70,13 +70,13 @@ def test_import_verdict_per_segment_names_the_segment() -> None:
 @needs_drake
 def test_agreeing_models_do_not_load_drake_by_default() -> None:
     check = koenig_check.compare("gimbal.xml", n_poses=2, formulas=["exact"])
-    assert set(check.comparisons[0].runs) == {"mujoco", "pinocchio"}
+    assert set(check.comparisons[0].engines) == {"mujoco", "pinocchio"}
     assert any(
         f.kind is Kind.ENGINE_NOT_USED and f.summary.startswith("Drake not used: not needed")
         for f in check.comparisons[0].findings
     )
     asked = koenig_check.compare("gimbal.xml", n_poses=2, formulas=["exact"], engines=ALL)
-    assert set(asked.comparisons[0].runs) == set(ALL)
+    assert set(asked.comparisons[0].engines) == set(ALL)
     assert asked.ok and not _verdicts(asked)
 
 
@@ -151,7 +151,7 @@ def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.Mo
 
     monkeypatch.setattr(loader, "drake_available", lambda: False)
     check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
-    assert set(check.comparisons[0].runs) == {"mujoco", "pinocchio"}
+    assert set(check.comparisons[0].engines) == {"mujoco", "pinocchio"}
     assert "Drake not used: not installed" in check.reason()
     with pytest.raises(DrakeUnavailableError, match="pydrake is not installed"):
         koenig_check.compare("gimbal.xml", engines=ALL)

@@ -7,13 +7,16 @@ import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from koenig_check import grid, poses, tiebreak
+from koenig_check import grid, pipeline, poses, tiebreak
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.findings import Kind
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import RecordTable
+
+if TYPE_CHECKING:
+    from koenig_check.report import RecordSink
 
 POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
 
@@ -150,6 +153,12 @@ def compare_model(
     label: str | None = None,
     load_options: LoadOptions | None = None,
     rtol: float = DEFAULT_RTOL,
+    records: str = "totals",
+    jobs: int = 1,
+    client: Any = None,
+    sink: RecordSink | None = None,
+    keep_records: bool | None = None,
+    chunk_poses: int | None = None,
     **load_kwargs: Any,
 ) -> ModelComparison:
     """Load one model into both engines and run the comparison grid on it.
@@ -170,9 +179,22 @@ def compare_model(
         How the model is loaded (see :class:`koenig_check.engines.load_options.LoadOptions`); its
         ``engines`` decide whether Drake runs (:mod:`koenig_check.tiebreak`).
     rtol : float
-        Tolerance under which engines agree (decides whether Drake is consulted by default).
+        Tolerance under which engines agree (the over/under counts of the summaries, and whether
+        Drake is consulted by default).
+    records : {"totals", "segments", "none"}
+        Which records to keep: totals per pose, also per segment, or none (summaries only).
+    jobs : int
+        Run the pose chunks in this many local processes (same results as one process).
+    client : dask.distributed.Client, optional
+        Run the pose chunks on a Dask cluster (extra ``[cluster]``).
+    sink : RecordSink, optional
+        Receives the records chunk by chunk as they are computed (e.g. a Parquet file).
+    keep_records : bool, optional
+        Keep the records in memory too (default: only without a sink).
+    chunk_poses : int, optional
+        Poses per chunk (default: about 32,768 segment-poses per chunk).
     **load_kwargs
-        The same options as keywords (``floating``, ``balance_inertia``, ``pinocchio_model``, ...);
+        The load options as keywords (``floating``, ``balance_inertia``, ``pinocchio_model``, ...);
         they override ``load_options``.
 
     Returns
@@ -189,39 +211,82 @@ def compare_model(
 
     options = load_options_from(load_options, load_kwargs)
     pair = load_model(model, options)
+    source = pipeline.ModelSource(str(model), options)
+    asked = options.engines is not None and "drake" in options.engines
+    drake = tiebreak.consult_drake(pair, options.engines, disagree=True) if asked else None
+    extra = {"drake": drake.engine} if drake is not None and drake.used else {}
+    pipeline.remember(source, pair, extra)
     if pose_file is not None:
         from koenig_check.pose_file import load_pose_file
 
         pose_set = load_pose_file(pose_file, pair.mujoco.model)
-    ps = pose_set or make_poses(
-        pair.mujoco.model,
-        pose_kind,
-        n_poses=n_poses,
-        seed=seed,
-        velocity_scale=velocity_scale,
-        grid_joints=grid_joints,
-        duration=duration,
+    random = None
+    if pose_set is None and pose_kind == "random":
+        poses.check_random(n_poses, seed, velocity_scale)
+        random = pipeline.RandomRange(0, n_poses, seed, velocity_scale)
+    elif pose_set is None:
+        pose_set = make_poses(
+            pair.mujoco.model,
+            pose_kind,
+            n_poses=n_poses,
+            seed=seed,
+            velocity_scale=velocity_scale,
+            grid_joints=grid_joints,
+            duration=duration,
+        )
+    comp = pipeline.run_model(
+        pair,
+        source,
+        label or _label(model, options.floating),
+        formulas,
+        pose_set=pose_set,
+        random=random,
+        records=records,
+        rtol=rtol,
+        jobs=jobs,
+        client=client,
+        sink=sink,
+        keep_records=keep_records,
+        chunk_poses=chunk_poses,
+        extra_engines=extra,
     )
-    try:
-        runs = {"mujoco": grid.run_engine(pair.mujoco, ps), "pinocchio": grid.run_engine(pair.pinocchio, ps)}
-    except ValueError as err:  # an engine produced an invalid state: name the file
-        raise ValueError(f"{pair.path}: {one_line(err)}") from err
-    disagree = tiebreak.engines_disagree(runs["mujoco"].rigid, runs["pinocchio"].rigid, rtol)
-    drake = tiebreak.consult_drake(pair, options.engines, disagree)
-    if drake.used:
-        try:
-            runs["drake"] = grid.run_engine(drake.engine, ps)
-        except ValueError as err:
-            raise ValueError(f"{pair.path}: Drake: {one_line(err)}") from err
-    comp = grid.compare_runs(label or _label(model, options.floating), ps, runs, formulas)
-    comp.notes = list(pair.notes) + [f.message() for f in drake.findings] + list(ps.notes) + comp.notes
+    disagree = comp.stats is not None and comp.stats.parity.rigid.value > rtol
+    if drake is None:  # by default Drake is the tie-breaker, consulted only where the two disagree
+        drake = tiebreak.consult_drake(pair, options.engines, disagree)
     findings = list(pair.findings) + import_parity(pair).as_findings() + drake.findings
-    verdicts = tiebreak.energy_verdicts(runs, findings, rtol) + tiebreak.import_verdicts(
-        {e: r.states for e, r in runs.items()}, findings, rtol
-    )
+    verdicts = _three_way_verdicts(pair, drake, pose_set, random, findings, rtol) if drake.used else []
     comp.findings = verdicts + findings
-    comp.notes = [f"three engines: {f.message()}" for f in verdicts] + comp.notes
+    comp.notes = (
+        [f"three engines: {f.message()}" for f in verdicts] + [f.message() for f in drake.findings] + comp.notes
+    )
     return comp
+
+
+#: Poses on which the three engines' verdicts are computed (the first of the run's poses).
+VERDICT_POSES = 256
+
+
+def _three_way_verdicts(
+    pair: Any,
+    drake: tiebreak.Consultation,
+    pose_set: poses.PoseSet | None,
+    random: pipeline.RandomRange | None,
+    findings: list,
+    rtol: float,
+) -> list:
+    """Which engine departs, from all three engines on the first :data:`VERDICT_POSES` poses."""
+    if pose_set is None:
+        stop = min(random.stop, random.start + VERDICT_POSES)
+        sample = poses.random_pose_range(pair.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
+    else:
+        sample = pose_set.slice(0, VERDICT_POSES)
+    engines = {"mujoco": pair.mujoco, "pinocchio": pair.pinocchio, "drake": drake.engine}
+    try:
+        runs = {name: grid.run_engine(engine, sample) for name, engine in engines.items()}
+    except ValueError as err:
+        raise ValueError(f"{pair.path}: {one_line(err)}") from err
+    states = {name: run.states for name, run in runs.items()}
+    return tiebreak.energy_verdicts(runs, findings, rtol) + tiebreak.import_verdicts(states, findings, rtol)
 
 
 def compare(

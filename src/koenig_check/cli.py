@@ -38,6 +38,17 @@ def _tolerance(text: str) -> float:
     return value
 
 
+def _positive(text: str) -> int:
+    """A whole number >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {text}")
+    return value
+
+
 def _formatter(prog: str) -> argparse.HelpFormatter:
     return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32)
 
@@ -55,7 +66,7 @@ def build_parser() -> argparse.ArgumentParser:
     -------
     argparse.ArgumentParser
     """
-    from koenig_check.grid import DEFAULT_RTOL
+    from koenig_check.grid import DEFAULT_RTOL, RECORD_MODES
 
     parser = _Parser(
         prog="koenig-check",
@@ -107,6 +118,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--velocity-scale", type=float, default=1.0, help="std of random joint velocities (default 1)")
     p.add_argument("--pose-file", help="canonical poses from a .npz (qpos, qvel) or .csv (qpos then qvel per row)")
     add_load_arguments(p)
+    p.add_argument(
+        "--records",
+        choices=RECORD_MODES,
+        default="totals",
+        help="records written with --out: per segment and totals, totals (default) or none",
+    )
+    p.add_argument("--jobs", type=_positive, default=1, help="run pose chunks in N local processes (default 1)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run pose chunks on this Dask scheduler (extra [cluster])")
     p.set_defaults(func=_cmd_compare)
 
     p = _add(
@@ -152,14 +171,14 @@ def _cmd_models(args: argparse.Namespace) -> int:
     return 0
 
 
-def _finish(check, out: str | None, extra_figures: dict | None = None) -> int:
+def _finish(check, out: str | None, extra_figures: dict | None = None, records=None) -> int:
     from koenig_check.verdict import verdict_table
 
     print(verdict_table(check))
     if out:
         from koenig_check.report import write_report
 
-        written = write_report(Path(out), check, **(extra_figures or {}))
+        written = write_report(Path(out), check, **(extra_figures or {}), records=records)
         print(f"\nreport: {Path(out).resolve()} ({len(written)} files)")
     if check.ok:
         return 0
@@ -187,6 +206,21 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     from koenig_check.api import compare
     from koenig_check.progress import Progress
 
+    client = None
+    if args.scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            hint = "pip install 'koenig-check[cluster]'"
+            print(f"koenig-check: error: --scheduler needs the [cluster] extra: {hint}", file=sys.stderr)
+            return 2
+        client = Client(args.scheduler)
+    sink = None
+    if args.out:
+        from koenig_check.report import RecordFiles
+
+        sink = RecordFiles(Path(args.out))
+    figures_need_records = args.pose_kind in ("grid", "trajectory")
     with Progress(len(args.models), "models") as bar:
         check = compare(
             args.models,
@@ -202,11 +236,18 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             duration=args.duration,
             pose_file=args.pose_file,
             debug=args.debug,
+            records=args.records if args.out or figures_need_records else "none",  # nothing else reads them
+            jobs=args.jobs,
+            client=client,
+            sink=sink,
+            keep_records=figures_need_records,
         )
+    if client is not None:
+        client.close()
     figures = {}
     if args.pose_kind in ("grid", "trajectory") and check.comparisons:
         figures[f"{args.pose_kind}_comparison"] = check.comparisons[0]
-    return _finish(check, args.out, figures)
+    return _finish(check, args.out, figures, records=sink)
 
 
 def _cmd_demo(args: argparse.Namespace) -> int:

@@ -89,7 +89,7 @@ def run_demo(
         for label, options in jobs:
             bar.step(label)
             try:
-                comp = compare_model(label=label, **options)
+                comp = compare_model(label=label, rtol=rtol, **options)
             except Exception as err:  # the other models still report
                 check.failures.append((label, one_line(err)))
                 continue

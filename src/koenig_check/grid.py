@@ -1,9 +1,13 @@
-"""The comparison grid: model × pose × formula × state source × reference engine → tidy records.
+"""The comparison grid: model × pose × formula × state source × reference engine → statistics and records.
 
 For each model, each engine produces its own :class:`SegmentStates` (the *state source*)
 and its own kinetic energy (the *reference*).  Every formula is evaluated on each
 source's states and compared with each engine's rigid-body energy (armature excluded,
 totals) and, segment by segment, with ``exact`` on the same source's states.
+
+A chunk of poses is evaluated by :func:`evaluate_chunk` into mergeable statistics
+(:class:`~koenig_check.stats.ModelStats`) and, when asked, records; the summaries and the engine
+parity of a model are read from the merged statistics.
 """
 
 from __future__ import annotations
@@ -13,17 +17,39 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 import numpy as np
+import pyarrow as pa
 
 from koenig_check.findings import Finding, Kind, root_causes
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
+from koenig_check.formulas.cache import SharedStates
 from koenig_check.formulas.point_masses import equimomental_points
 from koenig_check.poses import PoseSet
-from koenig_check.records import RECORD_FIELDS, RecordTable
+from koenig_check.records import RECORD_FIELDS, STORED_SCHEMA, RecordTable, categorical
 from koenig_check.segments import SegmentStates
+from koenig_check.stats import Extreme, ModelStats, relative_error
+
+__all__ = [
+    "DEFAULT_RTOL",
+    "RECORD_FIELDS",
+    "RECORD_MODES",
+    "EngineParity",
+    "EngineRun",
+    "FormulaSummary",
+    "ModelComparison",
+    "compare_runs",
+    "engine_parity",
+    "evaluate_chunk",
+    "relative_error",
+    "run_engine",
+    "summarize",
+    "summarize_records",
+]
 
 #: Default relative tolerance for "agrees".
 DEFAULT_RTOL = 1e-9
 ENGINES = ("mujoco", "pinocchio")
+#: Which records a run keeps: per segment and totals, totals only, or none.
+RECORD_MODES = ("segments", "totals", "none")
 
 
 class EngineModel(Protocol):
@@ -31,11 +57,11 @@ class EngineModel(Protocol):
 
     engine: str
 
-    def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates: ...  # noqa: D102
+    def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates: ...
 
-    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray: ...  # noqa: D102
+    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray: ...
 
-    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> Any: ...  # noqa: D102
+    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> Any: ...
 
 
 @dataclass
@@ -57,49 +83,46 @@ class ModelComparison:
     ----------
     model : str
         Model label.
-    poses : PoseSet
+    poses : PoseSet or None
+        The poses, when they were held in memory (grids, trajectories, keyframes, pose files,
+        synthetic runs); ``None`` for random poses drawn chunk by chunk.
     records : RecordTable
-        Tidy records with the columns of :data:`RECORD_FIELDS`.
+        Tidy records with the columns of :data:`RECORD_FIELDS` kept in memory (empty when they
+        were streamed to a file or not asked for).
     refusals : list of dict
         Formulas that refused (e.g. ``planar`` on non-plane-parallel motion), with reasons.
     runs : dict
-        Engine name to :class:`EngineRun`.
+        Engine name to :class:`EngineRun`, for a comparison computed in one piece from given runs.
     notes : list of str
         Load notes and decisions (skipped formulas, unmatched segments).
     findings : list of Finding
         What is known about the model: the load findings and the import-parity differences; the
         one-line reason of a disagreement is chosen from these (:func:`disagreement_cause`).
+    stats : ModelStats, optional
+        The merged statistics of every chunk (summaries and engine parity are read from them).
+    n_poses : int
+    pose_kind : str
+    engines : tuple of str
+        The engines that produced states and energies.
     """
 
     model: str
-    poses: PoseSet
+    poses: PoseSet | None
     records: RecordTable = field(default_factory=RecordTable)
     refusals: list[dict[str, Any]] = field(default_factory=list)
     runs: dict[str, EngineRun] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
-
-
-def relative_error(value: np.ndarray, reference: np.ndarray) -> np.ndarray:
-    """Signed relative error ``(value − reference)/|reference|``; 0/0 is 0 and x/0 is ±inf.
-
-    Parameters
-    ----------
-    value, reference : ndarray
-
-    Returns
-    -------
-    ndarray
-    """
-    diff = np.asarray(value, dtype=float) - np.asarray(reference, dtype=float)
-    ref = np.abs(np.asarray(reference, dtype=float))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rel = diff / ref
-    return np.where(ref > 0, rel, np.where(diff == 0, 0.0, np.copysign(np.inf, diff)))
+    stats: ModelStats | None = None
+    n_poses: int = 0
+    pose_kind: str = ""
+    engines: tuple[str, ...] = ENGINES
 
 
 def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
     """Evaluate one engine on a pose set: segment states, its energy, point velocities.
+
+    Engines with a ``sweep`` method give all three from one pass per pose.
 
     Parameters
     ----------
@@ -110,6 +133,10 @@ def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
     -------
     EngineRun
     """
+    sweep = getattr(engine, "sweep", None)
+    if sweep is not None:
+        states, pv, rigid, armature = sweep(poses.qpos, poses.qvel, _points_for(engine))
+        return EngineRun(engine.engine, states, rigid, armature, pv)
     states = engine.segment_states(poses.qpos, poses.qvel)
     energy = engine.kinetic_energy(poses.qpos, poses.qvel)
     try:
@@ -121,12 +148,190 @@ def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
     return EngineRun(engine.engine, states, np.asarray(energy.rigid), np.asarray(energy.armature), pv)
 
 
-def _evaluate(name: str, run: EngineRun, angles: np.ndarray | None) -> np.ndarray:
+def _points_for(engine: Any) -> np.ndarray | None:
+    """The equimomental points of an engine's segments (mass properties are constant), or None."""
+    try:
+        offsets, _ = equimomental_points(engine._mass, engine._inertia, engine.segment_names)
+    except ValueError:  # a non-physical inertia: point_masses will refuse, with the reason
+        return None
+    return offsets
+
+
+def _evaluate(name: str, run: EngineRun, states: Any, angles: np.ndarray | None, normal=None, ids=None) -> np.ndarray:
+    if name == "planar" and (normal is not None or ids is not None):
+        return FORMULAS[name].func(states, normal=normal, pose_labels=ids)
     if name == "point_masses":
         if run.point_velocities is None:
             return FORMULAS[name].func(run.states)  # raises, naming the non-physical segment
-        return FORMULAS[name].func(run.states, point_velocities=run.point_velocities)
-    return FORMULAS[name](run.states, angles=angles)
+        return FORMULAS[name].func(states, point_velocities=run.point_velocities)
+    return FORMULAS[name](states, angles=angles)
+
+
+def formula_names(formulas: Sequence[str] | None, path: bool) -> tuple[list[str], list[str]]:
+    """The formulas to evaluate and the notes on those skipped.
+
+    Parameters
+    ----------
+    formulas : sequence of str, optional
+        Formula names (default: all).
+    path : bool
+        Whether the poses form a path (path-dependent variants are skipped otherwise).
+
+    Returns
+    -------
+    names : list of str
+    notes : list of str
+    """
+    names = list(FORMULAS) if formulas is None else list(formulas)
+    unknown = [n for n in names if n not in FORMULAS]
+    if unknown:
+        raise ValueError(f"unknown formulas {unknown}; known: {list(FORMULAS)}")
+    notes = [
+        f"{n}: skipped, the poses are not a path (use a trajectory)"
+        for n in names
+        if FORMULAS[n].needs_path and not path
+    ]
+    return [n for n in names if path or not FORMULAS[n].needs_path], notes
+
+
+@dataclass
+class ChunkResult:
+    """What one chunk of poses contributes: its statistics and, when asked, its records."""
+
+    index: int
+    stats: ModelStats
+    records: pa.Table | None
+
+
+def evaluate_chunk(
+    label: str,
+    poses: PoseSet,
+    runs: dict[str, EngineRun],
+    names: Sequence[str],
+    records: str = "totals",
+    rtol: float = DEFAULT_RTOL,
+    index: int = 0,
+    planar_normals: dict[str, np.ndarray] | None = None,
+) -> ChunkResult:
+    """Every formula on every engine's states of one chunk: statistics and records, from arrays.
+
+    Parameters
+    ----------
+    label : str
+        Model label written in every record.
+    poses : PoseSet
+        The chunk's poses (their ids label the records).
+    runs : dict of str to EngineRun
+    names : sequence of str
+        Formulas to evaluate (see :func:`formula_names`).
+    records : {"segments", "totals", "none"}
+        Which records to build: per-segment and totals, totals only, or none.
+    rtol : float
+    index : int
+        The chunk's position, kept in the result.
+    planar_normals : dict of str to ndarray (B, 3), optional
+        Per state source, the plane normals of eq. (16), fixed for every chunk of a model (by
+        default ``planar`` infers them from the chunk's own states).
+
+    Returns
+    -------
+    ChunkResult
+    """
+    if records not in RECORD_MODES:
+        raise ValueError(f"records must be one of {RECORD_MODES}, got {records!r}")
+    stats = ModelStats(rtol, n_poses=poses.n_poses)
+    ids = poses.ids
+    P = poses.n_poses
+    blocks: list[tuple[int, int, int, np.ndarray | None, np.ndarray, np.ndarray]] = []
+    engines = list(runs)
+    references = engines + [f"exact@{e}" for e in engines]
+    scopes: dict[str, int] = {"total": 0}
+    exact_totals: dict[str, np.ndarray] = {}
+    for s_code, (source, run) in enumerate(runs.items()):
+        shared = SharedStates(run.states)
+        angles = integrate_angular_velocity(run.states.omega, poses.times) if poses.times is not None else None
+        exact_seg = FORMULAS["exact"](shared)
+        exact_totals[source] = exact_seg.sum(axis=1)
+        seg_names = run.states.names
+        seg_codes = np.array([scopes.setdefault(n, len(scopes)) for n in seg_names], dtype=np.int64)
+        B = len(seg_names)
+        for f_code, name in enumerate(names):
+            try:
+                normal = (planar_normals or {}).get(source)
+                per_segment = _evaluate(name, run, shared, angles, normal, ids)
+            except NotPlaneParallelError as err:
+                stats.refusals[(name, source)] = str(err)
+                continue
+            except ValueError as err:  # only point_masses may refuse otherwise: a non-physical inertia
+                if name != "point_masses":
+                    raise
+                stats.refusals[(name, source)] = str(err)
+                continue
+            total = per_segment.sum(axis=1)
+            for r_code, (reference, ref_run) in enumerate(runs.items()):
+                stats.group((name, source, reference)).add(total, ref_run.rigid, rtol, ids)
+                if records != "none":
+                    blocks.append((f_code, s_code, r_code, None, total, ref_run.rigid))
+            err = np.abs(per_segment - exact_seg).ravel()
+            stats.worst_segments.setdefault((name, source), Extreme()).offer(
+                err, lambda k, seg_names=seg_names, B=B: f"{seg_names[k % B]} @ {ids[k // B]}"
+            )
+            if records == "segments":
+                blocks.append((f_code, s_code, len(engines) + s_code, seg_codes, per_segment, exact_seg))
+    if "mujoco" in runs and "pinocchio" in runs:
+        _parity_stats(stats, runs, ids, exact_totals)
+    table = None
+    if records != "none":
+        table = _chunk_table(label, ids, P, blocks, list(names), engines, references, list(scopes))
+    return ChunkResult(index, stats, table)
+
+
+def _parity_stats(
+    stats: ModelStats, runs: dict[str, EngineRun], ids: Sequence[str], exact_totals: dict[str, np.ndarray]
+) -> None:
+    mj, pn = runs["mujoco"], runs["pinocchio"]
+    parity = stats.parity
+    parity.rigid.offer(np.abs(relative_error(pn.rigid, mj.rigid)), ids, extra=(mj.rigid, pn.rigid))
+    arm = np.abs(pn.armature - mj.armature)
+    parity.armature.offer(arm, ids, extra=(mj.armature, pn.armature))
+    scale = np.maximum(np.abs(mj.rigid) + np.abs(mj.armature), 1e-300)
+    parity.armature_scaled = max(parity.armature_scaled, float((arm / scale).max()))
+    for name, run in runs.items():
+        parity.self_rel[name] = float(np.abs(relative_error(exact_totals[name], run.rigid)).max())
+
+
+def _chunk_table(
+    label: str,
+    ids: Sequence[str],
+    P: int,
+    blocks: list,
+    formulas: list[str],
+    sources: list[str],
+    references: list[str],
+    scopes: list[str],
+) -> pa.Table:
+    """The chunk's records, pose by pose: a (P, K) matrix of values, K records per pose."""
+    if not blocks:
+        return STORED_SCHEMA.empty_table()
+    values = np.concatenate([b[4].reshape(P, -1) for b in blocks], axis=1)
+    refs = np.concatenate([b[5].reshape(P, -1) for b in blocks], axis=1)
+    widths = [1 if b[3] is None else len(b[3]) for b in blocks]
+    f = np.repeat([b[0] for b in blocks], widths)
+    s = np.repeat([b[1] for b in blocks], widths)
+    r = np.repeat([b[2] for b in blocks], widths)
+    sc = np.concatenate([np.zeros(1, dtype=np.int64) if b[3] is None else b[3] for b in blocks])
+    K = values.shape[1]
+    arrays = [
+        categorical(np.zeros(P * K, dtype=np.int64), [label], "model"),
+        categorical(np.repeat(np.arange(P), K), list(ids), "pose"),
+        categorical(np.tile(f, P), formulas, "formula"),
+        categorical(np.tile(s, P), sources, "source"),
+        categorical(np.tile(r, P), references, "reference"),
+        categorical(np.tile(sc, P), scopes, "scope"),
+        pa.array(values.ravel()),
+        pa.array(refs.ravel()),
+    ]
+    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
 
 
 def compare_runs(
@@ -135,8 +340,9 @@ def compare_runs(
     runs: dict[str, EngineRun],
     formulas: Sequence[str] | None = None,
     segments: bool = True,
+    rtol: float = DEFAULT_RTOL,
 ) -> ModelComparison:
-    """Build the tidy records of one model from its engine runs.
+    """Build the statistics and tidy records of one model from its engine runs, in one piece.
 
     Parameters
     ----------
@@ -149,73 +355,61 @@ def compare_runs(
         unless the poses form a trajectory.
     segments : bool
         Also emit per-segment records (reference: ``exact`` on the same source's states).
+    rtol : float
+        Tolerance of the over/under counts of the statistics.
 
     Returns
     -------
     ModelComparison
     """
-    names = list(FORMULAS) if formulas is None else list(formulas)
-    unknown = [n for n in names if n not in FORMULAS]
-    if unknown:
-        raise ValueError(f"unknown formulas {unknown}; known: {list(FORMULAS)}")
-    result = ModelComparison(label, poses, runs=runs)
-    for n in names:
-        if FORMULAS[n].needs_path and poses.times is None:
-            result.notes.append(f"{n}: skipped, the poses are not a path (use a trajectory)")
-    names = [n for n in names if not (FORMULAS[n].needs_path and poses.times is None)]
-    pose_ids = np.asarray(poses.ids)
-    columns: dict[str, list[np.ndarray]] = {k: [] for k in RECORD_FIELDS}
+    names, notes = formula_names(formulas, poses.times is not None)
+    chunk = evaluate_chunk(label, poses, runs, names, "segments" if segments else "totals", rtol)
+    return finish_comparison(label, poses, chunk.stats, RecordTable(chunk.records), notes, tuple(runs), runs=runs)
 
-    def emit(formula: str, source: str, reference: str, scope: np.ndarray, ids: np.ndarray, value, ref) -> None:
-        value = np.asarray(value, dtype=float).ravel()
-        ref = np.asarray(ref, dtype=float).ravel()
-        n = value.size
-        signed = value - ref
-        columns["model"].append(np.full(n, label))
-        columns["pose"].append(ids)
-        columns["formula"].append(np.full(n, formula))
-        columns["source"].append(np.full(n, source))
-        columns["reference"].append(np.full(n, reference))
-        columns["scope"].append(scope)
-        columns["value"].append(value)
-        columns["reference_value"].append(ref)
-        columns["abs_error"].append(np.abs(signed))
-        columns["rel_error"].append(np.abs(relative_error(value, ref)))
-        columns["signed_error"].append(signed)
 
-    for source, run in runs.items():
-        angles = integrate_angular_velocity(run.states.omega, poses.times) if poses.times is not None else None
-        exact_seg = FORMULAS["exact"](run.states)
-        B = run.states.n_segments
-        seg_scope = np.tile(np.asarray(run.states.names), poses.n_poses)
-        seg_ids = np.repeat(pose_ids, B)
-        for name in names:
-            try:
-                per_segment = _evaluate(name, run, angles)
-            except NotPlaneParallelError as err:
-                result.refusals.append({"model": label, "formula": name, "source": source, "reason": str(err)})
-                continue
-            except ValueError as err:  # only point_masses may refuse otherwise: a non-physical inertia
-                if name != "point_masses":
-                    raise
-                result.refusals.append({"model": label, "formula": name, "source": source, "reason": str(err)})
-                continue
-            total = per_segment.sum(axis=1)
-            for reference, ref_run in runs.items():
-                emit(
-                    name,
-                    source,
-                    reference,
-                    np.full(poses.n_poses, "total"),
-                    pose_ids,
-                    total,
-                    ref_run.rigid,
-                )
-            if segments:
-                emit(name, source, f"exact@{source}", seg_scope, seg_ids, per_segment, exact_seg)
-    if columns["model"]:
-        result.records = RecordTable({k: np.concatenate(v) for k, v in columns.items()})
-    return result
+def finish_comparison(
+    label: str,
+    poses: PoseSet | None,
+    stats: ModelStats,
+    records: RecordTable,
+    notes: list[str],
+    engines: tuple[str, ...],
+    runs: dict[str, EngineRun] | None = None,
+    pose_kind: str | None = None,
+) -> ModelComparison:
+    """A :class:`ModelComparison` from merged statistics and the records kept.
+
+    Parameters
+    ----------
+    label : str
+    poses : PoseSet or None
+    stats : ModelStats
+    records : RecordTable
+    notes : list of str
+    engines : tuple of str
+    runs : dict, optional
+    pose_kind : str, optional
+        Defaults to the kind of ``poses``.
+
+    Returns
+    -------
+    ModelComparison
+    """
+    refusals = [
+        {"model": label, "formula": f, "source": s, "reason": reason} for (f, s), reason in stats.refusals.items()
+    ]
+    return ModelComparison(
+        label,
+        poses,
+        records=records,
+        refusals=refusals,
+        runs=runs or {},
+        notes=list(notes),
+        stats=stats,
+        n_poses=stats.n_poses,
+        pose_kind=pose_kind or (poses.kind if poses is not None else ""),
+        engines=engines,
+    )
 
 
 @dataclass(frozen=True)
@@ -238,6 +432,9 @@ class FormulaSummary:
 def summarize(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> list[FormulaSummary]:
     """Per formula, source and reference: max/median relative error, over/under fractions, worst pose/segment.
 
+    Read from the comparison's merged statistics when they were accumulated at this ``rtol``,
+    otherwise from its records (see :func:`summarize_records`).
+
     Parameters
     ----------
     comparison : ModelComparison
@@ -249,8 +446,67 @@ def summarize(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> list[F
     -------
     list of FormulaSummary
     """
+    if comparison.stats is not None and comparison.stats.rtol == rtol:
+        return summaries_from_stats(comparison.model, comparison.stats)
+    return summarize_records(comparison.records, rtol, comparison.model)
+
+
+def summaries_from_stats(model: str, stats: ModelStats) -> list[FormulaSummary]:
+    """The summaries of one model from its merged statistics.
+
+    Parameters
+    ----------
+    model : str
+    stats : ModelStats
+
+    Returns
+    -------
+    list of FormulaSummary
+        Formula by formula (in order of first appearance), then source, then reference.
+    """
     out = []
-    rec = comparison.records
+    for (formula, source, reference), g in stats.kept_groups().items():
+        seg = stats.worst_segments.get((formula, source))
+        out.append(
+            FormulaSummary(
+                model=model,
+                formula=formula,
+                source=source,
+                reference=reference,
+                max_rel_error=g.worst.value,
+                median_rel_error=g.sketch.median(),
+                over_fraction=g.over / g.n,
+                under_fraction=g.under / g.n,
+                worst_pose=g.worst.where,
+                worst_segment=seg.where if seg is not None and seg.value > 0 else None,
+                agrees=bool(g.worst.value <= stats.rtol),
+            )
+        )
+    rank = {f: k for k, f in enumerate(dict.fromkeys(s.formula for s in out))}
+    return sorted(out, key=lambda s: rank[s.formula])
+
+
+def summarize_records(
+    records: RecordTable, rtol: float = DEFAULT_RTOL, model: str | None = None
+) -> list[FormulaSummary]:
+    """The summaries computed from a full record table (the reference route for the streamed ones).
+
+    Parameters
+    ----------
+    records : RecordTable
+        One model's records; ``worst_segment`` needs its per-segment records.
+    rtol : float
+    model : str, optional
+        The label written in the summaries (default: the records' model column).
+
+    Returns
+    -------
+    list of FormulaSummary
+    """
+    out: list[FormulaSummary] = []
+    if not len(records):
+        return out
+    rec = records.columns
     total = rec["scope"] == "total"
     for formula in dict.fromkeys(rec["formula"].tolist()):
         f_mask = rec["formula"] == formula
@@ -269,7 +525,7 @@ def summarize(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> list[F
                 ref = np.abs(rec["reference_value"][rows])
                 out.append(
                     FormulaSummary(
-                        model=comparison.model,
+                        model=model or str(rec["model"][rows[0]]),
                         formula=formula,
                         source=source,
                         reference=reference,
@@ -311,30 +567,23 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
     EngineParity
         ``agrees`` with a one-line ``reason`` when it does not.
     """
-    runs = comparison.runs
-    mj, pin = runs["mujoco"], runs["pinocchio"]
-    rel = np.abs(relative_error(pin.rigid, mj.rigid))
-    arm = np.abs(pin.armature - mj.armature)
-    scale = np.maximum(np.abs(mj.rigid) + np.abs(mj.armature), 1e-300)
-    self_rel = {
-        name: float(np.abs(relative_error(FORMULAS["exact"](run.states).sum(axis=1), run.rigid)).max())
-        for name, run in runs.items()
-    }
-    worst = int(np.argmax(rel))
-    pose = comparison.poses.ids[worst]
+    if comparison.stats is None:
+        raise ValueError(f"{comparison.model}: no statistics to read the engine parity from")
+    p = comparison.stats.parity
     reasons = []
-    if rel.max() > rtol:
+    if p.rigid.value > rtol:
+        mj, pn = p.rigid.extra
         reasons.append(
-            f"MuJoCo and Pinocchio rigid-body energies differ by {rel.max():.3g} relative at pose {pose} "
-            f"(MuJoCo {mj.rigid[worst]:.9g} J, Pinocchio {pin.rigid[worst]:.9g} J)"
+            f"MuJoCo and Pinocchio rigid-body energies differ by {p.rigid.value:.3g} relative at pose "
+            f"{p.rigid.where} (MuJoCo {mj:.9g} J, Pinocchio {pn:.9g} J)"
         )
-    if (arm / scale).max() > rtol:
-        k = int(np.argmax(arm))
+    if p.armature_scaled > rtol:
+        mj, pn = p.armature.extra
         reasons.append(
-            f"armature energies differ by {arm[k]:.3g} J at pose {comparison.poses.ids[k]} "
-            f"(MuJoCo {mj.armature[k]:.6g} J, Pinocchio {pin.armature[k]:.6g} J)"
+            f"armature energies differ by {p.armature.value:.3g} J at pose {p.armature.where} "
+            f"(MuJoCo {mj:.6g} J, Pinocchio {pn:.6g} J)"
         )
-    for name, value in self_rel.items():
+    for name, value in p.self_rel.items():
         if value > rtol:
             reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
     cause = disagreement_cause(comparison.findings) if reasons else ""
@@ -342,10 +591,10 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
         reasons.append(f"cause: {cause}")
     return EngineParity(
         comparison.model,
-        float(rel.max()),
-        float(arm.max()),
-        self_rel,
-        pose,
+        float(p.rigid.value),
+        float(p.armature.value),
+        dict(p.self_rel),
+        p.rigid.where,
         not reasons,
         "; ".join(reasons),
     )

@@ -64,6 +64,19 @@ class PoseSet:
         """Number of poses ``P``."""
         return self.qpos.shape[0]
 
+    def slice(self, start: int, stop: int) -> PoseSet:
+        """Poses ``start`` to ``stop − 1`` as states alone (no path times, grid or notes).
+
+        Parameters
+        ----------
+        start, stop : int
+
+        Returns
+        -------
+        PoseSet
+        """
+        return PoseSet(self.qpos[start:stop], self.qvel[start:stop], self.ids[start:stop], self.kind)
+
 
 def _random_quaternions(rng: np.random.Generator, n: int) -> np.ndarray:
     q = rng.normal(size=(n, 4))
@@ -125,12 +138,68 @@ def random_poses(model: mujoco.MjModel, n: int, seed: int = 0, velocity_scale: f
         position and velocity; the notes say so.
     """
     _check_count(n)
+    return random_pose_range(model, 0, n, seed=seed, velocity_scale=velocity_scale)
+
+
+def check_random(n: int, seed: int, velocity_scale: float) -> None:
+    """Refuse a random pose request before any work starts.
+
+    Parameters
+    ----------
+    n : int
+        Number of poses, >= 1.
+    seed : int
+        >= 0.
+    velocity_scale : float
+        > 0.
+    """
+    _check_count(n)
     _check_scale(velocity_scale)
-    rng = np.random.default_rng(seed)
-    qpos = random_qpos(model, n, rng)
-    qvel = velocity_scale * rng.normal(size=(n, model.nv))
-    qpos, qvel, notes = apply_joint_relations(model, qpos, qvel)
-    return PoseSet(qpos, qvel, tuple(f"random-{i}" for i in range(n)), "random", notes=tuple(notes))
+    if seed < 0:
+        raise ValueError(f"seed must be >= 0, got {seed}")
+
+
+#: Random poses are drawn in blocks of this many, each block from its own seed, so that any range of
+#: poses can be drawn without the others (chunks, processes, cluster workers) and gives the same poses.
+RANDOM_BLOCK = 1024
+
+
+def random_pose_range(
+    model: mujoco.MjModel, start: int, stop: int, seed: int = 0, velocity_scale: float = 1.0
+) -> PoseSet:
+    """Poses ``start`` to ``stop − 1`` of the seeded random sequence of :func:`random_poses`.
+
+    Pose ``i`` depends only on ``(seed, i)``: block ``i // RANDOM_BLOCK`` is drawn from the
+    generator seeded with ``(seed, block)``.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    start, stop : int
+        ``0 <= start < stop``.
+    seed : int
+        Non-negative.
+    velocity_scale : float
+
+    Returns
+    -------
+    PoseSet
+        Ids ``random-i``.
+    """
+    _check_scale(velocity_scale)
+    if not 0 <= start < stop:
+        raise ValueError(f"random poses: need 0 <= start < stop, got {start}, {stop}")
+    if seed < 0:
+        raise ValueError(f"seed must be >= 0, got {seed}")
+    first, last = start // RANDOM_BLOCK, (stop - 1) // RANDOM_BLOCK
+    qpos, qvel = [], []
+    for block in range(first, last + 1):
+        rng = np.random.default_rng([seed, block])
+        qpos.append(random_qpos(model, RANDOM_BLOCK, rng))
+        qvel.append(velocity_scale * rng.normal(size=(RANDOM_BLOCK, model.nv)))
+    cut = slice(start - first * RANDOM_BLOCK, stop - first * RANDOM_BLOCK)
+    qpos_all, qvel_all, notes = apply_joint_relations(model, np.concatenate(qpos)[cut], np.concatenate(qvel)[cut])
+    return PoseSet(qpos_all, qvel_all, tuple(f"random-{i}" for i in range(start, stop)), "random", notes=tuple(notes))
 
 
 def keyframe_poses(model: mujoco.MjModel, seed: int = 0, velocity_scale: float = 1.0) -> PoseSet:

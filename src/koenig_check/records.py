@@ -1,12 +1,22 @@
-"""A tidy table of comparison records, stored column by column."""
+"""A tidy table of comparison records, stored column by column in Apache Arrow.
+
+Text columns are categorical (Arrow dictionary columns: small integer codes plus the distinct
+strings), so a record costs a few bytes of codes and two floats; the error columns
+(``abs_error``, ``rel_error``, ``signed_error``) are derived from ``value`` and ``reference_value``
+when read or written.  Rows come pose by pose (every formula, source, reference and scope of a
+pose, then the next pose), so that a run cut into chunks lists its records in the same order as the
+run in one piece.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any
 
 import numpy as np
+import pyarrow as pa
+
+from koenig_check.stats import relative_error
 
 #: The columns of every record, in order.
 RECORD_FIELDS = (
@@ -22,44 +32,138 @@ RECORD_FIELDS = (
     "rel_error",
     "signed_error",
 )
-_TEXT = frozenset({"model", "pose", "formula", "source", "reference", "scope"})
+TEXT_FIELDS = ("model", "pose", "formula", "source", "reference", "scope")
+DERIVED_FIELDS = ("abs_error", "rel_error", "signed_error")
+#: The code width of each categorical column.
+_INDEX_TYPES = {
+    "model": pa.int16(),
+    "pose": pa.int32(),
+    "formula": pa.int8(),
+    "source": pa.int8(),
+    "reference": pa.int8(),
+    "scope": pa.int16(),
+}
+#: The stored columns (the error columns are derived).
+STORED_SCHEMA = pa.schema(
+    [pa.field(k, pa.dictionary(_INDEX_TYPES[k], pa.string())) for k in TEXT_FIELDS]
+    + [pa.field("value", pa.float64()), pa.field("reference_value", pa.float64())]
+)
+#: The schema of record files: every column of :data:`RECORD_FIELDS`.
+FULL_SCHEMA = pa.schema(list(STORED_SCHEMA) + [pa.field(k, pa.float64()) for k in DERIVED_FIELDS])
 
 
-@dataclass(frozen=True)
+def categorical(codes: np.ndarray, categories: Sequence[str], name: str) -> pa.DictionaryArray:
+    """A categorical column from integer codes into a list of strings.
+
+    Parameters
+    ----------
+    codes : ndarray of int
+    categories : sequence of str
+    name : str
+        Column name (chooses the code width).
+
+    Returns
+    -------
+    pyarrow.DictionaryArray
+    """
+    index_type = _INDEX_TYPES[name]
+    return pa.DictionaryArray.from_arrays(
+        pa.array(np.asarray(codes).astype(index_type.to_pandas_dtype(), copy=False), type=index_type),
+        pa.array(list(categories), type=pa.string()),
+    )
+
+
+def derived(value: np.ndarray, reference: np.ndarray) -> dict[str, np.ndarray]:
+    """The error columns of records: absolute, relative (absolute value) and signed error.
+
+    Parameters
+    ----------
+    value, reference : ndarray
+
+    Returns
+    -------
+    dict of str to ndarray
+    """
+    signed = value - reference
+    return {"abs_error": np.abs(signed), "rel_error": np.abs(relative_error(value, reference)), "signed_error": signed}
+
+
+def _decode(column: pa.ChunkedArray) -> np.ndarray:
+    parts = []
+    for chunk in column.chunks:
+        if pa.types.is_dictionary(chunk.type):
+            words = np.asarray(chunk.dictionary.to_pylist(), dtype=str)
+            parts.append(words[chunk.indices.to_numpy(zero_copy_only=False)] if len(words) else np.empty(0, str))
+        else:
+            parts.append(np.asarray(chunk.to_pylist(), dtype=str))
+    return np.concatenate(parts) if parts else np.empty(0, dtype=str)
+
+
 class RecordTable:
     """Tidy records: one row per (model, pose, formula, source, reference, scope).
 
-    Columns are numpy arrays of equal length: text columns are numpy unicode arrays, numbers
-    float.  Iterating yields one ``dict`` per row.
+    Index by column name for a numpy array (text columns decoded to numpy strings, numbers float);
+    iterate for one ``dict`` per row.
 
-    Attributes
+    Parameters
     ----------
-    columns : dict of str to ndarray
-        Keyed by :data:`RECORD_FIELDS`.
+    data : pyarrow.Table or dict of str to array_like, optional
+        A table with the columns of :data:`STORED_SCHEMA`, or columns keyed by (at least) the
+        stored fields of :data:`RECORD_FIELDS`; derived columns given in a dict are ignored.
     """
 
-    columns: dict[str, np.ndarray] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        if not self.columns:
-            object.__setattr__(
-                self,
-                "columns",
-                {k: np.empty(0, dtype=str if k in _TEXT else float) for k in RECORD_FIELDS},
-            )
-        lengths = {len(v) for v in self.columns.values()}
-        if set(self.columns) != set(RECORD_FIELDS) or len(lengths) > 1:
-            raise ValueError(f"RecordTable needs equal-length columns {RECORD_FIELDS}")
+    def __init__(self, data: pa.Table | dict[str, Any] | None = None) -> None:
+        if data is None:
+            data = STORED_SCHEMA.empty_table()
+        elif isinstance(data, dict):
+            missing = [k for k in STORED_SCHEMA.names if k not in data]
+            lengths = {len(data[k]) for k in STORED_SCHEMA.names if k in data}
+            if missing or len(lengths) > 1:
+                raise ValueError(f"RecordTable needs equal-length columns {RECORD_FIELDS}")
+            arrays = []
+            for k in TEXT_FIELDS:
+                words, codes = np.unique(np.asarray(data[k], dtype=str), return_inverse=True)
+                arrays.append(categorical(codes, words.tolist(), k))
+            arrays += [pa.array(np.asarray(data[k], dtype=float)) for k in ("value", "reference_value")]
+            data = pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+        elif data.schema != STORED_SCHEMA:
+            data = data.select(STORED_SCHEMA.names).cast(STORED_SCHEMA)
+        self.table: pa.Table = data
 
     def __len__(self) -> int:
-        return len(self.columns["model"])
+        return self.table.num_rows
+
+    def __bool__(self) -> bool:
+        return self.table.num_rows > 0
 
     def __getitem__(self, name: str) -> np.ndarray:
-        return self.columns[name]
+        if name in TEXT_FIELDS:
+            return _decode(self.table.column(name))
+        if name in ("value", "reference_value"):
+            return self.table.column(name).to_numpy()
+        if name in DERIVED_FIELDS:
+            return derived(self["value"], self["reference_value"])[name]
+        raise KeyError(f"no record column {name!r}; columns: {RECORD_FIELDS}")
+
+    @property
+    def columns(self) -> dict[str, np.ndarray]:
+        """Every column of :data:`RECORD_FIELDS` as a numpy array."""
+        value, ref = self["value"], self["reference_value"]
+        out = {k: self[k] for k in TEXT_FIELDS}
+        out.update(value=value, reference_value=ref, **derived(value, ref))
+        return {k: out[k] for k in RECORD_FIELDS}
+
+    def to_arrow(self) -> pa.Table:
+        """The records with every column of :data:`RECORD_FIELDS` (the schema of record files).
+
+        Returns
+        -------
+        pyarrow.Table
+        """
+        return with_derived(self.table)
 
     def __iter__(self) -> Iterator[dict[str, Any]]:
-        lists = [self.columns[k].tolist() for k in RECORD_FIELDS]
-        for row in zip(*lists, strict=True):
+        for row in self.rows():
             yield dict(zip(RECORD_FIELDS, row, strict=True))
 
     def rows(self) -> list[list[Any]]:
@@ -69,7 +173,8 @@ class RecordTable:
         -------
         list of list
         """
-        return [list(r) for r in zip(*(self.columns[k].tolist() for k in RECORD_FIELDS), strict=True)]
+        cols = self.columns
+        return [list(r) for r in zip(*(cols[k].tolist() for k in RECORD_FIELDS), strict=True)]
 
     def mask(self, **equals: str) -> np.ndarray:
         """Boolean mask of the rows whose text columns equal the given values.
@@ -85,7 +190,14 @@ class RecordTable:
         """
         keep = np.ones(len(self), dtype=bool)
         for name, value in equals.items():
-            keep &= self.columns[name] == value
+            if name not in TEXT_FIELDS:
+                raise KeyError(f"{name!r} is not a text column of the records; text columns: {TEXT_FIELDS}")
+            parts = []
+            for chunk in self.table.column(name).chunks:
+                codes = np.flatnonzero(np.asarray(chunk.dictionary.to_pylist(), dtype=object) == value)
+                parts.append(np.isin(chunk.indices.to_numpy(zero_copy_only=False), codes))
+            if parts:
+                keep &= np.concatenate(parts)
         return keep
 
     def where(self, mask: np.ndarray | None = None, **equals: str) -> RecordTable:
@@ -103,7 +215,7 @@ class RecordTable:
         keep = self.mask(**equals)
         if mask is not None:
             keep &= mask
-        return RecordTable({k: v[keep] for k, v in self.columns.items()})
+        return RecordTable(self.table.filter(pa.array(keep)))
 
     @staticmethod
     def concat(tables: Iterable[RecordTable]) -> RecordTable:
@@ -117,7 +229,28 @@ class RecordTable:
         -------
         RecordTable
         """
-        tables = [t for t in tables if len(t)]
+        tables = [t.table for t in tables if len(t)]
         if not tables:
             return RecordTable()
-        return RecordTable({k: np.concatenate([t.columns[k] for t in tables]) for k in RECORD_FIELDS})
+        return RecordTable(pa.concat_tables(tables))
+
+
+def with_derived(table: pa.Table) -> pa.Table:
+    """Add the derived error columns to a table of stored columns.
+
+    Parameters
+    ----------
+    table : pyarrow.Table
+        With the columns of :data:`STORED_SCHEMA`.
+
+    Returns
+    -------
+    pyarrow.Table
+        With the columns of :data:`FULL_SCHEMA`.
+    """
+    value = table.column("value").to_numpy()
+    ref = table.column("reference_value").to_numpy()
+    cols = derived(value, ref)
+    for k in DERIVED_FIELDS:
+        table = table.append_column(pa.field(k, pa.float64()), pa.array(cols[k]))
+    return table

@@ -1,20 +1,23 @@
-"""Markdown, CSV, JSON and PNG out of the comparison records."""
+"""Markdown, JSON, Parquet, CSV and PNG out of the comparison: summaries, records and figures."""
 
 from __future__ import annotations
 
-import csv
 import json
 from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+import pyarrow as pa
+import pyarrow.csv as pacsv
+import pyarrow.parquet as pq
 from matplotlib.figure import Figure
 
 from koenig_check.formulas import FORMULAS
 from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison, relative_error
-from koenig_check.records import RECORD_FIELDS, RecordTable
+from koenig_check.records import FULL_SCHEMA, RECORD_FIELDS, TEXT_FIELDS, RecordTable, with_derived
+from koenig_check.stats import QuantileSketch
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
@@ -66,7 +69,7 @@ def summary_markdown(
         p = parity.get(comp.model)
         lines.append(f"## {comp.model}")
         lines.append("")
-        lines.append(f"{comp.poses.n_poses} poses ({comp.poses.kind}).")
+        lines.append(f"{comp.n_poses} poses ({comp.pose_kind}).")
         if p is not None:
             verdict = "engines agree" if p.agrees else f"ENGINES DISAGREE: {p.reason}"
             lines.append(
@@ -76,7 +79,7 @@ def summary_markdown(
                 + "."
             )
         lines.append("")
-        engines = list(comp.runs)
+        engines = list(comp.engines)
         lines.append("| formula | equations | " + " | ".join(engines) + " |")
         lines.append("| --- | --- | " + " | ".join("---" for _ in engines) + " |")
         cells: dict[tuple[str, str], FormulaSummary] = {
@@ -109,6 +112,12 @@ def summary_markdown(
     return "\n".join(lines)
 
 
+def _text_columns(table: pa.Table) -> pa.Table:
+    """The same table with categorical columns decoded to strings (for CSV)."""
+    schema = pa.schema([pa.field(f.name, pa.string()) if pa.types.is_dictionary(f.type) else f for f in table.schema])
+    return table.cast(schema)
+
+
 def write_records_csv(path: Path, records: RecordTable) -> Path:
     """Write tidy records as CSV with the columns of :data:`RECORD_FIELDS`.
 
@@ -121,11 +130,99 @@ def write_records_csv(path: Path, records: RecordTable) -> Path:
     -------
     Path
     """
-    with open(path, "w", newline="", encoding="utf-8") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(RECORD_FIELDS)
-        writer.writerows(records.rows())
+    pacsv.write_csv(_text_columns(records.to_arrow()), path)
     return path
+
+
+#: Record files of runs up to this many rows are also written as CSV and inside records.json.
+SMALL_RUN_ROWS = 50_000
+
+
+class RecordSink(Protocol):
+    """Receives a run's records chunk by chunk (tables with the columns of ``STORED_SCHEMA``)."""
+
+    def write(self, table: pa.Table) -> None:
+        """Take one chunk's records."""
+        ...
+
+
+class RecordFiles:
+    """The record files of a report directory, written as the records stream in.
+
+    Every chunk goes straight to ``records.parquet`` (Parquet through pyarrow: columnar,
+    categorical columns stored as dictionary codes, read directly by pandas, polars, DuckDB,
+    Spark).  Runs of at most ``csv_rows`` records also get ``records.csv`` when closed, and keep
+    their rows for ``records.json``; beyond that the small copy is dropped, so memory stays
+    bounded.
+
+    Parameters
+    ----------
+    out : Path
+        The report directory (created if missing).
+    name : str
+        File stem.
+    csv_rows : int
+        Largest run written as CSV too.
+    """
+
+    def __init__(self, out: Path, name: str = "records", csv_rows: int = SMALL_RUN_ROWS) -> None:
+        self.out = Path(out)
+        self.out.mkdir(parents=True, exist_ok=True)
+        self.parquet = self.out / f"{name}.parquet"
+        self.csv = self.out / f"{name}.csv"
+        self.csv_rows = csv_rows
+        self.rows = 0
+        self._small: list[pa.Table] | None = [] if csv_rows > 0 else None
+        # Dictionary pages for the text columns only: the float columns are all distinct, and trying a
+        # dictionary for them first doubles the writing time.
+        self._writer = pq.ParquetWriter(self.parquet, FULL_SCHEMA, use_dictionary=list(TEXT_FIELDS))
+        self.written: list[Path] = []
+
+    def write(self, table: pa.Table) -> None:
+        """Append one chunk's records.
+
+        Parameters
+        ----------
+        table : pyarrow.Table
+            Columns of :data:`~koenig_check.records.STORED_SCHEMA`.
+        """
+        if not table.num_rows:
+            return
+        self._writer.write_table(with_derived(table))
+        self.rows += table.num_rows
+        if self._small is not None:
+            self._small.append(table)
+            if self.rows > self.csv_rows:
+                self._small = None
+
+    @property
+    def small(self) -> RecordTable | None:
+        """The records of a small run (None once the run outgrew ``csv_rows``)."""
+        if self._small is None:
+            return None
+        return RecordTable.concat(RecordTable(t) for t in self._small)
+
+    def close(self) -> list[Path]:
+        """Finish the files; return every file written.
+
+        Returns
+        -------
+        list of Path
+        """
+        if self._writer is not None:
+            self._writer.close()
+            self._writer = None
+            self.written = [self.parquet]
+            small = self.small
+            if small is not None:
+                self.written.append(write_records_csv(self.csv, small))
+        return self.written
+
+    def __enter__(self) -> RecordFiles:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
 
 
 def _jsonable(x: Any) -> Any:
@@ -142,7 +239,7 @@ def _jsonable(x: Any) -> Any:
 
 def write_json(
     path: Path,
-    records: RecordTable,
+    records: RecordTable | None,
     summaries: Sequence[FormulaSummary],
     parities: Sequence[EngineParity],
     failures: Sequence[tuple[str, str]] = (),
@@ -151,12 +248,13 @@ def write_json(
     """Write records, summaries, parity and failures as one JSON document.
 
     Records are stored as rows (lists) in the order of ``record_fields``, to keep the
-    file small; summaries, parity and failures are objects.
+    file small; summaries, parity and failures are objects.  Without records (a large run, whose
+    records are in ``records.parquet``) the document has ``"records": null``.
 
     Parameters
     ----------
     path : Path
-    records : RecordTable
+    records : RecordTable or None
     summaries : sequence of FormulaSummary
     parities : sequence of EngineParity
     failures : sequence of (model, reason)
@@ -169,7 +267,7 @@ def write_json(
     """
     doc = {
         "record_fields": list(RECORD_FIELDS),
-        "records": records.rows(),
+        "records": records.rows() if records is not None else None,
         "summaries": [asdict(s) for s in summaries],
         "parity": [asdict(p) for p in parities],
         "failures": [{"model": m, "reason": r} for m, r in failures],
@@ -179,35 +277,46 @@ def write_json(
     return path
 
 
-def error_distribution_figure(records: RecordTable, path: Path) -> Path:
+def error_distribution_figure(comparisons: Sequence[ModelComparison], path: Path) -> Path:
     """Distribution of relative error per formula (totals, each engine against itself), log scale.
+
+    Drawn from the merged statistics of every model (no record needed): boxes span the quartiles,
+    whiskers the minimum and the maximum.
 
     Parameters
     ----------
-    records : RecordTable
+    comparisons : sequence of ModelComparison
     path : Path
 
     Returns
     -------
     Path
     """
-    rows = records.where(records.mask(scope="total") & (records["source"] == records["reference"]))
-    formulas = list(dict.fromkeys(rows["formula"].tolist()))
-    engines = list(dict.fromkeys(rows["source"].tolist()))
+    pooled: dict[tuple[str, str], QuantileSketch] = {}
+    for comp in comparisons:
+        if comp.stats is None:
+            continue
+        for (formula, source, reference), g in comp.stats.kept_groups().items():
+            if source == reference:
+                pooled.setdefault((formula, source), QuantileSketch()).merge(g.sketch)
+    formulas = list(dict.fromkeys(f for f, _ in pooled))
+    engines = list(dict.fromkeys(e for _, e in pooled))
     fig = Figure(figsize=(10, 0.45 * max(len(formulas), 4) + 1.5), layout="constrained")
     ax = fig.add_subplot()
     colors = {"mujoco": "tab:blue", "pinocchio": "tab:orange"}
     for k, engine in enumerate(engines):
-        data = [np.log10(np.maximum(rows.where(formula=f, source=engine)["rel_error"], LOG_FLOOR)) for f in formulas]
-        positions = np.arange(len(formulas)) + (k - (len(engines) - 1) / 2) * 0.35
-        parts = ax.boxplot(
-            data,
-            positions=positions,
-            widths=0.3,
-            orientation="horizontal",
-            patch_artist=True,
-            showfliers=True,
-            manage_ticks=False,
+        boxes, positions = [], []
+        for i, f in enumerate(formulas):
+            sketch = pooled.get((f, engine))
+            if sketch is None or not sketch.n:
+                continue
+            q = [np.log10(max(sketch.quantile(x), LOG_FLOOR)) for x in (0.0, 0.25, 0.5, 0.75, 1.0)]
+            boxes.append({"whislo": q[0], "q1": q[1], "med": q[2], "q3": q[3], "whishi": q[4], "fliers": []})
+            positions.append(i + (k - (len(engines) - 1) / 2) * 0.35)
+        if not boxes:
+            continue
+        parts = ax.bxp(
+            boxes, positions=positions, widths=0.3, orientation="horizontal", patch_artist=True, manage_ticks=False
         )
         for box in parts["boxes"]:
             box.set_facecolor(colors.get(engine, "tab:gray"))
@@ -225,7 +334,10 @@ def error_distribution_figure(records: RecordTable, path: Path) -> Path:
     ax.set_xlabel(
         f"log10 relative error of total kinetic energy (dimensionless; exact agreement drawn at {LOG_FLOOR:g})"
     )
-    ax.set_title("Relative error of each formula against the engines' own kinetic energy, all models and poses")
+    ax.set_title(
+        "Relative error of each formula against the engines' own kinetic energy, all models and poses\n"
+        "(boxes: quartiles; whiskers: minimum and maximum)"
+    )
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=2, frameon=False)
     ax.grid(True, axis="x", alpha=0.3)
     fig.savefig(path, dpi=110)
@@ -297,16 +409,24 @@ def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path
         raise ValueError(f"{comparison.model}: the poses are not a trajectory")
     fig = Figure(figsize=(10, 7), layout="constrained")
     ax, ax_err = fig.add_subplot(2, 1, 1), fig.add_subplot(2, 1, 2, sharex=None)
-    for engine, run in comparison.runs.items():
+    energy = {
+        engine: comparison.records.where(formula="exact", scope="total", source=engine, reference=engine)[
+            "reference_value"
+        ]
+        for engine in comparison.engines
+    }
+    for engine, rigid in energy.items():
+        if not len(rigid):
+            continue
         ax.plot(
             times,
-            run.rigid,
+            rigid,
             linewidth=4,
             alpha=0.4,
             color="k" if engine == "mujoco" else "0.6",
             label=f"{engine} (engine energy)",
         )
-    mj = comparison.runs["mujoco"].rigid
+    mj = energy.get("mujoco", np.empty(0))
     palette = dict(zip(formulas, (f"C{k}" for k in range(10)), strict=False))
     for formula in formulas:
         rows = comparison.records.where(formula=formula, scope="total", source="mujoco", reference="mujoco")
@@ -341,8 +461,9 @@ def write_report(
         "alyushin_paper:euler_xyz",
         "alyushin_paper:integrated",
     ),
+    records: RecordFiles | None = None,
 ) -> list[Path]:
-    """Write the report directory: summary.md, records.csv, records.json and the figures.
+    """Write the report directory: summary.md, records.json, the record files and the figures.
 
     Parameters
     ----------
@@ -355,6 +476,9 @@ def write_report(
         A simulated trajectory: adds ``trajectory_energy.png``.
     map_formulas, trajectory_formulas : sequence of str
         Formulas drawn in those figures.
+    records : RecordFiles, optional
+        The record files the run streamed into (closed here).  Without it, the records the
+        check holds in memory are written to ``records.parquet`` (and ``records.csv`` for a small run).
 
     Returns
     -------
@@ -363,28 +487,35 @@ def write_report(
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    records = check.records
+    if records is None:
+        records = RecordFiles(out)
+        for comp in check.comparisons:
+            records.write(comp.records.table)
     written = [
         _write_text(
             out / "summary.md",
             summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol),
         ),
-        write_records_csv(out / "records.csv", records),
+        *records.close(),
+    ]
+    written.append(
         write_json(
             out / "records.json",
-            records,
+            records.small,
             check.summaries,
             check.parities,
             check.failures,
             extra={
                 "rtol": check.rtol,
+                "records_file": records.parquet.name,
+                "record_count": records.rows,
                 "notes": {c.model: c.notes for c in check.comparisons},
                 "refusals": [r for c in check.comparisons for r in c.refusals],
             },
-        ),
-    ]
-    if records:
-        written.append(error_distribution_figure(records, out / "error_distribution.png"))
+        )
+    )
+    if check.summaries:
+        written.append(error_distribution_figure(check.comparisons, out / "error_distribution.png"))
     if grid_comparison is not None:
         written.append(error_map_figure(grid_comparison, map_formulas, out / "error_map.png"))
     if trajectory_comparison is not None:

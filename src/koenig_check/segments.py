@@ -131,6 +131,28 @@ class SegmentStates:
                 where = f" at pose {idx[0]}" if R.ndim == 4 else ""
                 raise ValueError(f"SegmentStates.{name}: segment {self.names[seg]!r}{where} is not a proper rotation")
 
+    @classmethod
+    def trusted(cls, **values: object) -> SegmentStates:
+        """Build from arrays an engine adapter has just computed, without re-validating them.
+
+        For internal paths only (the engines' sweeps), where the shapes are correct by
+        construction and the physics was checked when the model was loaded.
+
+        Parameters
+        ----------
+        **values
+            Every field of the dataclass.
+
+        Returns
+        -------
+        SegmentStates
+        """
+        obj = object.__new__(cls)
+        for f in fields(cls):
+            value = values[f.name]
+            object.__setattr__(obj, f.name, tuple(value) if f.name == "names" else value)  # type: ignore[arg-type]
+        return obj
+
     # ------------------------------------------------------------------ shape
     @property
     def n_poses(self) -> int:
@@ -151,8 +173,9 @@ class SegmentStates:
         ndarray, shape (P, B, 3, 3)
             ``R I_body R^T``.
         """
-        R = self.rotation
-        return R @ self.inertia_body[None] @ np.swapaxes(R, -1, -2)
+        from koenig_check.kernels import congruence
+
+        return congruence(self.rotation, self.inertia_body[None])
 
     def inertia_world_ref(self) -> np.ndarray:
         """Return the central inertia tensor in world axes at the reference configuration.
@@ -162,8 +185,9 @@ class SegmentStates:
         ndarray, shape (B, 3, 3)
             ``R_ref I_body R_ref^T``.
         """
-        R = self.rotation_ref
-        return R @ self.inertia_body @ np.swapaxes(R, -1, -2)
+        from koenig_check.kernels import congruence
+
+        return congruence(self.rotation_ref, self.inertia_body)
 
     def select(self, poses: np.ndarray | slice | None = None, segments: list[str] | None = None) -> SegmentStates:
         """Return a subset of poses and/or segments.

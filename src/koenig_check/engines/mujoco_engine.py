@@ -36,6 +36,7 @@ from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import mujoco_joint_names
 from koenig_check.findings import Finding, Kind
+from koenig_check.kernels import body_point_velocities, cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates
 
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
@@ -153,19 +154,33 @@ class MujocoEngine:
         self._inertia = symmetrize(inertia[keep])
         self._ref = self._sweep(m.qpos0[None], np.zeros((1, m.nv)))
 
-    def _sweep(self, qpos: np.ndarray, qvel: np.ndarray) -> dict[str, np.ndarray]:
-        """Run the engine pose by pose, copy its body arrays whole, then pick the segments (vectorized)."""
+    def _sweep(self, qpos: np.ndarray, qvel: np.ndarray, energies: bool = False) -> dict[str, np.ndarray]:
+        """Run the engine once per pose, copy its body arrays whole into preallocated arrays.
+
+        With ``energies``, the same pass also evaluates ``mj_makeM`` + ``mj_energyVel`` (``½ q̇ᵀ M q̇``,
+        armature included) without running the kinematics again; ``rigid`` is that minus the
+        armature term, as in :meth:`kinetic_energy` (a copy with ``dof_armature`` zeroed would keep
+        the armature of the dofs whose diagonal MuJoCo precomputes at compile time).
+        """
         m, d = self.model, self._data
         P, nb = qpos.shape[0], m.nbody
         xpos, xmat = np.empty((P, nb, 3)), np.empty((P, nb, 9))
         cvel, sub = np.empty((P, nb, 6)), np.empty((P, nb, 3))
+        rigid = np.empty(P)
+        m_energy = self._m_energy
+        kinematics, com_pos, com_vel = mujoco.mj_kinematics, mujoco.mj_comPos, mujoco.mj_comVel
+        make_m, energy_vel = mujoco.mj_makeM, mujoco.mj_energyVel
         for p in range(P):
             d.qpos[:] = qpos[p]
             d.qvel[:] = qvel[p]
-            mujoco.mj_kinematics(m, d)
-            mujoco.mj_comPos(m, d)
-            mujoco.mj_comVel(m, d)
+            kinematics(m, d)
+            com_pos(m, d)
+            com_vel(m, d)
             xpos[p], xmat[p], cvel[p], sub[p] = d.xpos, d.xmat, d.cvel, d.subtree_com
+            if energies:
+                make_m(m_energy, d)
+                energy_vel(m_energy, d)
+                rigid[p] = d.energy[1]
         idx = self._seg_body
         out = {
             "xpos": xpos[:, idx],
@@ -173,8 +188,67 @@ class MujocoEngine:
             "cvel": cvel[:, idx],
             "ref": sub[:, self._seg_root],
         }
-        out["anchor"] = out["xpos"] + np.einsum("pbij,bj->pbi", out["xmat"], self._anchor_local)
+        out["anchor"] = out["xpos"] + rotate(out["xmat"], self._anchor_local)
+        if energies:
+            out["rigid"] = rigid - 0.5 * (qvel**2) @ m.dof_armature
         return out
+
+    def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
+        R = s["xmat"]
+        com = s["xpos"] + rotate(R, self._com_local)
+        omega, v_ref = s["cvel"][..., :3], s["cvel"][..., 3:]
+        ref = self._ref
+        return (SegmentStates.trusted if trusted else SegmentStates)(
+            names=self.segment_names,
+            mass=self._mass,
+            inertia_body=self._inertia,
+            com=com,
+            v_com=v_ref + cross(omega, com - s["ref"]),
+            rotation=R,
+            omega=omega,
+            pole=s["anchor"],
+            v_pole=v_ref + cross(omega, s["anchor"] - s["ref"]),
+            rotation_ref=ref["xmat"][0],
+            com_ref=ref["xpos"][0] + np.einsum("bij,bj->bi", ref["xmat"][0], self._com_local),
+            pole_ref=ref["anchor"][0],
+        )
+
+    def _points(self, s: dict[str, np.ndarray], points: np.ndarray) -> np.ndarray:
+        local = self._com_local[:, None, :] + points
+        world = (s["xpos"] - s["ref"])[:, :, None, :] + rotate_points(s["xmat"], local)
+        omega, v_ref = s["cvel"][:, :, None, :3], s["cvel"][:, :, None, 3:]
+        return v_ref + cross(omega, world)
+
+    def sweep(
+        self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray | None = None
+    ) -> tuple[SegmentStates, np.ndarray | None, np.ndarray, np.ndarray]:
+        """Segment states, point velocities and energy from one pass of the engine per pose.
+
+        The internal path of the comparison grid: the states are not validated again (the
+        model was checked at load), and every quantity is read once per pose.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+        points : ndarray, shape (B, K, 3), optional
+            Offsets from each segment's COM, in the segment's axes.
+
+        Returns
+        -------
+        states : SegmentStates
+        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
+        rigid, armature : ndarray, shape (P,)
+            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        s = self._sweep(qpos, qvel, energies=True)
+        states = self._states(s, trusted=True)
+        pv = None
+        if points is not None:
+            pts = check_points(points, len(self.segment_names))
+            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
+        return states, pv, s["rigid"], 0.5 * (qvel**2) @ self.model.dof_armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return MuJoCo's segment states for a batch of canonical states.
@@ -189,25 +263,7 @@ class MujocoEngine:
         SegmentStates
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
-        s = self._sweep(qpos, qvel)
-        R = s["xmat"]
-        com = s["xpos"] + np.einsum("pbij,bj->pbi", R, self._com_local)
-        omega, v_ref = s["cvel"][..., :3], s["cvel"][..., 3:]
-        ref = self._ref
-        return SegmentStates(
-            names=self.segment_names,
-            mass=self._mass,
-            inertia_body=self._inertia,
-            com=com,
-            v_com=v_ref + np.cross(omega, com - s["ref"]),
-            rotation=R,
-            omega=omega,
-            pole=s["anchor"],
-            v_pole=v_ref + np.cross(omega, s["anchor"] - s["ref"]),
-            rotation_ref=ref["xmat"][0],
-            com_ref=ref["xpos"][0] + np.einsum("bij,bj->bi", ref["xmat"][0], self._com_local),
-            pole_ref=ref["anchor"][0],
-        )
+        return self._states(self._sweep(qpos, qvel))
 
     def point_velocities(
         self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray, method: str = "spatial"
@@ -230,14 +286,11 @@ class MujocoEngine:
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         pts = check_points(points, len(self.segment_names))
-        local = self._com_local[:, None, :] + pts
         if method == "spatial":
-            s = self._sweep(qpos, qvel)
-            world = s["xpos"][:, :, None, :] + np.einsum("pbij,bkj->pbki", s["xmat"], local)
-            omega, v_ref = s["cvel"][:, :, None, :3], s["cvel"][:, :, None, 3:]
-            return v_ref + np.cross(omega, world - s["ref"][:, :, None, :])
+            return self._points(self._sweep(qpos, qvel), pts)
         if method != "jacobian":
             raise ValueError(f"method must be 'spatial' or 'jacobian', got {method!r}")
+        local = self._com_local[:, None, :] + pts
         m, d = self.model, self._data
         P, (B, K, _) = qpos.shape[0], pts.shape
         out = np.empty((P, B, K, 3))
@@ -256,12 +309,11 @@ class MujocoEngine:
         return out
 
     # ------------------------------------------------------------- dynamics
-    def _energy(self, qpos: np.ndarray, qvel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Return ``mj_energyVel`` and ``½ q̇ᵀ M q̇`` (``M`` from ``mj_fullM``) pose by pose."""
+    def _energy(self, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
+        """Return ``mj_energyVel`` (``½ q̇ᵀ M q̇``, armature included) pose by pose."""
         model = self._m_energy
         d = mujoco.MjData(model)
-        reported, quadratic = np.empty(qpos.shape[0]), np.empty(qpos.shape[0])
-        M = np.zeros((self.nv, self.nv))
+        reported = np.empty(qpos.shape[0])
         for p in range(qpos.shape[0]):
             d.qpos[:] = qpos[p]
             d.qvel[:] = qvel[p]
@@ -270,14 +322,13 @@ class MujocoEngine:
             mujoco.mj_makeM(model, d)
             mujoco.mj_energyVel(model, d)
             reported[p] = d.energy[1]
-            mujoco.mj_fullM(model, d, M)
-            quadratic[p] = 0.5 * qvel[p] @ M @ qvel[p]
-        return reported, quadratic
+        return reported
 
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
         """Return ``mj_energyVel``, the rigid-body energy and the armature term.
 
-        The rigid-body energy is ``½ q̇ᵀ (M − diag(dof_armature)) q̇`` with MuJoCo's own mass matrix:
+        The rigid-body energy is ``½ q̇ᵀ (M − diag(dof_armature)) q̇`` with MuJoCo's own mass matrix
+        (``mj_energyVel`` minus the armature term):
         MuJoCo builds ``M`` as the composite-rigid-body matrix plus ``dof_armature`` on the
         diagonal.  Zeroing ``dof_armature`` on a compiled copy would not do: for the dofs MuJoCo
         treats as *simple* (``dof_simplenum``: e.g. a slide or an aligned hinge on a body attached
@@ -294,9 +345,9 @@ class MujocoEngine:
         EnergyParts
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
-        reported, quadratic = self._energy(qpos, qvel)
+        reported = self._energy(qpos, qvel)
         armature = 0.5 * (qvel**2) @ self.model.dof_armature
-        return EnergyParts(rigid=quadratic - armature, armature=armature, reported=reported)
+        return EnergyParts(rigid=reported - armature, armature=armature, reported=reported)
 
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return ``mj_fullM`` (armature included) for a batch of poses.

@@ -27,6 +27,7 @@ from koenig_check.engines.base import as_batches, check_points, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import StateMap
 from koenig_check.findings import Finding, Kind
+from koenig_check.kernels import body_point_velocities, cross, rotate
 from koenig_check.segments import SegmentStates
 
 
@@ -89,7 +90,10 @@ class PinocchioEngine:
         self._ref = H[0]
 
     def _sweep(self, q: np.ndarray, v: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
-        """Run forward kinematics pose by pose; return oMi (P, B, 4, 4) and data.v (P, B, 6)."""
+        """Run forward kinematics once per pose; return oMi (P, B, 4, 4) and data.v (P, B, 6).
+
+        The route of the public :meth:`point_velocities`, independent of the world Jacobian.
+        """
         m, d, idx = self.model, self._data, self._joints
         P = q.shape[0]
         H = np.empty((P, m.njoints, 4, 4))
@@ -103,23 +107,87 @@ class PinocchioEngine:
             H[p] = [M.homogeneous for M in d.oMi.tolist()]
         return H[:, idx], None if V is None else V[:, idx]
 
-    def _sweep_world(self, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Run ``computeJointJacobians`` pose by pose; return oMi (P, B, 4, 4) and world twists (P, B, 6).
+    def _sweep_world(
+        self, q: np.ndarray, v: np.ndarray, energies: bool = False
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """Run ``computeJointJacobians`` once per pose; return oMi (P, B, 4, 4) and world twists (P, B, 6).
 
         The twist of joint ``i`` is ``J_world[:, support(i)] v``: ``(v_O, ω)`` with ``v_O`` the
         velocity of the segment point at the world origin, so a point ``p`` moves with
-        ``v_O + ω × p``.  One engine call and two array copies per pose, the sum over supports
-        is vectorized.
+        ``v_O + ω × p``.  Per pose: one engine call, the world Jacobian ``data.J`` copied whole
+        and the placements; the sum over supports is vectorized.  With ``energies``, the same
+        pass evaluates ``computeKineticEnergy`` on the model (``reported``) and on its
+        armature-free copy (``rigid``), the quantities of :meth:`kinetic_energy`.
         """
         m, d, idx = self.model, self._data, self._joints
         P = q.shape[0]
         H = np.empty((P, m.njoints, 4, 4))
         J = np.empty((P, 6, m.nv))
+        rigid = np.empty(P) if energies else None
+        jacobians, kinetic = pin.computeJointJacobians, pin.computeKineticEnergy
+        m_rigid, d_rigid = self._m_rigid, self._d_rigid
+        Jp = J if m.nv > 1 else J[..., 0]  # the bindings hand a 6 x 1 Jacobian out as a vector
         for p in range(P):
-            J[p] = np.reshape(pin.computeJointJacobians(m, d, q[p]), (6, m.nv))
+            jacobians(m, d, q[p])
+            Jp[p] = d.J
             H[p] = [M.homogeneous for M in d.oMi.tolist()]
-        twists = np.einsum("pak,pk,kb->pba", J, v, self._support)
-        return H[:, idx], twists
+            if energies:
+                rigid[p] = kinetic(m_rigid, d_rigid, q[p], v[p])
+        twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
+        return H[:, idx], twists, rigid
+
+    def _states(self, H: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
+        R, origin = H[..., :3, :3], H[..., :3, 3]
+        v_origin, omega = T[..., :3], T[..., 3:]
+        com = origin + rotate(R, self._lever)
+        R0 = self._ref[..., :3, :3]
+        return (SegmentStates.trusted if trusted else SegmentStates)(
+            names=self.segment_names,
+            mass=self._mass,
+            inertia_body=self._inertia,
+            com=com,
+            v_com=v_origin + cross(omega, com),
+            rotation=R,
+            omega=omega,
+            pole=origin,
+            v_pole=v_origin + cross(omega, origin),
+            rotation_ref=R0,
+            com_ref=self._ref[..., :3, 3] + np.einsum("bij,bj->bi", R0, self._lever),
+            pole_ref=self._ref[..., :3, 3],
+        )
+
+    def sweep(
+        self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray | None = None
+    ) -> tuple[SegmentStates, np.ndarray | None, np.ndarray, np.ndarray]:
+        """Segment states, point velocities and energy from one pass of the engine per pose.
+
+        The internal path of the comparison grid: the states are not validated again, and the
+        point velocities come from the same world twists as the states (``v_O + ω × p``).
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+        points : ndarray, shape (B, K, 3), optional
+            Offsets from each segment's COM, in the segment's axes.
+
+        Returns
+        -------
+        states : SegmentStates
+        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
+        rigid, armature : ndarray, shape (P,)
+            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
+        """
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        q, v = self.state_map.to_pinocchio(qpos, qvel)
+        H, T, rigid = self._sweep_world(q, v, energies=True)
+        states = self._states(H, T, trusted=True)
+        pv = None
+        if points is not None:
+            pts = check_points(points, len(self.segment_names))
+            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
+        armature = 0.5 * (v**2) @ np.asarray(self.model.armature)
+        return states, pv, rigid, armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return Pinocchio's segment states for a batch of canonical states.
@@ -135,25 +203,8 @@ class PinocchioEngine:
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
-        H, T = self._sweep_world(q, v)
-        R, origin = H[..., :3, :3], H[..., :3, 3]
-        v_origin, omega = T[..., :3], T[..., 3:]
-        com = origin + np.einsum("pbij,bj->pbi", R, self._lever)
-        R0 = self._ref[..., :3, :3]
-        return SegmentStates(
-            names=self.segment_names,
-            mass=self._mass,
-            inertia_body=self._inertia,
-            com=com,
-            v_com=v_origin + np.cross(omega, com),
-            rotation=R,
-            omega=omega,
-            pole=origin,
-            v_pole=v_origin + np.cross(omega, origin),
-            rotation_ref=R0,
-            com_ref=self._ref[..., :3, 3] + np.einsum("bij,bj->bi", R0, self._lever),
-            pole_ref=self._ref[..., :3, 3],
-        )
+        H, T, _ = self._sweep_world(q, v)
+        return self._states(H, T)
 
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
         """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``.

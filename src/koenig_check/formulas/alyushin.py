@@ -15,6 +15,7 @@ from typing import Literal
 import numpy as np
 
 from koenig_check.formulas.angles import Convention, paper_angles
+from koenig_check.formulas.cache import memo
 from koenig_check.formulas.exact import translational
 from koenig_check.segments import SegmentStates, second_moments
 
@@ -42,7 +43,8 @@ def rotational_energy_30(omega: np.ndarray, axial: np.ndarray, centrifugal: np.n
     """
     wx, wy, wz = omega[..., 0], omega[..., 1], omega[..., 2]
     i_yz, i_zx, i_xy = centrifugal[..., 0], centrifugal[..., 1], centrifugal[..., 2]
-    return 0.5 * np.einsum("...i,...i->...", omega**2, axial) - wy * wz * i_yz - wx * wz * i_zx - wy * wx * i_xy
+    axial_part = wx * wx * axial[..., 0] + wy * wy * axial[..., 1] + wz * wz * axial[..., 2]
+    return 0.5 * axial_part - wy * wz * i_yz - wx * wz * i_zx - wy * wx * i_xy
 
 
 def centrifugal_of(S: np.ndarray) -> np.ndarray:
@@ -59,7 +61,9 @@ def centrifugal_of(S: np.ndarray) -> np.ndarray:
     return np.stack([S[..., 1, 2], S[..., 0, 2], S[..., 0, 1]], axis=-1)
 
 
-def centrifugal_update_33(S_ref: np.ndarray, dtheta: np.ndarray) -> np.ndarray:
+def centrifugal_update_33(
+    S_ref: np.ndarray, dtheta: np.ndarray, trig: tuple[np.ndarray, np.ndarray] | None = None
+) -> np.ndarray:
     """Centrifugal moments updated from the initial state by eq. (33)/(36).
 
     ``I_xy = ½ sin(2Δθ_z)(I_α − I_β) + cos(2Δθ_z) I_αβ``,
@@ -72,6 +76,8 @@ def centrifugal_update_33(S_ref: np.ndarray, dtheta: np.ndarray) -> np.ndarray:
         Second moments at the initial configuration, eq. (32).
     dtheta : ndarray, shape (P, B, 3)
         ``(Δθ_x, Δθ_y, Δθ_z)``.
+    trig : (ndarray, ndarray), optional
+        ``(sin 2Δθ, cos 2Δθ)`` when already computed (shared by the formulas of one state set).
 
     Returns
     -------
@@ -80,11 +86,30 @@ def centrifugal_update_33(S_ref: np.ndarray, dtheta: np.ndarray) -> np.ndarray:
     """
     ia, ib, ig = S_ref[:, 0, 0], S_ref[:, 1, 1], S_ref[:, 2, 2]
     iab, ibg, iag = S_ref[:, 0, 1], S_ref[:, 1, 2], S_ref[:, 0, 2]
-    tx, ty, tz = dtheta[..., 0], dtheta[..., 1], dtheta[..., 2]
-    i_xy = 0.5 * np.sin(2 * tz) * (ia - ib) + np.cos(2 * tz) * iab
-    i_yz = 0.5 * np.sin(2 * tx) * (ib - ig) + np.cos(2 * tx) * ibg
-    i_zx = 0.5 * np.sin(2 * ty) * (ig - ia) + np.cos(2 * ty) * iag
+    sin2, cos2 = trig if trig is not None else double_angle_trig(dtheta)
+    i_xy = 0.5 * sin2[..., 2] * (ia - ib) + cos2[..., 2] * iab
+    i_yz = 0.5 * sin2[..., 0] * (ib - ig) + cos2[..., 0] * ibg
+    i_zx = 0.5 * sin2[..., 1] * (ig - ia) + cos2[..., 1] * iag
     return np.stack([i_yz, i_zx, i_xy], axis=-1)
+
+
+def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(sin 2Δθ, cos 2Δθ)``, the trigonometric factors of eq. (33)/(36).
+
+    Parameters
+    ----------
+    dtheta : ndarray, shape (..., 3)
+
+    Returns
+    -------
+    (ndarray, ndarray)
+    """
+    return np.sin(2 * dtheta), np.cos(2 * dtheta)
+
+
+def _shared_trig(states, convention: str, angles: np.ndarray | None, dtheta: np.ndarray):
+    key = f"double_angle_trig:{convention}" + (f":{id(angles)}" if angles is not None else "")
+    return memo(states, key, lambda: double_angle_trig(dtheta))
 
 
 def shift_inertia(mass: np.ndarray, inertia_c: np.ndarray, offset: np.ndarray) -> np.ndarray:
@@ -109,8 +134,12 @@ def shift_inertia(mass: np.ndarray, inertia_c: np.ndarray, offset: np.ndarray) -
 
 
 def _moments(inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Axial moments (diagonal) and centrifugal moments (second-moment products)."""
-    return np.diagonal(inertia, axis1=-2, axis2=-1), centrifugal_of(second_moments(inertia))
+    """Axial moments (diagonal) and centrifugal moments (second-moment products).
+
+    The off-diagonal second moments are the negated off-diagonal inertia entries (eq. 27), exactly.
+    """
+    centrifugal = -np.stack([inertia[..., 1, 2], inertia[..., 0, 2], inertia[..., 0, 1]], axis=-1)
+    return np.diagonal(inertia, axis1=-2, axis2=-1), centrifugal
 
 
 def alyushin_current(states: SegmentStates) -> np.ndarray:
@@ -124,7 +153,7 @@ def alyushin_current(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B)
     """
-    axial, centrifugal = _moments(states.inertia_world())
+    axial, centrifugal = memo(states, "moments_world", lambda: _moments(states.inertia_world()))
     return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
 
 
@@ -152,7 +181,11 @@ def alyushin_paper(
     dtheta = paper_angles(states, convention, angles)
     I_ref = states.inertia_world_ref()
     axial = np.broadcast_to(np.diagonal(I_ref, axis1=-2, axis2=-1), states.omega.shape)
-    centrifugal = centrifugal_update_33(second_moments(I_ref), dtheta)
+    centrifugal = centrifugal_update_33(
+        memo(states, "second_moments_ref", lambda: second_moments(I_ref)),
+        dtheta,
+        _shared_trig(states, convention, angles, dtheta),
+    )
     return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
 
 
@@ -184,15 +217,27 @@ def alyushin_pole(
     -------
     ndarray, shape (P, B)
     """
-    trans = 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_pole, states.v_pole)
+    trans = memo(
+        states,
+        "translational_pole",
+        lambda: 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_pole, states.v_pole),
+    )
     if recipe == "current":
         I_P = shift_inertia(states.mass, states.inertia_world(), states.com - states.pole)
         axial, centrifugal = _moments(I_P)
     elif recipe == "paper":
         dtheta = paper_angles(states, convention, angles)
-        I_P_ref = shift_inertia(states.mass, states.inertia_world_ref(), states.com_ref - states.pole_ref)
+        I_P_ref = memo(
+            states,
+            "pole_inertia_ref",
+            lambda: shift_inertia(states.mass, states.inertia_world_ref(), states.com_ref - states.pole_ref),
+        )
         axial = np.broadcast_to(np.diagonal(I_P_ref, axis1=-2, axis2=-1), states.omega.shape)
-        centrifugal = centrifugal_update_33(second_moments(I_P_ref), dtheta)
+        centrifugal = centrifugal_update_33(
+            memo(states, "pole_second_moments_ref", lambda: second_moments(I_P_ref)),
+            dtheta,
+            _shared_trig(states, convention, angles, dtheta),
+        )
     else:
         raise ValueError(f"unknown recipe {recipe!r}; choose one of {RECIPES}")
     return trans + rotational_energy_30(states.omega, axial, centrifugal)

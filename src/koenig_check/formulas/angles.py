@@ -18,15 +18,18 @@ from __future__ import annotations
 from typing import Literal
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
+from koenig_check.formulas.cache import SharedStates, memo
+from koenig_check.kernels import times_transpose
 from koenig_check.segments import SegmentStates
+
+States = SegmentStates | SharedStates
 
 Convention = Literal["rotvec", "euler_xyz", "integrated"]
 CONVENTIONS: tuple[str, ...] = ("rotvec", "euler_xyz", "integrated")
 
 
-def delta_rotation(states: SegmentStates) -> np.ndarray:
+def delta_rotation(states: States) -> np.ndarray:
     """Return the rotation from the reference to the current pose, ``ΔR = R R_ref^T``.
 
     Parameters
@@ -37,14 +40,104 @@ def delta_rotation(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3, 3)
     """
-    return states.rotation @ np.swapaxes(states.rotation_ref, -1, -2)[None]
+    return memo(states, "delta_rotation", lambda: times_transpose(states.rotation, states.rotation_ref[None]))
 
 
-def _as_rotation(matrices: np.ndarray) -> Rotation:
-    return Rotation.from_matrix(matrices.reshape(-1, 3, 3))
+def quaternion_of(R: np.ndarray) -> np.ndarray:
+    """Unit quaternions ``(x, y, z, w)`` with ``w >= 0`` of rotation matrices (Shepperd's method).
+
+    For each matrix the largest of ``1 + tr R`` and ``1 + 2 R_kk − tr R`` selects a numerically
+    stable formula, as in ``scipy.spatial.transform.Rotation.from_matrix`` (same numbers to rounding).
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+    """
+    R = np.asarray(R, dtype=float)
+    r = R.reshape(-1, 9)
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = r.T
+    tr = r00 + r11 + r22
+    # The four candidates (x, y, z, w) of Shepperd's method, computed for every matrix, then one is picked.
+    cand = np.stack(
+        [
+            np.stack([1.0 - tr + 2.0 * r00, r10 + r01, r20 + r02, r21 - r12], axis=-1),
+            np.stack([r01 + r10, 1.0 - tr + 2.0 * r11, r21 + r12, r02 - r20], axis=-1),
+            np.stack([r02 + r20, r12 + r21, 1.0 - tr + 2.0 * r22, r10 - r01], axis=-1),
+            np.stack([r21 - r12, r02 - r20, r10 - r01, 1.0 + tr], axis=-1),
+        ],
+        axis=1,
+    )
+    choice = np.argmax(np.stack([r00, r11, r22, tr], axis=-1), axis=-1)
+    q = cand[np.arange(r.shape[0]), choice]
+    q /= np.linalg.norm(q, axis=-1, keepdims=True)
+    q *= np.where(q[:, 3:] < 0, -1.0, 1.0)
+    return q.reshape(*R.shape[:-2], 4)
 
 
-def rotvec_angles(states: SegmentStates) -> np.ndarray:
+def rotvec_of(R: np.ndarray) -> np.ndarray:
+    """Rotation vectors of rotation matrices (angle in [0, π] times the unit axis).
+
+    From the skew part ``(R − Rᵀ)/2 = sin θ [u]×`` and the trace, ``θ = atan2(sin θ, cos θ)``;
+    where ``sin θ`` is small and ``θ`` near π (the skew part loses the axis), from the unit
+    quaternion (:func:`quaternion_of`), as ``scipy``'s ``as_rotvec``.
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    R = np.asarray(R, dtype=float)
+    r = R.reshape(-1, 9)
+    skew = np.stack([r[:, 7] - r[:, 5], r[:, 2] - r[:, 6], r[:, 3] - r[:, 1]], axis=-1)  # 2 sin θ u
+    two_sin = np.linalg.norm(skew, axis=-1)
+    cos = 0.5 * (r[:, 0] + r[:, 4] + r[:, 8] - 1.0)
+    angle = np.arctan2(0.5 * two_sin, cos)
+    small = angle <= 1e-3
+    a2 = angle**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        scale = np.where(small, 0.5 + a2 / 12.0 + 7.0 * a2**2 / 720.0, angle / two_sin)  # θ / (2 sin θ)
+    out = scale[:, None] * skew
+    hard = (two_sin < 0.2) & (cos < 0)  # θ within ~6° of π
+    if hard.any():
+        q = quaternion_of(r[hard].reshape(-1, 3, 3))
+        v, w = q[:, :3], q[:, 3]
+        half = np.arctan2(np.linalg.norm(v, axis=-1), w)
+        out[hard] = (2.0 * half / np.sin(half))[:, None] * v
+    return out.reshape(*R.shape[:-2], 3)
+
+
+def euler_xyz_of(R: np.ndarray) -> np.ndarray:
+    """Extrinsic x-y-z angles ``(a, b, c)`` with ``R = R_z(c) R_y(b) R_x(a)``, ``b`` in [−π/2, π/2].
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        At gimbal lock (``|b| = π/2``) the split between ``a`` and ``c`` is not unique; ``c`` is
+        set to 0 there.
+    """
+    R = np.asarray(R, dtype=float)
+    b = np.arctan2(-R[..., 2, 0], np.hypot(R[..., 0, 0], R[..., 1, 0]))
+    a = np.arctan2(R[..., 2, 1], R[..., 2, 2])
+    c = np.arctan2(R[..., 1, 0], R[..., 0, 0])
+    lock = np.hypot(R[..., 0, 0], R[..., 1, 0]) < 1e-12
+    if np.any(lock):  # only a - c (b > 0) or a + c (b < 0) is defined: keep c = 0
+        a = np.where(lock, np.arctan2(-R[..., 1, 2], R[..., 1, 1]), a)
+        c = np.where(lock, 0.0, c)
+    return np.stack([a, b, c], axis=-1)
+
+
+def rotvec_angles(states: States) -> np.ndarray:
     """Δθ as the world-axis components of the rotation vector of ``R R_ref^T``.
 
     Parameters
@@ -55,11 +148,10 @@ def rotvec_angles(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3)
     """
-    dR = delta_rotation(states)
-    return _as_rotation(dR).as_rotvec().reshape(dR.shape[:-1])
+    return memo(states, "rotvec_angles", lambda: rotvec_of(delta_rotation(states)))
 
 
-def euler_xyz_angles(states: SegmentStates) -> np.ndarray:
+def euler_xyz_angles(states: States) -> np.ndarray:
     """Δθ as extrinsic x-y-z Euler angles of ``R R_ref^T``.
 
     Parameters
@@ -71,8 +163,7 @@ def euler_xyz_angles(states: SegmentStates) -> np.ndarray:
     ndarray, shape (P, B, 3)
         ``(a, b, c)`` with ``ΔR = R_z(c) R_y(b) R_x(a)``.
     """
-    dR = delta_rotation(states)
-    return _as_rotation(dR).as_euler("xyz").reshape(dR.shape[:-1])
+    return memo(states, "euler_xyz_angles", lambda: euler_xyz_of(delta_rotation(states)))
 
 
 def integrate_angular_velocity(omega: np.ndarray, times: np.ndarray) -> np.ndarray:
@@ -101,7 +192,7 @@ def integrate_angular_velocity(omega: np.ndarray, times: np.ndarray) -> np.ndarr
     return np.concatenate([np.zeros_like(omega[:1]), np.cumsum(steps, axis=0)], axis=0)
 
 
-def paper_angles(states: SegmentStates, convention: Convention, angles: np.ndarray | None = None) -> np.ndarray:
+def paper_angles(states: States, convention: Convention, angles: np.ndarray | None = None) -> np.ndarray:
     """Return Δθ (P, B, 3) for a convention, validating a caller-supplied path integral.
 
     Parameters

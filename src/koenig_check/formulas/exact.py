@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from koenig_check.formulas.cache import memo
 from koenig_check.segments import SegmentStates
 
 
@@ -18,7 +19,11 @@ def translational(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B)
     """
-    return 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_com, states.v_com)
+    return memo(
+        states,
+        "translational",
+        lambda: 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_com, states.v_com),
+    )
 
 
 def body_angular_velocity(states: SegmentStates) -> np.ndarray:
@@ -32,7 +37,7 @@ def body_angular_velocity(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3)
     """
-    return np.einsum("pbji,pbj->pbi", states.rotation, states.omega)
+    return memo(states, "body_omega", lambda: np.einsum("pbji,pbj->pbi", states.rotation, states.omega))
 
 
 def exact(states: SegmentStates) -> np.ndarray:
@@ -53,5 +58,6 @@ def exact(states: SegmentStates) -> np.ndarray:
         Per-segment energy; the total is the sum over the last axis.
     """
     w_body = body_angular_velocity(states)
-    rot = 0.5 * np.einsum("pbi,bij,pbj->pb", w_body, states.inertia_body, w_body)
+    I_w = (states.inertia_body[None] @ w_body[..., None])[..., 0]
+    rot = 0.5 * np.einsum("pbi,pbi->pb", w_body, I_w)
     return translational(states) + rot

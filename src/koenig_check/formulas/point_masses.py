@@ -113,4 +113,4 @@ def point_masses(states: SegmentStates, point_velocities: np.ndarray | None = No
         expected = (states.n_poses, states.n_segments, POINTS_PER_SEGMENT, 3)
         if v.shape != expected:
             raise ValueError(f"point_velocities: shape {v.shape}, expected {expected}")
-    return 0.5 * np.einsum("bk,pbki,pbki->pb", masses, v, v)
+    return 0.5 * (np.einsum("pbki,pbki->pbk", v, v) * masses[None]).sum(axis=-1)

@@ -1,0 +1,130 @@
+"""Small batched vector kernels, faster than their generic numpy forms on (..., 3) arrays.
+
+``numpy.cross`` and ``numpy.einsum`` with a broadcast matrix operand are general but slow on
+millions of 3-vectors; these do the same arithmetic with elementwise operations and ``matmul``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product over the last axis, broadcasting like ``numpy.cross``.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
+def rotate(R: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``R v`` for batches of matrices and vectors: ``einsum("...ij,...j->...i")``.
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+    v : ndarray, shape (..., 3), broadcastable against ``R``'s batch axes
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    return (R @ v[..., None])[..., 0]
+
+
+def rotate_points(R: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """``R r_k`` for K points per matrix: ``einsum("pbij,bkj->pbki")``.
+
+    Parameters
+    ----------
+    R : ndarray, shape (P, B, 3, 3)
+    points : ndarray, shape (B, K, 3)
+
+    Returns
+    -------
+    ndarray, shape (P, B, K, 3)
+    """
+    return np.swapaxes(R @ np.swapaxes(points, -1, -2)[None], -1, -2)
+
+
+def congruence(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
+    """``R I Rᵀ`` for batches of rotations and symmetric matrices, symmetric by construction.
+
+    One ``matmul`` for ``A = R I``, then the six distinct entries of ``A Rᵀ`` elementwise
+    (``matmul`` of stacked 3 × 3 matrices pays a per-matrix overhead that dominates here).
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+    inertia : ndarray, shape (..., 3, 3), broadcastable against ``R``; symmetric
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+    """
+    A = R @ inertia
+    out = np.empty(A.shape)
+    for i in range(3):
+        for j in range(i, 3):
+            v = A[..., i, 0] * R[..., j, 0] + A[..., i, 1] * R[..., j, 1] + A[..., i, 2] * R[..., j, 2]
+            out[..., i, j] = v
+            if i != j:
+                out[..., j, i] = v
+    return out
+
+
+def times_transpose(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
+    """``R R_refᵀ`` for a batch ``R`` (..., 3, 3) and matrices ``R_ref`` broadcast against it, elementwise.
+
+    Parameters
+    ----------
+    R : ndarray, shape (..., 3, 3)
+    R_ref : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+    """
+    out = np.empty(np.broadcast_shapes(R.shape, R_ref.shape))
+    for i in range(3):
+        for j in range(3):
+            out[..., i, j] = (
+                R[..., i, 0] * R_ref[..., j, 0] + R[..., i, 1] * R_ref[..., j, 1] + R[..., i, 2] * R_ref[..., j, 2]
+            )
+    return out
+
+
+def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """Velocities of points fixed in rigid segments, ``v_C + ω × (R r_k)``.
+
+    A point set symmetric about the centre of mass (the second half the negated first half, as the
+    equimomental points) costs half: ``v_C ± ω × (R r_k)``.
+
+    Parameters
+    ----------
+    v_com, omega : ndarray, shape (P, B, 3)
+        Centre-of-mass velocity and angular velocity, world frame.
+    R : ndarray, shape (P, B, 3, 3)
+        World ← segment.
+    offsets : ndarray, shape (B, K, 3)
+        From the centre of mass, segment axes.
+
+    Returns
+    -------
+    ndarray, shape (P, B, K, 3)
+    """
+    K = offsets.shape[1]
+    half = K // 2
+    if K % 2 == 0 and np.array_equal(offsets[:, half:], -offsets[:, :half]):
+        u = cross(omega[:, :, None, :], rotate_points(R, offsets[:, :half]))
+        v = v_com[:, :, None, :]
+        return np.concatenate([v + u, v - u], axis=2)
+    return v_com[:, :, None, :] + cross(omega[:, :, None, :], rotate_points(R, offsets))
