@@ -22,6 +22,7 @@ ALL = ("mujoco", "pinocchio", "drake")
 #: (file, engines, quantity, engine that departs, construct named)
 WHO_DEPARTS = [
     (TIEBREAK / "settotalmass.xml", None, "rigid-body energy", "mujoco", "compiler settotalmass"),
+    (TIEBREAK / "settotalmass_inertiafromgeom.xml", None, "rigid-body energy", "mujoco", "compiler settotalmass"),
     (HERE / "models" / "causes" / "class_mass.xml", None, "rigid-body energy", "pinocchio", "geom pole"),
     (HERE / "engines" / "models" / "hinge_armature.xml", ALL, "armature energy", "drake", "joint armature"),
     (TIEBREAK / "rotor_inertia.urdf", ALL, "armature energy", "drake", "actuators of joints spin"),

@@ -244,7 +244,9 @@ def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence
     own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
     roots = [f for f in own if f.root_cause] or [f for f in own if f.kind in (Kind.COMPILER, Kind.IGNORED_CONSTRUCT)]
     if engine == "mujoco":  # a compiler option only MuJoCo applies, whichever engine the pair's finding blamed
-        options = [f for f in findings if f.kind is Kind.COMPILER and f.element.startswith("compiler ")]
+        options = [
+            f for f in findings if f.kind is Kind.COMPILER and f.affects_energy and f.element.startswith("compiler ")
+        ]
         roots = options + [f for f in roots if f not in options]
     if segments:
         hit = [f for f in roots if set(f.segments) & set(segments)]
