@@ -283,3 +283,24 @@ def test_mujoco_pole_is_xanchor_except_for_slides(mjcf_pair):
         j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
         same = np.allclose(states.pole[0, b], data.xanchor[j], atol=1e-12)
         assert same == (model.jnt_type[j] != mujoco.mjtJoint.mjJNT_SLIDE), name
+
+
+@pytest.mark.parametrize("free", ['<joint type="free"/>', "<freejoint/>"])
+def test_unnamed_free_joint_pairs_however_the_file_writes_it(tmp_path, free):
+    # Pinocchio names these "torso_free" and "torsoJoint_0"; both pair with MuJoCo's one free joint
+    # (dm_control's drosophila_fused.xml writes the first form).
+    path = tmp_path / "unnamed_free.xml"
+    path.write_text(
+        f"""<mujoco><worldbody><body name="torso" pos="0 0 1">{free}
+        <geom type="box" size="0.1 0.2 0.3" mass="2"/>
+        <body name="arm" pos="0.2 0 0"><joint name="elbow" axis="0 1 0"/><geom type="capsule" size="0.02 0.1"/></body>
+        </body></worldbody></mujoco>"""
+    )
+    pair = load_model(path)
+    assert [p.kind for p in pair.state_map.pairs] == ["free", "hinge"]
+    qpos, qvel = random_states(pair.mujoco.model, 5, seed=2)
+    mj, pn = pair.mujoco.kinetic_energy(qpos, qvel), pair.pinocchio.kinetic_energy(qpos, qvel)
+    # independent route: ½ q̇ᵀ M q̇ with MuJoCo's own mass matrix
+    quad = 0.5 * np.einsum("pi,pij,pj->p", qvel, pair.mujoco.mass_matrix(qpos), qvel)
+    np.testing.assert_allclose(mj.rigid, quad, rtol=1e-12)
+    np.testing.assert_allclose(pn.rigid, quad, rtol=1e-12)

@@ -190,6 +190,13 @@ def match_joints(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = "<m
     """
     names = mujoco_joint_names(mj_model)
     index = {n: j for j, n in enumerate(names)}
+    for j in range(mj_model.njnt):
+        # Pinocchio names an unnamed <freejoint/> "<body>_free" but an unnamed <joint type="free"/>
+        # "<body>Joint_<k>"; MuJoCo's compiled model keeps no trace of which one the file wrote.
+        if not mj_model.joint(j).name and mj_model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE:
+            body = int(mj_model.jnt_bodyid[j])
+            bname = mj_model.body(body).name or f"body{body}"
+            index.setdefault(f"{bname}Joint_{j - int(mj_model.body_jntadr[body])}", j)
     pairs: dict[int, JointPair] = {}
     only_pin: list[str] = []
     kind_mismatch: list[str] = []
