@@ -76,6 +76,14 @@ def _refusal(err: BaseException) -> str:
 
 
 def check_one(task: tuple[str, bool, int, bool]) -> Row:
+    """One row; an unexpected exception becomes the row's verdict instead of ending the run (see :func:`_check`)."""
+    try:
+        return _check(task)
+    except Exception as err:
+        return Row(display_name(task[0]), "floating" if task[1] else "fixed", verdict="error: " + _refusal(err)[9:])
+
+
+def _check(task: tuple[str, bool, int, bool]) -> Row:
     """Load one model file with one base into every engine and compare their energies.
 
     Parameters
@@ -170,11 +178,15 @@ def check_one(task: tuple[str, bool, int, bool]) -> Row:
         reported = engine.kinetic_energy(qpos, qvel).reported
         quad = 0.5 * np.einsum("pi,pij,pj->p", qvel, engine.mass_matrix(qpos), qvel)
         row.self_consistency[engine.engine] = float(np.abs(relative_error(reported, quad)).max())
-    report = import_parity(pair)
-    causes = [scrub(c.message()) for c in report.causes if c.affects_energy]
     agree = row.parity <= RTOL and arm_rel <= RTOL
-    if not causes and not agree:
-        causes = [scrub(report.headline())]
+    try:
+        report = import_parity(pair)
+    except Exception as err:  # the parity report itself fails: said in the row, the energies still count
+        causes = [f"import-parity report failed: {_refusal(err)[len('refused: ') :]}"]
+    else:
+        causes = [scrub(c.message()) for c in report.causes if c.affects_energy]
+        if not causes and not agree:
+            causes = [scrub(report.headline())]
     row.causes = "; ".join(causes)
     row.verdict = "agree" if agree else "disagree"
     if not agree and arm_rel > RTOL:
