@@ -355,20 +355,30 @@ def model_row(label: str, group: str, path: Path, floating: bool, n_poses: int) 
     """Koenig's sign (e), eq. (37) about the joint anchor (f), eq. (38) with current moments (g) on one model."""
     from koenig_check.api import one_line
     from koenig_check.engines import load_model
-    from koenig_check.engines.errors import InertiaError
+    from koenig_check.engines.errors import InertiaError, NoMovingSegmentError
     from koenig_check.engines.sampling import random_states
     from koenig_check.formulas import FORMULAS
 
     row = ModelRow(label, group, n_poses)
+    notes = []
     try:
         try:
             pair = load_model(path, floating=floating, check=False)
-        except InertiaError:
+        except NoMovingSegmentError:  # a single body: it moves only with a free base
+            floating = True
+            notes.append("floating (a single body)")
+            pair = load_model(path, floating=floating, check=False)
+    except InertiaError:
+        try:
             pair = load_model(path, floating=floating, repair_inertia=True, check=False)
-            row.note = "--repair-inertia"
+            notes.append("--repair-inertia")
+        except Exception as err:
+            row.refused = scrub(one_line(err))
+            return row
     except Exception as err:
         row.refused = scrub(one_line(err))
         return row
+    row.note = ", ".join(notes)
     qpos, qvel = random_states(pair.mujoco.model, n_poses, seed=model_seed(label))
     s = pair.mujoco.segment_states(qpos, qvel)
     ex_seg = FORMULAS["exact"](s)
