@@ -102,7 +102,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     from koenig_check.engines.pinocchio_loader import load_pinocchio
     from koenig_check.engines.sampling import random_states
     from koenig_check.engines.sources import resolve_model
-    from koenig_check.grid import relative_error
+    from koenig_check.grid import disagreement_cause, relative_error
     from koenig_check.parity import import_parity
     from koenig_check.validate import preflight
 
@@ -185,8 +185,8 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
         causes = [f"import-parity report failed: {_refusal(err)[len('refused: ') :]}"]
     else:
         causes = [scrub(c.message()) for c in report.causes if c.affects_energy]
-        if not causes and not agree:
-            causes = [scrub(report.headline())]
+        if not causes and not agree:  # the tool's own choice: a repaired or fused inertia, else the symptoms
+            causes = [scrub(disagreement_cause(pair.findings) or report.headline())]
     row.causes = "; ".join(causes)
     row.verdict = "agree" if agree else "disagree"
     if not agree and arm_rel > RTOL:
@@ -393,7 +393,8 @@ def main(argv: list[str] | None = None) -> None:
     rows = run(paths, args.poses, args.jobs, use_drake=not args.no_drake)
     (out / "engine_parity.md").write_text(markdown(rows, args.poses, versions()), encoding="utf-8")
     (out / "engine_parity.json").write_text(
-        __import__("json").dumps([asdict(r) for r in rows], indent=1), encoding="utf-8"
+        __import__("json").dumps([{k: v for k, v in asdict(r).items() if k != "seconds"} for r in rows], indent=1),
+        encoding="utf-8",
     )
     figure(rows, out / "engine_parity.png")
     progress(f"written {out / 'engine_parity.md'} ({len(rows)} rows, {time.perf_counter() - start:.0f} s)")
