@@ -95,6 +95,23 @@ def test_posed_jointless_root_is_a_frame_note_and_the_engines_agree() -> None:
     assert koenig_check.compare(CAUSES / "posed_root.xml", n_poses=3, formulas=["exact"]).ok
 
 
+def test_class_mass_is_named_even_when_the_raw_file_does_not_compile(monkeypatch) -> None:
+    # dm_control's fruitfly.xml compiles only through the loader's mesh fixes: the cause then carries
+    # the engines' own segment masses instead of MuJoCo's density × volume.
+    import koenig_check.causes as causes
+
+    def fails(*_args: Any) -> dict:
+        raise ValueError("Error: Error opening file 'head_body.msh'")
+
+    monkeypatch.setattr(causes, "_mass_values", fails)
+    pair = load_model(CAUSES / "class_mass.xml")
+    cause = _only(import_parity(pair).causes, Kind.MASS)
+    assert cause.element == "geom pole"
+    r = 0.045  # the pole's segment: 0.1 kg in MuJoCo, density 1000 × capsule volume in Pinocchio
+    assert cause.values["mujoco mass of segments"] == pytest.approx(0.1)
+    assert cause.values["pinocchio mass of segments"] == pytest.approx(1000 * (np.pi * r**2 + 4 / 3 * np.pi * r**3))
+
+
 def test_geom_mass_from_a_default_class_is_named_with_both_masses() -> None:
     pair = load_model(CAUSES / "class_mass.xml")
     assert engines_agree(pair) is False

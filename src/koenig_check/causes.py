@@ -611,7 +611,14 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
         names = [c.name for c, _, _ in members]
         segments = tuple(dict.fromkeys(s for _, _, s in members))
         if attr == "mass":
-            values = {"class": cls, "geoms": tuple(names), **_mass_values(spec, [e for _, e, _ in members])}
+            try:
+                masses = _mass_values(spec, [e for _, e, _ in members])
+            except ValueError:  # the raw file does not compile without the loader's fixes (meshes)
+                masses = {  # the engines' own masses of the segments concerned instead
+                    f"{engine} mass of segments": float(sum(segs.mass.get(s, (0.0, 0.0))[k] for s in segments))
+                    for k, engine in enumerate(("mujoco", "pinocchio"))
+                }
+            values = {"class": cls, "geoms": tuple(names), **masses}
             summary = f"geom mass from default class '{cls}' not applied by Pinocchio; density × volume used"
             kind = Kind.MASS
         else:
