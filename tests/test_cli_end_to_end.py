@@ -119,11 +119,13 @@ def test_every_command_has_help_with_an_example(command: str) -> None:
     assert proc.returncode == 0 and f"example:\n  koenig-check {command}" in proc.stdout
 
 
-def test_bad_usage_is_one_line_and_status_two() -> None:
+def test_bad_usage_is_the_usage_line_then_one_error_line_and_status_two() -> None:
     proc = subprocess.run(
         [sys.executable, "-m", "koenig_check.cli", "compare"], capture_output=True, text=True, check=False
     )
-    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 2 and len(lines) == 2 and "Traceback" not in proc.stderr
+    assert lines[0] == "usage: koenig-check compare [options] MODEL [MODEL ...]" and "error:" in lines[1]
 
 
 def test_python_api_has_the_reach_of_the_cli() -> None:

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from koenig_check import grid, pipeline, poses, tiebreak
+from koenig_check.arguments import POSE_KINDS, check_compare_arguments, check_keywords, keywords_of
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.findings import Kind
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
@@ -17,8 +18,6 @@ from koenig_check.records import RecordTable
 
 if TYPE_CHECKING:
     from koenig_check.report import RecordSink
-
-POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
 
 
 @dataclass
@@ -318,9 +317,21 @@ def compare(
     Returns
     -------
     CrossCheck
+
+    Raises
+    ------
+    TypeError
+        A keyword :func:`compare_model` does not take, or an argument of the wrong type
+        (:class:`koenig_check.arguments.ArgumentTypeError`), before any model is loaded.
+    ValueError
+        An argument out of range (``rtol <= 0``, ``n_poses < 1``, an unknown formula, a grid without its
+        two joints: :class:`koenig_check.arguments.ArgumentValueError`), before any model is loaded.
     """
     if isinstance(models, str | Path):
         models = [models]
+    accepted = (keywords_of(compare_model) - {"model", "label", "rtol"}) | set(LoadOptions.names())
+    check_keywords(options, sorted(accepted), "compare")
+    check_compare_arguments(rtol, options)
     options = dict(options)
     load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
     tiebreak.check_engines(load.engines)
