@@ -172,7 +172,7 @@ def test_bad_tolerance_is_a_usage_error(rtol: str) -> None:
         text=True,
         check=False,
     )
-    assert proc.returncode == 2 and "--rtol" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert proc.returncode == 2 and "--rtol" in proc.stderr and len(proc.stderr.strip().splitlines()) == 2
 
 
 @pytest.mark.parametrize("where", ["before", "after"])

@@ -199,7 +199,14 @@ def build_parser() -> argparse.ArgumentParser:
     add_load_arguments(p)
     p.set_defaults(func=_cmd_parity)
 
-    p = _add(sub, "models", "list every model name koenig-check can load, with its format", "koenig-check models")
+    p = _add(
+        sub,
+        "models",
+        "list every model name and alias compare accepts, with its format and source",
+        "koenig-check models --check",
+    )
+    p.add_argument("--check", action="store_true", help="load each model in both engines and say why not (slow)")
+    p.add_argument("--paths", action="store_true", help="show each model's file")
     p.set_defaults(func=_cmd_models)
 
     p = _add(
@@ -225,11 +232,52 @@ def _cmd_selfcheck(args: argparse.Namespace) -> int:
 
 
 def _cmd_models(args: argparse.Namespace) -> int:
-    from koenig_check.engines import list_models
+    from koenig_check.engines.sources import DEFAULT_FORMAT, model_names
 
-    for source in list_models():
-        print(f"{source.name:40s} {source.format:5s} {source.origin:20s} {source.path}")
+    names = model_names()
+    print(f"{len(names)} models. Type the NAME or any ALIAS, or a file path. A project model in both formats")
+    print(f"is name.xml or name.urdf; its bare name means the {DEFAULT_FORMAT.upper()} file.")
+    width = max(len(e.name) for e in names)
+    header = f"{'NAME':{width}s} {'FORM':4s} {'SOURCE':18s} ALIASES"
+    print(header if not args.check else f"{header}\n{'':{width}s} LOADS IN BOTH ENGINES?")
+    loaded_both = 0
+    for entry in names:
+        prefix = f"{entry.name:{width}s} {entry.format:4s} {entry.source:18s} "
+        rows, row = [], ""
+        for alias in entry.aliases:  # aliases wrapped under their column, within 100 columns
+            if row and len(prefix) + len(row) + len(alias) + 2 > 100:
+                rows.append(row + ",")
+                row = ""
+            row = f"{row}, {alias}" if row else alias
+        for k, text in enumerate([*rows, row]):
+            print(((prefix if k == 0 else " " * len(prefix)) + text).rstrip())
+        if args.paths:
+            print(f"{'':{width}s} {entry.path}")
+        if args.check:
+            verdict = _loads_in_both(entry.name)
+            loaded_both += verdict == "yes"
+            print(f"{'':{width}s} {verdict}")
+    if args.check:
+        print(f"\n{loaded_both} of {len(names)} load in both MuJoCo and Pinocchio (default load options).")
     return 0
+
+
+def _loads_in_both(name: str) -> str:
+    """``yes``, or ``no: <engine's one-line reason>`` for one model name (default load options)."""
+    import warnings
+
+    from koenig_check.api import one_line
+    from koenig_check.engines import load_model
+    from koenig_check.engines.sources import resolve_model
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            load_model(name)
+    except Exception as err:  # each model's reason, the list goes on
+        text = one_line(err).replace(f"{resolve_model(name).path}: ", "")  # the file is the row's
+        return f"no: {text}"
+    return "yes"
 
 
 def _finish(check, out: str | None, extra_figures: dict | None = None, records=None) -> int:
