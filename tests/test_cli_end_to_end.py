@@ -42,7 +42,7 @@ def demo_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, Path, st
 def test_demo_exits_zero_and_prints_the_verdict(demo_report: tuple[int, Path, str]) -> None:
     code, _, output = demo_report
     assert code == 0, output
-    assert "Engines (tolerance 1e-09)" in output
+    assert "Models: do MuJoCo and Pinocchio agree? (tolerance 1e-09" in output
     for model in ["gimbal.xml", "serial7.urdf", "free_body.urdf", "double_pendulum.xml", "armature_chain.xml"]:
         assert model in output
     for name in FORMULAS:
