@@ -53,7 +53,7 @@ def test_demo_exits_zero_and_prints_the_verdict(demo_report: tuple[int, Path, st
 def test_demo_writes_every_promised_file(demo_report: tuple[int, Path, str]) -> None:
     _, out, _ = demo_report
     summary = (out / "summary.md").read_text()
-    assert summary.startswith("# koenig-check report") and "| formula | equations | mujoco | pinocchio |" in summary
+    assert summary.startswith("# koenig-check report") and "| formula | verdict | max rel. error |" in summary
     with open(out / "records.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
     assert rows and tuple(rows[0]) == RECORD_FIELDS

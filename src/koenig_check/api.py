@@ -32,6 +32,9 @@ class CrossCheck:
     failures : list of (str, str)
         Models that could not be compared, with a one-line reason each.
     rtol : float
+    settings : dict
+        Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
+        ``velocity_scale``, ``duration``), for the report's captions.
     """
 
     comparisons: list[ModelComparison] = field(default_factory=list)
@@ -39,6 +42,7 @@ class CrossCheck:
     parities: list[EngineParity] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
     rtol: float = DEFAULT_RTOL
+    settings: dict[str, dict[str, Any]] = field(default_factory=dict)
 
     @property
     def records(self) -> RecordTable:
@@ -340,6 +344,7 @@ def compare(
         label = _label(model, load.floating)
         if progress:
             progress(label)
+        result.settings[label] = {k: options[k] for k in _SETTINGS if k in options}
         try:
             comp = compare_model(model, label=label, load_options=load, rtol=rtol, **options)
         except Exception as err:  # recorded with its reason; the batch goes on
@@ -349,6 +354,10 @@ def compare(
             continue
         result.add(comp)
     return result
+
+
+#: The pose settings recorded per model for the report (see :attr:`CrossCheck.settings`).
+_SETTINGS = ("pose_kind", "n_poses", "seed", "velocity_scale", "duration", "grid_joints")
 
 
 def load_options_from(base: LoadOptions | None, overrides: dict[str, Any]) -> LoadOptions:

@@ -14,9 +14,19 @@ import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 from matplotlib.figure import Figure
 
-from koenig_check.formulas import FORMULAS
 from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison, relative_error
 from koenig_check.records import FULL_SCHEMA, RECORD_FIELDS, TEXT_FIELDS, RecordTable, with_derived
+from koenig_check.report_content import (
+    COLUMNS,
+    POSE_LABELS,
+    glossary,
+    model_findings,
+    model_table,
+    refusal_lines,
+    run_conditions,
+    shared_notes,
+)
+from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.stats import QuantileSketch
 
 if TYPE_CHECKING:
@@ -36,8 +46,14 @@ def summary_markdown(
     parities: Sequence[EngineParity],
     failures: Sequence[tuple[str, str]] = (),
     rtol: float = 1e-9,
+    settings: dict[str, dict] | None = None,
 ) -> str:
-    """The Markdown summary: per model, engine parity then one line per formula, one column per engine.
+    """The Markdown summary, readable without the paper.
+
+    Sections: what this run found (per model, in plain words), the formulas (glossary with the paper's
+    equation numbers in brackets), how to read the tables (every column and pose label), one section per
+    model (conditions, engine parity, the table, refusals), models that could not be compared, notes (each
+    once, with the models it concerns).
 
     Parameters
     ----------
@@ -47,69 +63,93 @@ def summary_markdown(
     failures : sequence of (model, reason)
         Models that could not be compared.
     rtol : float
+    settings : dict, optional
+        Per model, the run's pose settings (:attr:`koenig_check.api.CrossCheck.settings`).
 
     Returns
     -------
     str
     """
-    lines = [
-        "# koenig-check report",
-        "",
-        f"Tolerance: relative {rtol:g}. Each cell: max relative error of the formula's total energy, "
-        "evaluated on that engine's segment states, against that engine's own rigid-body kinetic energy "
-        "(armature excluded); then the median, and the fraction of poses where the formula over- / "
-        "under-estimates.",
-        "",
-    ]
+    settings = settings or {}
+    parity = {p.model: p for p in parities}
     by_model: dict[str, list[FormulaSummary]] = {}
     for s in summaries:
         by_model.setdefault(s.model, []).append(s)
-    parity = {p.model: p for p in parities}
+    formulas = list(dict.fromkeys(s.formula for s in summaries)) + sorted(
+        {r["formula"] for c in comparisons for r in c.refusals} - {s.formula for s in summaries}
+    )
+    lines = [
+        "# koenig-check report",
+        "",
+        "Kinetic energy of every moving segment of each model, computed by MuJoCo and by Pinocchio from the "
+        "same joint positions and rates, and by each formula under test (Yu. Alyushin, *Correction of the "
+        "Koenig formula for the kinetic energy of a rotating solid*) from each engine's segment states. "
+        f"Tolerance: relative {rtol:g}. Numbers below {ROUNDOFF:g} are rounding and are printed as 0.",
+        "",
+        "## What this run found",
+        "",
+    ]
+    for comp in comparisons:
+        f = model_findings(comp, by_model.get(comp.model, []), parity.get(comp.model), rtol)
+        lines.append(f"- **{comp.model}** ({f.poses}): {f.engines}.")
+        if f.exact:
+            lines.append(f"  - exact to rounding: {', '.join(f'`{n}`' for n in f.exact)}.")
+        for text in f.inexact:
+            name, rest = text.split(": ", 1)
+            lines.append(f"  - not exact: `{name}` {rest}.")
+        if f.refused:
+            lines.append(f"  - refused (does not apply to this motion): {', '.join(f'`{n}`' for n in f.refused)}.")
+    for model, reason in failures:
+        lines.append(f"- **{model}**: could not be compared: {reason}")
+    lines += ["", "## Formulas", "", "The paper's equation numbers are in brackets.", ""]
+    lines += [f"- `{g.name}` [{g.equations}]: {g.text}." for g in glossary(formulas)]
+    lines += ["", "## How to read the tables", ""]
+    lines += [f"- **{name}**: {text}." for name, text in COLUMNS.items()]
+    lines += ["", "Pose labels:", ""]
+    lines += [f"- `{label}`: {text}." for label, text in POSE_LABELS.items()]
+    lines.append("")
     for comp in comparisons:
         p = parity.get(comp.model)
-        lines.append(f"## {comp.model}")
-        lines.append("")
-        lines.append(f"{comp.n_poses} poses ({comp.pose_kind}).")
+        lines += [f"## {comp.model}", "", f"Conditions: {run_conditions(comp, settings.get(comp.model))}.", ""]
         if p is not None:
-            verdict = "engines agree" if p.agrees else f"ENGINES DISAGREE: {p.reason}"
+            exact = ", ".join(f"{k} {fmt(v)}" for k, v in p.exact_vs_engine.items())
+            verdict = "the engines agree" if p.agrees else f"the engines DISAGREE: {p.reason}"
             lines.append(
-                f"Engine parity: {verdict}. MuJoCo vs Pinocchio rigid energy max relative difference "
-                f"{_fmt(p.rigid_max_rel)}; armature energy max difference {_fmt(p.armature_max_abs)} J; "
-                + "; ".join(f"exact on {k} states vs {k} energy {_fmt(v)}" for k, v in p.exact_vs_engine.items())
-                + "."
+                f"Engine parity: {verdict}. MuJoCo vs Pinocchio rigid-body energy, largest relative difference "
+                f"{fmt(p.rigid_max_rel)} (pose {p.worst_pose}); armature energy, largest difference "
+                f"{fmt(p.armature_max_abs)} J; `exact` on each engine's states vs that engine's energy: {exact}."
             )
-        lines.append("")
+            lines.append("")
         engines = list(comp.engines)
-        lines.append("| formula | equations | " + " | ".join(engines) + " |")
-        lines.append("| --- | --- | " + " | ".join("---" for _ in engines) + " |")
-        cells: dict[tuple[str, str], FormulaSummary] = {
-            (s.formula, s.source): s for s in by_model.get(comp.model, []) if s.source == s.reference
-        }
-        for formula in dict.fromkeys(s.formula for s in by_model.get(comp.model, [])):
-            row = [formula, FORMULAS[formula].equations]
-            for e in engines:
-                s = cells.get((formula, e))
-                if s is None:
-                    row.append("—")
-                    continue
-                mark = "agrees" if s.agrees else "differs"
-                row.append(
-                    f"{mark}: max {_fmt(s.max_rel_error)}, median {_fmt(s.median_rel_error)}, "
-                    f"over {s.over_fraction:.0%} / under {s.under_fraction:.0%}; worst {s.worst_pose}"
-                    + (f", segment {s.worst_segment}" if s.worst_segment and not s.agrees else "")
-                )
-            lines.append("| " + " | ".join(row) + " |")
-        for r in comp.refusals:
-            lines.append(f"\n- `{r['formula']}` refused on {r['source']} states: {r['reason']}")
-        for note in comp.notes:
-            lines.append(f"- note: {note}")
+        lines.append(f"Max rel. error is given as {' / '.join(engines)}.")
+        lines.append("")
+        lines.append("| " + " | ".join(COLUMN_TITLES) + " |")
+        lines.append("| " + " | ".join("---" for _ in COLUMN_TITLES) + " |")
+        for row in model_table(by_model.get(comp.model, []), engines):
+            lines.append(
+                f"| `{row.formula}` [{row.equations}] | {row.verdict} | {row.max_error} | {row.median} | "
+                f"{row.over_under} | {row.worst_pose} | {row.worst_segment or '—'} |"
+            )
+        refusals = refusal_lines(comp)
+        if refusals:
+            lines.append("")
+            lines += [f"- {text}" for text in refusals]
         lines.append("")
     if failures:
-        lines.append("## Models that could not be compared")
-        lines.append("")
+        lines += ["## Models that could not be compared", ""]
         lines += [f"- {model}: {reason}" for model, reason in failures]
         lines.append("")
+    notes = shared_notes(comparisons)
+    if notes:
+        lines += ["## Notes", "", "Each note once, with the models it concerns.", ""]
+        for note, models in notes:
+            lines.append(f"- {note} ({'all models' if not models else ', '.join(models)})")
+        lines.append("")
     return "\n".join(lines)
+
+
+#: Column titles of the per-model tables (defined in :data:`koenig_check.report_content.COLUMNS`).
+COLUMN_TITLES = ("formula", "verdict", "max rel. error", "median", "over / under", "worst pose", "worst segment")
 
 
 def _text_columns(table: pa.Table) -> pa.Table:
@@ -494,7 +534,9 @@ def write_report(
     written = [
         _write_text(
             out / "summary.md",
-            summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol),
+            summary_markdown(
+                check.comparisons, check.summaries, check.parities, check.failures, check.rtol, check.settings
+            ),
         ),
         *records.close(),
     ]
