@@ -137,7 +137,8 @@ def file_listing(out: str | Path, files: Iterable[Path]) -> str:
     """
     files = list(files)
     lines = [f"report: {Path(out).resolve()} ({len(files)} files)"]
-    lines += [f"  {p.name:32s} {_size(p.stat().st_size):>9s}" for p in files]
+    width = max([len(p.name) for p in files] + [10])
+    lines += [f"  {p.name:{width}s} {_size(p.stat().st_size):>9s}" for p in files]
     return "\n".join(lines)
 
 

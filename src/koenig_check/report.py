@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
@@ -12,9 +13,8 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
-from matplotlib.figure import Figure
 
-from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison, relative_error
+from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import FULL_SCHEMA, RECORD_FIELDS, TEXT_FIELDS, RecordTable, with_derived
 from koenig_check.report_content import (
     COLUMNS,
@@ -27,7 +27,6 @@ from koenig_check.report_content import (
     shared_notes,
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
-from koenig_check.stats import QuantileSketch
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
@@ -317,175 +316,10 @@ def write_json(
     return path
 
 
-def error_distribution_figure(comparisons: Sequence[ModelComparison], path: Path) -> Path:
-    """Distribution of relative error per formula (totals, each engine against itself), log scale.
-
-    Drawn from the merged statistics of every model (no record needed): boxes span the quartiles,
-    whiskers the minimum and the maximum.
-
-    Parameters
-    ----------
-    comparisons : sequence of ModelComparison
-    path : Path
-
-    Returns
-    -------
-    Path
-    """
-    pooled: dict[tuple[str, str], QuantileSketch] = {}
-    for comp in comparisons:
-        if comp.stats is None:
-            continue
-        for (formula, source, reference), g in comp.stats.kept_groups().items():
-            if source == reference:
-                pooled.setdefault((formula, source), QuantileSketch()).merge(g.sketch)
-    formulas = list(dict.fromkeys(f for f, _ in pooled))
-    engines = list(dict.fromkeys(e for _, e in pooled))
-    fig = Figure(figsize=(10, 0.45 * max(len(formulas), 4) + 1.5), layout="constrained")
-    ax = fig.add_subplot()
-    colors = {"mujoco": "tab:blue", "pinocchio": "tab:orange"}
-    for k, engine in enumerate(engines):
-        boxes, positions = [], []
-        for i, f in enumerate(formulas):
-            sketch = pooled.get((f, engine))
-            if sketch is None or not sketch.n:
-                continue
-            q = [np.log10(max(sketch.quantile(x), LOG_FLOOR)) for x in (0.0, 0.25, 0.5, 0.75, 1.0)]
-            boxes.append({"whislo": q[0], "q1": q[1], "med": q[2], "q3": q[3], "whishi": q[4], "fliers": []})
-            positions.append(i + (k - (len(engines) - 1) / 2) * 0.35)
-        if not boxes:
-            continue
-        parts = ax.bxp(
-            boxes, positions=positions, widths=0.3, orientation="horizontal", patch_artist=True, manage_ticks=False
-        )
-        for box in parts["boxes"]:
-            box.set_facecolor(colors.get(engine, "tab:gray"))
-            box.set_alpha(0.6)
-        ax.plot(
-            [],
-            [],
-            color=colors.get(engine, "tab:gray"),
-            linewidth=8,
-            alpha=0.6,
-            label=f"{engine} states vs {engine} energy",
-        )
-    ax.set_yticks(np.arange(len(formulas)), formulas)
-    ax.invert_yaxis()
-    ax.set_xlabel(
-        f"log10 relative error of total kinetic energy (dimensionless; exact agreement drawn at {LOG_FLOOR:g})"
-    )
-    ax.set_title(
-        "Relative error of each formula against the engines' own kinetic energy, all models and poses\n"
-        "(boxes: quartiles; whiskers: minimum and maximum)"
-    )
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=2, frameon=False)
-    ax.grid(True, axis="x", alpha=0.3)
-    fig.savefig(path, dpi=110)
-    return path
-
-
-def error_map_figure(comparison: ModelComparison, formulas: Sequence[str], path: Path, engine: str = "mujoco") -> Path:
-    """Relative error of formulas over a two-joint grid sweep (the paper's section-3 gimbal).
-
-    Parameters
-    ----------
-    comparison : ModelComparison
-        Built on a grid :class:`~koenig_check.poses.PoseSet`.
-    formulas : sequence of str
-    path : Path
-    engine : str
-        Whose states and energy are used.
-
-    Returns
-    -------
-    Path
-    """
-    grid = comparison.poses.grid
-    if grid is None:
-        raise ValueError(f"{comparison.model}: the poses are not a grid sweep")
-    shape = grid["shape"]
-    va, vb = grid["values"]
-    ja, jb = grid["joints"]
-    fig = Figure(figsize=(4.2 * len(formulas), 4.0), layout="constrained")
-    for k, formula in enumerate(formulas):
-        rows = comparison.records.where(formula=formula, scope="total", source=engine, reference=engine)
-        signed = relative_error(rows["value"], rows["reference_value"])
-        ax = fig.add_subplot(1, len(formulas), k + 1)
-        lim = max(np.abs(signed).max(), 1e-16)
-        mesh = ax.pcolormesh(
-            np.degrees(vb),
-            np.degrees(va),
-            signed.reshape(shape),
-            cmap="RdBu_r",
-            vmin=-lim,
-            vmax=lim,
-            shading="auto",
-        )
-        fig.colorbar(mesh, ax=ax, label="signed relative error (formula − engine) / engine")
-        ax.set_xlabel(f"{jb} angle (deg)")
-        ax.set_ylabel(f"{ja} angle (deg)")
-        ax.set_title(formula)
-    fig.suptitle(f"{comparison.model}: error over the two joint angles ({engine}, joint rates fixed)")
-    fig.savefig(path, dpi=110)
-    return path
-
-
-def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path: Path) -> Path:
-    """Kinetic energy along a simulated trajectory for each formula against both engines.
-
-    Parameters
-    ----------
-    comparison : ModelComparison
-        Built on a trajectory :class:`~koenig_check.poses.PoseSet`.
-    formulas : sequence of str
-    path : Path
-
-    Returns
-    -------
-    Path
-    """
-    times = comparison.poses.times
-    if times is None:
-        raise ValueError(f"{comparison.model}: the poses are not a trajectory")
-    fig = Figure(figsize=(10, 7), layout="constrained")
-    ax, ax_err = fig.add_subplot(2, 1, 1), fig.add_subplot(2, 1, 2, sharex=None)
-    energy = {
-        engine: comparison.records.where(formula="exact", scope="total", source=engine, reference=engine)[
-            "reference_value"
-        ]
-        for engine in comparison.engines
-    }
-    for engine, rigid in energy.items():
-        if not len(rigid):
-            continue
-        ax.plot(
-            times,
-            rigid,
-            linewidth=4,
-            alpha=0.4,
-            color="k" if engine == "mujoco" else "0.6",
-            label=f"{engine} (engine energy)",
-        )
-    mj = energy.get("mujoco", np.empty(0))
-    palette = dict(zip(formulas, (f"C{k}" for k in range(10)), strict=False))
-    for formula in formulas:
-        rows = comparison.records.where(formula=formula, scope="total", source="mujoco", reference="mujoco")
-        if not len(rows):
-            continue
-        value = rows["value"]
-        ax.plot(times, value, linewidth=1.2, color=palette.get(formula), label=formula)
-        ax_err.plot(times, relative_error(value, mj), linewidth=1.2, color=palette.get(formula), label=formula)
-    ax.set_ylabel("kinetic energy (J)")
-    ax.set_title(f"{comparison.model}: kinetic energy along a torque-free MuJoCo trajectory from the reference pose")
-    ax.legend(fontsize=7, ncol=2)
-    ax.grid(True, alpha=0.3)
-    ax_err.set_xlabel("time (s)")
-    ax_err.set_ylabel("relative error vs MuJoCo (dimensionless)")
-    ax_err.set_title("formula − engine, relative")
-    ax_err.legend(fontsize=7, ncol=2)
-    ax_err.grid(True, alpha=0.3)
-    fig.savefig(path, dpi=110)
-    return path
+def figure_name(model: str) -> str:
+    """The file name of a model's error-distribution figure (``error_distribution_<model>.png``)."""
+    slug = re.sub(r"[^A-Za-z0-9._-]+", "_", model).strip("_")
+    return f"error_distribution_{slug}.png"
 
 
 def write_report(
@@ -503,7 +337,11 @@ def write_report(
     ),
     records: RecordFiles | None = None,
 ) -> list[Path]:
-    """Write the report directory: summary.md, records.json, the record files and the figures.
+    """Write the report directory: summary.md, report.html, records.json, the record files and the figures.
+
+    Figures: ``error_distribution_<model>.png`` per model, ``error_distribution.png`` pooled over the models
+    (labelled so, with the models named) when there are several, ``error_map.png`` for a grid sweep and
+    ``trajectory_energy.png`` for a trajectory.  ``report.html`` embeds them all.
 
     Parameters
     ----------
@@ -525,6 +363,9 @@ def write_report(
     list of Path
         Every file written.
     """
+    from koenig_check.figures import error_distribution_figure, error_map_figure, trajectory_figure
+    from koenig_check.report_html import report_html
+
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     if records is None:
@@ -553,15 +394,39 @@ def write_report(
                 "record_count": records.rows,
                 "notes": {c.model: c.notes for c in check.comparisons},
                 "refusals": [r for c in check.comparisons for r in c.refusals],
+                "settings": check.settings,
             },
         )
     )
-    if check.summaries:
-        written.append(error_distribution_figure(check.comparisons, out / "error_distribution.png"))
+    figures: dict[str, list[tuple[Path, str]]] = {}
+    with_stats = [c for c in check.comparisons if c.stats is not None and c.stats.kept_groups()]
+    for comp in with_stats:
+        caption = run_conditions(comp, check.settings.get(comp.model))
+        path = error_distribution_figure([comp], out / figure_name(comp.model), check.rtol, caption)
+        figures.setdefault(comp.model, []).append(
+            (path, f"{comp.model}: relative error of each formula's total energy. {caption}.")
+        )
+    if len(with_stats) > 1:
+        names = ", ".join(c.model for c in with_stats)
+        caption = f"pooled over {len(with_stats)} models ({names}); each model's own figure is in its section"
+        path = error_distribution_figure(with_stats, out / "error_distribution.png", check.rtol, caption)
+        figures.setdefault("", []).append((path, f"Relative error of each formula, {caption}."))
     if grid_comparison is not None:
-        written.append(error_map_figure(grid_comparison, map_formulas, out / "error_map.png"))
+        caption = run_conditions(grid_comparison, check.settings.get(grid_comparison.model))
+        path = error_map_figure(grid_comparison, map_formulas, out / "error_map.png", caption=caption)
+        figures.setdefault(grid_comparison.model, []).append(
+            (path, f"Signed relative error over the two joint angles (MuJoCo), one colour scale. {caption}.")
+        )
     if trajectory_comparison is not None:
-        written.append(trajectory_figure(trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png"))
+        caption = run_conditions(trajectory_comparison, check.settings.get(trajectory_comparison.model))
+        path = trajectory_figure(
+            trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png", check.rtol, caption
+        )
+        figures.setdefault(trajectory_comparison.model, []).append(
+            (path, f"Kinetic energy along the trajectory and each formula's error. {caption}.")
+        )
+    written += [path for items in figures.values() for path, _ in items]
+    written.append(_write_text(out / "report.html", report_html(check, figures)))
     return written
 
 
