@@ -398,23 +398,30 @@ def write_report(
             },
         )
     )
-    figures: dict[str, list[tuple[Path, str]]] = {}
+    figures: dict[int | None, list[tuple[Path, str]]] = {}  # by position in check.comparisons; None: the run
     with_stats = [c for c in check.comparisons if c.stats is not None and c.stats.kept_groups()]
-    for comp in with_stats:
+    names: set[str] = set()
+    for k, comp in enumerate(check.comparisons):
+        if comp not in with_stats:
+            continue
+        name = figure_name(comp.model)
+        while name in names:  # two comparisons with one label: both figures kept
+            name = name.replace(".png", "_.png")
+        names.add(name)
         caption = run_conditions(comp, check.settings.get(comp.model))
-        path = error_distribution_figure([comp], out / figure_name(comp.model), check.rtol, caption)
-        figures.setdefault(comp.model, []).append(
+        path = error_distribution_figure([comp], out / name, check.rtol, caption)
+        figures.setdefault(k, []).append(
             (path, f"{comp.model}: relative error of each formula's total energy. {caption}.")
         )
     if len(with_stats) > 1:
         names = ", ".join(c.model for c in with_stats)
         caption = f"pooled over {len(with_stats)} models ({names}); each model's own figure is in its section"
         path = error_distribution_figure(with_stats, out / "error_distribution.png", check.rtol, caption)
-        figures.setdefault("", []).append((path, f"Relative error of each formula, {caption}."))
+        figures.setdefault(None, []).append((path, f"Relative error of each formula, {caption}."))
     if grid_comparison is not None:
         caption = run_conditions(grid_comparison, check.settings.get(grid_comparison.model))
         path = error_map_figure(grid_comparison, map_formulas, out / "error_map.png", caption=caption)
-        figures.setdefault(grid_comparison.model, []).append(
+        figures.setdefault(_position(check, grid_comparison), []).append(
             (path, f"Signed relative error over the two joint angles (MuJoCo), one colour scale. {caption}.")
         )
     if trajectory_comparison is not None:
@@ -422,12 +429,20 @@ def write_report(
         path = trajectory_figure(
             trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png", check.rtol, caption
         )
-        figures.setdefault(trajectory_comparison.model, []).append(
+        figures.setdefault(_position(check, trajectory_comparison), []).append(
             (path, f"Kinetic energy along the trajectory and each formula's error. {caption}.")
         )
     written += [path for items in figures.values() for path, _ in items]
     written.append(_write_text(out / "report.html", report_html(check, figures)))
     return written
+
+
+def _position(check: CrossCheck, comparison: ModelComparison) -> int | None:
+    """Where a comparison stands in the check (None when it is not one of them: shown with the whole run)."""
+    for k, comp in enumerate(check.comparisons):
+        if comp is comparison:
+            return k
+    return None
 
 
 def _write_text(path: Path, text: str) -> Path:

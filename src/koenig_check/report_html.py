@@ -102,15 +102,15 @@ def _causes(comp: ModelComparison) -> str:
     return "<p>Parity causes (root causes first):</p><ul>" + "".join(items) + "</ul>"
 
 
-def report_html(check: CrossCheck, figures: Mapping[str, Sequence[tuple[Path, str]]]) -> str:
+def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[Path, str]]]) -> str:
     """The page: the content of ``summary.md`` with each model's figures beside its table.
 
     Parameters
     ----------
     check : CrossCheck
     figures : mapping
-        Per model label, its figures as (PNG file, caption); the key ``""`` holds figures of the whole
-        run (shown after the findings).
+        Per position in ``check.comparisons``, that model's figures as (PNG file, caption); the key ``None``
+        holds figures of the whole run (shown after the findings).
 
     Returns
     -------
@@ -136,7 +136,7 @@ def report_html(check: CrossCheck, figures: Mapping[str, Sequence[tuple[Path, st
         + "</p></nav>",
         '<section id="findings"><h2>What this run found</h2><ul>',
     ]
-    for comp in check.comparisons:
+    for k, comp in enumerate(check.comparisons):
         f = model_findings(comp, by_model.get(comp.model, []), parity.get(comp.model), rtol)
         cls = "agree" if "DISAGREE" not in f.engines else "disagree"
         items = []
@@ -148,7 +148,7 @@ def report_html(check: CrossCheck, figures: Mapping[str, Sequence[tuple[Path, st
         if f.refused:
             items.append("refused (does not apply): " + ", ".join(f"<code>{_e(n)}</code>" for n in f.refused))
         body.append(
-            f'<li><a href="#{_anchor(comp.model)}"><strong>{_e(comp.model)}</strong></a> ({_e(f.poses)}): '
+            f'<li><a href="#{_anchor(comp.model)}-{k}"><strong>{_e(comp.model)}</strong></a> ({_e(f.poses)}): '
             f'<span class="{cls}">{_e(f.engines)}</span>.<ul>' + "".join(f"<li>{i}.</li>" for i in items) + "</ul></li>"
         )
     for model, reason in check.failures:
@@ -156,7 +156,7 @@ def report_html(check: CrossCheck, figures: Mapping[str, Sequence[tuple[Path, st
             f'<li><strong>{_e(model)}</strong>: <span class="disagree">could not be compared</span>: {_e(reason)}</li>'
         )
     body.append("</ul>")
-    body += [_figure(png, caption) for png, caption in figures.get("", ())]
+    body += [_figure(png, caption) for png, caption in figures.get(None, ())]
     body.append("</section>")
     body += ['<section id="formulas"><h2>Formulas</h2><p>The paper\'s equation numbers are in brackets.</p><dl>']
     body += [
@@ -167,9 +167,9 @@ def report_html(check: CrossCheck, figures: Mapping[str, Sequence[tuple[Path, st
     body += ["</dl><p>Pose labels:</p><dl>"]
     body += [f"<dt><code>{_e(label)}</code></dt><dd>{_e(text)}.</dd>" for label, text in POSE_LABELS.items()]
     body.append("</dl></section>")
-    for comp in check.comparisons:
+    for k, comp in enumerate(check.comparisons):
         p = parity.get(comp.model)
-        body.append(f'<section class="model" id="{_anchor(comp.model)}"><h2>{_e(comp.model)}</h2>')
+        body.append(f'<section class="model" id="{_anchor(comp.model)}-{k}"><h2>{_e(comp.model)}</h2>')
         body.append(f"<p>Conditions: {_e(run_conditions(comp, check.settings.get(comp.model)))}.</p>")
         if p is not None:
             verdict = (
@@ -185,7 +185,7 @@ def report_html(check: CrossCheck, figures: Mapping[str, Sequence[tuple[Path, st
                 f"energy: {_e(exact)}.</p>"
             )
         body.append(_causes(comp))
-        figs = "".join(_figure(png, caption) for png, caption in figures.get(comp.model, ()))
+        figs = "".join(_figure(png, caption) for png, caption in figures.get(k, ()))
         body.append(f'<div class="side"><div>{_table(comp, by_model.get(comp.model, []))}</div>')
         body.append(f"<div>{figs}</div></div>" if figs else "</div>")
         refusals = refusal_lines(comp)
