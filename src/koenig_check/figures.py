@@ -68,7 +68,7 @@ def error_distribution_figure(
     pooled = _sketches(comparisons)
     formulas = list(dict.fromkeys(f for f, _ in pooled))
     engines = list(dict.fromkeys(e for _, e in pooled))
-    fig = Figure(figsize=(9, 0.42 * max(len(formulas), 4) + 2.0), layout="constrained")
+    fig = Figure(figsize=(7.2, 0.36 * max(len(formulas), 4) + 2.1), layout="constrained")
     ax = fig.add_subplot()
     top = max([_position(s.quantile(1.0)) for s in pooled.values() if s.n] + [np.log10(rtol) + 1, 0.0])
     for k, engine in enumerate(engines):
@@ -102,17 +102,18 @@ def error_distribution_figure(
     ax.set_xlim(_BAND - 0.8, top + 0.3)
     ticks = list(range(int(np.ceil(np.log10(ROUNDOFF))), int(np.floor(top)) + 1, 2))
     ax.set_xticks([_BAND, *ticks], [f"< {ROUNDOFF:g}\n(rounding)", *[f"1e{t}" for t in ticks]])
-    ax.set_yticks(np.arange(len(formulas)), formulas)
+    ax.set_yticks(np.arange(len(formulas)), formulas, fontsize=8)
+    ax.tick_params(axis="x", labelsize=8)
     ax.set_ylim(len(formulas) - 0.5, -0.5)
-    ax.set_xlabel("relative error of the total kinetic energy |formula − engine| / engine (log scale)")
+    ax.set_xlabel("relative error of the total energy |formula − engine| / engine (log scale)", fontsize=8)
     models = [c.model for c in comparisons]
     if len(models) == 1:
         title = f"{models[0]}: relative error of each formula"
     else:
-        title = textwrap.fill(f"Pooled over {len(models)} models ({', '.join(models)}): relative error", 110)
-    sub = "boxes: quartiles, whiskers: min and max over the poses; dots: exact to rounding on every pose"
-    ax.set_title(f"{title}\n{sub}" + (f"\n{textwrap.fill(caption, 120)}" if caption else ""), fontsize=9)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, frameon=False, fontsize=8)
+        title = textwrap.fill(f"Pooled over {len(models)} models ({', '.join(models)}): relative error", 95)
+    sub = "boxes: quartiles; whiskers: min and max over the poses; dots: exact to rounding on every pose"
+    ax.set_title(f"{title}\n{sub}" + (f"\n{textwrap.fill(caption, 95)}" if caption else ""), fontsize=8)
+    fig.legend(loc="outside lower center", ncol=3, frameon=False, fontsize=7)
     ax.grid(True, axis="x", alpha=0.3)
     fig.savefig(path, dpi=dpi)
     return path

@@ -40,8 +40,12 @@ th { background: #eee; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 tr.exact td.verdict { color: #1b6e20; font-weight: 600; }
 tr.differs td.verdict { color: #a12020; font-weight: 600; }
-.side { display: flex; flex-wrap: wrap; gap: 1.5em; align-items: flex-start; }
-.side > div { flex: 1 1 620px; min-width: 0; }
+.side { display: grid; grid-template-columns: minmax(0, 11fr) minmax(0, 7fr); gap: 1.2em; align-items: start; }
+.side > div:first-child { overflow-x: auto; }
+.side table { font-size: 0.78em; }
+td.pose { white-space: nowrap; }
+@media (max-width: 1000px) { .side { grid-template-columns: 1fr; } }
+small { color: #555; }
 figure { margin: 0 0 1em 0; }
 figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 figcaption { font-size: .85em; color: #444; }
@@ -78,14 +82,15 @@ def _figure(png: Path, caption: str) -> str:
 def _table(comp: ModelComparison, summaries: Sequence[FormulaSummary]) -> str:
     titles = ("formula", "verdict", "max rel. error", "median", "over / under", "worst pose", "worst segment")
     engines = list(comp.engines)
-    out = [f"<p>Max rel. error is given as {_e(' / '.join(engines))}.</p>", "<table>"]
+    out = [f"<p>Max rel. error: {_e(', then '.join(engines))}.</p>", "<table>"]
     out.append("<thead><tr>" + "".join(f"<th>{_e(t)}</th>" for t in titles) + "</tr></thead><tbody>")
     for row in model_table(summaries, engines):
+        maxima = "<br>".join(map(_e, row.max_error.split(" / ")))
         out.append(
-            f'<tr class="{row.verdict}"><td><code>{_e(row.formula)}</code> [{_e(row.equations)}]</td>'
-            f'<td class="verdict">{_e(row.verdict)}</td><td class="num">{_e(row.max_error)}</td>'
+            f'<tr class="{row.verdict}"><td><code>{_e(row.formula)}</code><br><small>[{_e(row.equations)}]</small></td>'
+            f'<td class="verdict">{_e(row.verdict)}</td><td class="num">{maxima}</td>'
             f'<td class="num">{_e(row.median)}</td><td class="num">{_e(row.over_under)}</td>'
-            f"<td>{_e(row.worst_pose)}</td><td>{_e(row.worst_segment or '—')}</td></tr>"
+            f'<td class="pose">{_e(row.worst_pose)}</td><td class="pose">{_e(row.worst_segment or "—")}</td></tr>'
         )
     out.append("</tbody></table>")
     return "\n".join(out)
