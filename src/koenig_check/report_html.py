@@ -47,6 +47,7 @@ td.pose { white-space: nowrap; }
 @media (max-width: 1000px) { .side { grid-template-columns: 1fr; } }
 small { color: #555; }
 figure { margin: 0 0 1em 0; }
+.wide figure img { max-width: min(100%, 1200px); }
 figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 figcaption { font-size: .85em; color: #444; }
 .agree { color: #1b6e20; font-weight: 600; }
@@ -190,9 +191,13 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
                 f"energy: {_e(exact)}.</p>"
             )
         body.append(_causes(comp))
-        figs = "".join(_figure(png, caption) for png, caption in figures.get(k, ()))
+        mine = figures.get(k, ())
+        figs = "".join(_figure(png, caption) for png, caption in mine if png.name.startswith("error_distribution"))
+        wide = "".join(_figure(png, caption) for png, caption in mine if not png.name.startswith("error_distribution"))
         body.append(f'<div class="side"><div>{_table(comp, by_model.get(comp.model, []))}</div>')
         body.append(f"<div>{figs}</div></div>" if figs else "</div>")
+        if wide:  # the error map and the trajectory are wide: full width under the table they illustrate
+            body.append(f'<div class="wide">{wide}</div>')
         refusals = refusal_lines(comp)
         if refusals:
             body.append("<ul>" + "".join(f"<li>{_e(t)}</li>" for t in refusals) + "</ul>")
