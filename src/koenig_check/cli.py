@@ -504,6 +504,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 2
     args.debug = bool(getattr(args, "debug", False))
+    from koenig_check.noise import route_mujoco_warnings
+
+    route_mujoco_warnings()  # no MUJOCO_LOG.TXT in the user's directory; load warnings are findings already
+    if args.debug:
+        import logging
+
+        logging.basicConfig(level=logging.INFO, format="koenig-check: %(name)s: %(message)s")
     try:
         return int(args.func(args))
     except KeyboardInterrupt:
