@@ -74,3 +74,19 @@ def test_round_off_prints_as_zero_below_the_threshold(value: float, printed: str
 def test_exact_formulas_print_zero_in_the_verdict(demo_table: str) -> None:
     row = next(line for line in demo_table.splitlines() if line.startswith("exact "))
     assert "= 0 " in row
+
+
+@pytest.mark.parametrize("model", ["serial7.urdf", "ur5"])
+def test_parity_report_prints_armature_round_off_as_zero(model: str) -> None:
+    from koenig_check.engines import load_model
+    from koenig_check.parity import format_parity, import_parity
+
+    report = import_parity(load_model(model))
+    raw = [a for d in report.dofs for a in d.armature]
+    assert any(0 < abs(a) < ROUNDOFF for a in raw)  # the engines' round-off is there to hide
+    text = format_parity(report)
+    rows = text.split("armature MuJoCo", 1)[1].split("\n(armature values below", 1)[0].splitlines()[1:]
+    assert len(rows) == len(report.dofs)
+    for row in rows:
+        mj, pn = (float(x) for x in row.split()[1:3])
+        assert all(v == 0 or abs(v) >= ROUNDOFF for v in (mj, pn)) and "e-16" not in row.split()[1]
