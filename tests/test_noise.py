@@ -42,7 +42,6 @@ def test_grid_run_over_the_gimbal_lock_emits_no_library_warning() -> None:
     assert not [w for w in caught if "Gimbal lock" in str(w.message)]
 
 
-
 def test_drake_ball_joint_at_pitch_90_degrees_is_silent_and_agrees(tmp_path: Path) -> None:
     """scipy warns 'Gimbal lock detected' there; the roll-pitch-yaw angles still give the same rotation."""
     import numpy as np
