@@ -88,3 +88,17 @@ def test_notes_said_once(check, text: str) -> None:
     everyone = {n for c in check.comparisons for n in c.notes if all(n in d.notes for d in check.comparisons)}
     for note in everyone:
         assert text.count(note) == 1 and f"- {note} (all models)" in text
+
+
+def test_overview_names_formulas_exact_everywhere_and_nowhere(check, text: str) -> None:
+    found = text.split("## What this run found", 1)[1].split("\n- **", 1)[0]
+    assert "MuJoCo and Pinocchio agree on 2 of 3" in found
+    own = [s for s in check.summaries if s.source == s.reference]
+    formulas = {s.formula for s in own}
+    never = {f for f in formulas if all(not s.agrees for s in own if s.formula == f)}
+    always = {f for f in formulas if all(s.agrees for s in own if s.formula == f)}
+    assert never and "exact" in always
+    everywhere = found.split("Exact to rounding on every model it applies to:", 1)[1].split(". ", 1)[0]
+    nowhere = found.split("Exact on no model:", 1)[1].split(". ", 1)[0]
+    assert set(re.findall(r"`([^`]+)`", nowhere)) == never
+    assert set(re.findall(r"`([^`]+)`", everywhere)) == always

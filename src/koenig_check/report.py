@@ -24,6 +24,7 @@ from koenig_check.report_content import (
     model_table,
     refusal_lines,
     run_conditions,
+    run_overview,
     shared_notes,
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
@@ -86,6 +87,8 @@ def summary_markdown(
         f"Tolerance: relative {rtol:g}. Numbers below {ROUNDOFF:g} are rounding and are printed as 0.",
         "",
         "## What this run found",
+        "",
+        *[" ".join(run_overview(comparisons, summaries, parities, failures))],
         "",
     ]
     for comp in comparisons:

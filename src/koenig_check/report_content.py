@@ -290,3 +290,62 @@ def run_conditions(comp: ModelComparison, settings: dict | None = None) -> str:
             f"std {settings.get('velocity_scale', 1.0):g})"
         )
     return "; ".join(parts)
+
+
+def run_overview(
+    comparisons: Sequence[ModelComparison],
+    summaries: Sequence[FormulaSummary],
+    parities: Sequence[EngineParity],
+    failures: Sequence[tuple[str, str]] = (),
+) -> list[str]:
+    """The run in a few sentences: engines, formulas exact everywhere, exact nowhere, the largest error.
+
+    Parameters
+    ----------
+    comparisons : sequence of ModelComparison
+    summaries : sequence of FormulaSummary
+    parities : sequence of EngineParity
+    failures : sequence of (model, reason)
+
+    Returns
+    -------
+    list of str
+    """
+    n = len(comparisons)
+    if not n:
+        return [f"No model could be compared ({len(failures)} failed)."]
+    agree = sum(p.agrees for p in parities)
+    lines = [
+        f"{n} model run(s) compared"
+        + (f", {len(failures)} could not be" if failures else "")
+        + f". MuJoCo and Pinocchio agree on {agree} of {len(parities)}"
+        + ("." if agree == len(parities) else ": see the models marked DISAGREE.")
+    ]
+    groups = _by_formula(summaries)
+    models_of = {f: {s.model for s in rows} for f, rows in groups.items()}
+    exact_on = {f: {s.model for s in rows} - {s.model for s in rows if not s.agrees} for f, rows in groups.items()}
+    everywhere = [f for f in groups if exact_on[f] == models_of[f]]
+    nowhere = [f for f in groups if not exact_on[f]]
+
+    def _where(f: str) -> str:
+        k = len(models_of[f])
+        return f"`{f}`" if k == n else f"`{f}` (applies to {k} of {n}, refused or skipped elsewhere)"
+
+    if everywhere:
+        lines.append("Exact to rounding on every model it applies to: " + ", ".join(map(_where, everywhere)) + ".")
+    if nowhere:
+        lines.append("Exact on no model: " + ", ".join(f"`{f}`" for f in nowhere) + ".")
+    others = [f for f in groups if f not in everywhere and f not in nowhere]
+    if others:
+        lines.append(
+            "Exact on some models only: "
+            + ", ".join(f"`{f}` ({len(exact_on[f])} of {len(models_of[f])})" for f in others)
+            + "."
+        )
+    worst = max((s for rows in groups.values() for s in rows), key=lambda s: s.max_rel_error, default=None)
+    if worst is not None and not worst.agrees:
+        lines.append(
+            f"Largest error: `{worst.formula}`, {_size(worst.max_rel_error)} on {worst.model} at pose "
+            f"{worst.worst_pose} ({worst.source})."
+        )
+    return lines

@@ -21,6 +21,7 @@ from koenig_check.report_content import (
     model_table,
     refusal_lines,
     run_conditions,
+    run_overview,
     shared_notes,
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
@@ -140,7 +141,10 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
         "<nav><p>Models: "
         + ", ".join(f'<a href="#{_anchor(c.model)}">{_e(c.model)}</a>' for c in check.comparisons)
         + "</p></nav>",
-        '<section id="findings"><h2>What this run found</h2><ul>',
+        '<section id="findings"><h2>What this run found</h2>',
+        "<p>"
+        + _code(" ".join(run_overview(check.comparisons, check.summaries, check.parities, check.failures)))
+        + "</p><ul>",
     ]
     for k, comp in enumerate(check.comparisons):
         f = model_findings(comp, by_model.get(comp.model, []), parity.get(comp.model), rtol)
@@ -218,6 +222,12 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
         + "\n".join(body)
         + "\n</body></html>\n"
     )
+
+
+def _code(text: str) -> str:
+    """Escape text, turning `name` into <code>name</code>."""
+    parts = _e(text).split("`")
+    return "".join(f"<code>{p}</code>" if k % 2 else p for k, p in enumerate(parts))
 
 
 def _anchor(model: str) -> str:
