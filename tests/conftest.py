@@ -9,6 +9,14 @@ from koenig_check.analytic import random_states
 from koenig_check.segments import SegmentStates
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _no_mujoco_log_file() -> None:
+    """MuJoCo's warnings go to a logger, not to MUJOCO_LOG.TXT in the directory the tests run from."""
+    from koenig_check.noise import route_mujoco_warnings
+
+    route_mujoco_warnings()
+
+
 @pytest.fixture
 def rng() -> np.random.Generator:
     return np.random.default_rng(20261121)

@@ -266,8 +266,8 @@ def test_pose_file_shape_and_text_errors(tmp_path: Path, gimbal) -> None:
 
 
 def test_zero_velocity_scale_is_refused_with_the_reason() -> None:
-    check = compare([MODELS / "gimbal.xml"], n_poses=3, velocity_scale=0.0)
-    assert not check.ok and "velocity scale must be a finite number > 0" in check.failures[0][1]
+    with pytest.raises(ValueError, match="velocity_scale must be a finite number > 0"):  # a usage error, raised
+        compare([MODELS / "gimbal.xml"], n_poses=3, velocity_scale=0.0)
 
 
 # ------------------------------------------------------------------------- batches and CLI

@@ -42,7 +42,7 @@ def demo_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[int, Path, st
 def test_demo_exits_zero_and_prints_the_verdict(demo_report: tuple[int, Path, str]) -> None:
     code, _, output = demo_report
     assert code == 0, output
-    assert "Engines (tolerance 1e-09)" in output
+    assert "Models: do MuJoCo and Pinocchio agree? (tolerance 1e-09" in output
     for model in ["gimbal.xml", "serial7.urdf", "free_body.urdf", "double_pendulum.xml", "armature_chain.xml"]:
         assert model in output
     for name in FORMULAS:
@@ -53,7 +53,7 @@ def test_demo_exits_zero_and_prints_the_verdict(demo_report: tuple[int, Path, st
 def test_demo_writes_every_promised_file(demo_report: tuple[int, Path, str]) -> None:
     _, out, _ = demo_report
     summary = (out / "summary.md").read_text()
-    assert summary.startswith("# koenig-check report") and "| formula | equations | mujoco | pinocchio |" in summary
+    assert summary.startswith("# koenig-check report") and "| formula | verdict | max rel. error |" in summary
     with open(out / "records.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
     assert rows and tuple(rows[0]) == RECORD_FIELDS
@@ -119,11 +119,13 @@ def test_every_command_has_help_with_an_example(command: str) -> None:
     assert proc.returncode == 0 and f"example:\n  koenig-check {command}" in proc.stdout
 
 
-def test_bad_usage_is_one_line_and_status_two() -> None:
+def test_bad_usage_is_the_usage_line_then_one_error_line_and_status_two() -> None:
     proc = subprocess.run(
         [sys.executable, "-m", "koenig_check.cli", "compare"], capture_output=True, text=True, check=False
     )
-    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 2 and len(lines) == 2 and "Traceback" not in proc.stderr
+    assert lines[0] == "usage: koenig-check compare [options] MODEL [MODEL ...]" and "error:" in lines[1]
 
 
 def test_python_api_has_the_reach_of_the_cli() -> None:
@@ -170,7 +172,7 @@ def test_bad_tolerance_is_a_usage_error(rtol: str) -> None:
         text=True,
         check=False,
     )
-    assert proc.returncode == 2 and "--rtol" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+    assert proc.returncode == 2 and "--rtol" in proc.stderr and len(proc.stderr.strip().splitlines()) == 2
 
 
 @pytest.mark.parametrize("where", ["before", "after"])

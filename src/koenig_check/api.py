@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from koenig_check import grid, pipeline, poses, tiebreak
+from koenig_check.arguments import POSE_KINDS, check_compare_arguments, check_keywords, keywords_of
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.findings import Kind
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
@@ -17,8 +18,6 @@ from koenig_check.records import RecordTable
 
 if TYPE_CHECKING:
     from koenig_check.report import RecordSink
-
-POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
 
 
 @dataclass
@@ -33,6 +32,9 @@ class CrossCheck:
     failures : list of (str, str)
         Models that could not be compared, with a one-line reason each.
     rtol : float
+    settings : dict
+        Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
+        ``velocity_scale``, ``duration``), for the report's captions.
     """
 
     comparisons: list[ModelComparison] = field(default_factory=list)
@@ -40,6 +42,7 @@ class CrossCheck:
     parities: list[EngineParity] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
     rtol: float = DEFAULT_RTOL
+    settings: dict[str, dict[str, Any]] = field(default_factory=dict)
 
     @property
     def records(self) -> RecordTable:
@@ -318,9 +321,21 @@ def compare(
     Returns
     -------
     CrossCheck
+
+    Raises
+    ------
+    TypeError
+        A keyword :func:`compare_model` does not take, or an argument of the wrong type
+        (:class:`koenig_check.arguments.ArgumentTypeError`), before any model is loaded.
+    ValueError
+        An argument out of range (``rtol <= 0``, ``n_poses < 1``, an unknown formula, a grid without its
+        two joints: :class:`koenig_check.arguments.ArgumentValueError`), before any model is loaded.
     """
     if isinstance(models, str | Path):
         models = [models]
+    accepted = (keywords_of(compare_model) - {"model", "label", "rtol"}) | set(LoadOptions.names())
+    check_keywords(options, sorted(accepted), "compare")
+    check_compare_arguments(rtol, options)
     options = dict(options)
     load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
     tiebreak.check_engines(load.engines)
@@ -329,6 +344,7 @@ def compare(
         label = _label(model, load.floating)
         if progress:
             progress(label)
+        result.settings[label] = {k: options[k] for k in _SETTINGS if k in options}
         try:
             comp = compare_model(model, label=label, load_options=load, rtol=rtol, **options)
         except Exception as err:  # recorded with its reason; the batch goes on
@@ -338,6 +354,10 @@ def compare(
             continue
         result.add(comp)
     return result
+
+
+#: The pose settings recorded per model for the report (see :attr:`CrossCheck.settings`).
+_SETTINGS = ("pose_kind", "n_poses", "seed", "velocity_scale", "duration", "grid_joints")
 
 
 def load_options_from(base: LoadOptions | None, overrides: dict[str, Any]) -> LoadOptions:

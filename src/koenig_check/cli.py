@@ -15,16 +15,62 @@ from dataclasses import replace
 from pathlib import Path
 
 from koenig_check import __version__
+from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions, add_load_arguments
 
 DEFAULT_OUT = "koenig-check-report"
+KoenigCheckUsageErrors = (ArgumentValueError, ArgumentTypeError)
 
 
 class _Parser(argparse.ArgumentParser):
     """An argument parser whose errors are one line and exit with status 2."""
 
+    def short_usage(self) -> str:
+        """One line: the command, ``[options]`` and its positional arguments."""
+        positionals = [a.metavar or a.dest for a in self._actions if not a.option_strings and a.nargs != 0]
+        shown = [
+            f"{m} [{m} ...]" if a.nargs == "+" else str(m)
+            for a, m in zip(
+                [a for a in self._actions if not a.option_strings and a.nargs != 0], positionals, strict=True
+            )
+        ]
+        return " ".join(["usage:", self.prog, "[options]", *shown])
+
     def error(self, message: str) -> None:  # type: ignore[override]
-        self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+        """Exit with status 2: the short usage line, then the error in one line."""
+        self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def _usage_error(args: argparse.Namespace, message: str) -> None:
+    """Exit with status 2, the command's usage and a one-line message (before any work)."""
+    parser = getattr(args, "parser", None)
+    if parser is None:
+        print(f"koenig-check: error: {message}", file=sys.stderr)
+        raise SystemExit(2)
+    parser.error(message)
+
+
+def _check_out(args: argparse.Namespace) -> None:
+    """Refuse an unusable ``--out`` before any work."""
+    from koenig_check.arguments import ArgumentValueError
+    from koenig_check.output_dir import check_out_dir
+
+    if getattr(args, "out", None):
+        try:
+            check_out_dir(args.out, overwrite=args.overwrite)
+        except ArgumentValueError as err:
+            _usage_error(args, str(err))
+
+
+def _formulas_epilog() -> str:
+    from koenig_check.arguments import POSE_KIND_HELP
+    from koenig_check.formulas import FORMULAS
+
+    lines = ["formulas (--formulas NAME ...; the paper's equation numbers in brackets):"]
+    lines += [f"  {name:30s} {f.equations}" for name, f in FORMULAS.items()]
+    lines.append("pose kinds (--pose-kind):")
+    lines += [f"  {kind:11s} {text}" for kind, text in POSE_KIND_HELP.items()]
+    return "\n".join(lines)
 
 
 def _tolerance(text: str) -> float:
@@ -53,10 +99,24 @@ def _formatter(prog: str) -> argparse.HelpFormatter:
     return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32)
 
 
-def _add(sub: argparse._SubParsersAction, name: str, help_: str, example: str) -> argparse.ArgumentParser:
-    p = sub.add_parser(name, help=help_, description=help_, epilog=f"example:\n  {example}", formatter_class=_formatter)
+def _add(
+    sub: argparse._SubParsersAction, name: str, help_: str, example: str, epilog: str = ""
+) -> argparse.ArgumentParser:
+    text = f"{epilog}\n\nexample:\n  {example}" if epilog else f"example:\n  {example}"
+    p = sub.add_parser(name, help=help_, description=help_, epilog=text, formatter_class=_formatter)
     p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show Python tracebacks on errors")
+    p.set_defaults(parser=p)
     return p
+
+
+def _add_out(p: argparse.ArgumentParser, help_: str, default: str | None = None) -> None:
+    p.add_argument("--out", default=default, help=help_)
+    p.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="write into an --out directory holding files koenig-check did not write (they are left in place); "
+        "koenig-check's own earlier files are always replaced",
+    )
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -85,8 +145,8 @@ def build_parser() -> argparse.ArgumentParser:
         "the main job: every built-in model in both engines, a verdict table and a report directory",
         "koenig-check demo --out report",
     )
-    p.add_argument("--out", default=DEFAULT_OUT, help=f"report directory (default {DEFAULT_OUT})")
-    p.add_argument("--poses", type=int, default=20, help="random poses per model (default 20)")
+    _add_out(p, f"report directory (default {DEFAULT_OUT})", DEFAULT_OUT)
+    p.add_argument("--poses", type=_positive, default=20, help="random poses per model (default 20)")
     p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
     p.add_argument(
         "--rtol", type=_tolerance, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})"
@@ -98,12 +158,13 @@ def build_parser() -> argparse.ArgumentParser:
         "compare",
         "cross-check one or several models (files or names from `koenig-check models`)",
         "koenig-check compare gimbal.xml ur5 --poses 50 --out ur5-report",
+        _formulas_epilog(),
     )
     p.add_argument("models", nargs="+", metavar="MODEL", help="model file or name")
-    p.add_argument("--poses", type=int, default=20, help="number of poses / grid samples per joint (default 20)")
+    p.add_argument("--poses", type=_positive, default=20, help="number of poses / grid samples per joint (default 20)")
     p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
-    p.add_argument("--formulas", nargs="+", metavar="NAME", help="formulas to evaluate (default: all)")
-    p.add_argument("--out", help="write a report directory here")
+    p.add_argument("--formulas", nargs="+", metavar="NAME", help="formulas to evaluate (default: all; names below)")
+    _add_out(p, "write a report directory here")
     p.add_argument(
         "--rtol", type=_tolerance, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})"
     )
@@ -111,7 +172,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--pose-kind",
         choices=("random", "keyframes", "grid", "trajectory"),
         default="random",
-        help="pose sampler",
+        help="pose sampler (default random; see below)",
     )
     p.add_argument("--grid-joints", nargs=2, metavar=("A", "B"), help="the two joints of a grid sweep")
     p.add_argument("--duration", type=float, default=1.0, help="trajectory duration in seconds (default 1)")
@@ -138,7 +199,14 @@ def build_parser() -> argparse.ArgumentParser:
     add_load_arguments(p)
     p.set_defaults(func=_cmd_parity)
 
-    p = _add(sub, "models", "list every model name koenig-check can load, with its format", "koenig-check models")
+    p = _add(
+        sub,
+        "models",
+        "list every model name and alias compare accepts, with its format and source",
+        "koenig-check models --check",
+    )
+    p.add_argument("--check", action="store_true", help="load each model in both engines and say why not (slow)")
+    p.add_argument("--paths", action="store_true", help="show each model's file")
     p.set_defaults(func=_cmd_models)
 
     p = _add(
@@ -164,11 +232,52 @@ def _cmd_selfcheck(args: argparse.Namespace) -> int:
 
 
 def _cmd_models(args: argparse.Namespace) -> int:
-    from koenig_check.engines import list_models
+    from koenig_check.engines.sources import DEFAULT_FORMAT, model_names
 
-    for source in list_models():
-        print(f"{source.name:40s} {source.format:5s} {source.origin:20s} {source.path}")
+    names = model_names()
+    print(f"{len(names)} models. Type the NAME or any ALIAS, or a file path. A project model in both formats")
+    print(f"is name.xml or name.urdf; its bare name means the {DEFAULT_FORMAT.upper()} file.")
+    width = max(len(e.name) for e in names)
+    header = f"{'NAME':{width}s} {'FORM':4s} {'SOURCE':18s} ALIASES"
+    print(header if not args.check else f"{header}\n{'':{width}s} LOADS IN BOTH ENGINES?")
+    loaded_both = 0
+    for entry in names:
+        prefix = f"{entry.name:{width}s} {entry.format:4s} {entry.source:18s} "
+        rows, row = [], ""
+        for alias in entry.aliases:  # aliases wrapped under their column, within 100 columns
+            if row and len(prefix) + len(row) + len(alias) + 2 > 100:
+                rows.append(row + ",")
+                row = ""
+            row = f"{row}, {alias}" if row else alias
+        for k, text in enumerate([*rows, row]):
+            print(((prefix if k == 0 else " " * len(prefix)) + text).rstrip())
+        if args.paths:
+            print(f"{'':{width}s} {entry.path}")
+        if args.check:
+            verdict = _loads_in_both(entry.name)
+            loaded_both += verdict == "yes"
+            print(f"{'':{width}s} {verdict}")
+    if args.check:
+        print(f"\n{loaded_both} of {len(names)} load in both MuJoCo and Pinocchio (default load options).")
     return 0
+
+
+def _loads_in_both(name: str) -> str:
+    """``yes``, or ``no: <engine's one-line reason>`` for one model name (default load options)."""
+    import warnings
+
+    from koenig_check.api import one_line
+    from koenig_check.engines import load_model
+    from koenig_check.engines.sources import resolve_model
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            load_model(name)
+    except Exception as err:  # each model's reason, the list goes on
+        text = one_line(err).replace(f"{resolve_model(name).path}: ", "")  # the file is the row's
+        return f"no: {text}"
+    return "yes"
 
 
 def _finish(check, out: str | None, extra_figures: dict | None = None, records=None) -> int:
@@ -176,14 +285,36 @@ def _finish(check, out: str | None, extra_figures: dict | None = None, records=N
 
     print(verdict_table(check))
     if out:
+        from koenig_check.output_dir import file_listing, finish_out_dir
         from koenig_check.report import write_report
 
-        written = write_report(Path(out), check, **(extra_figures or {}), records=records)
-        print(f"\nreport: {Path(out).resolve()} ({len(written)} files)")
+        written = finish_out_dir(out, write_report(Path(out), check, **(extra_figures or {}), records=records))
+        print("\n" + file_listing(out, written))
     if check.ok:
         return 0
     print(f"koenig-check: engines disagree or a model failed: {check.reason()}", file=sys.stderr)
     return 1
+
+
+def _check_compare_usage(args: argparse.Namespace) -> None:
+    """Every usage error of ``compare`` / ``demo``, before any model is loaded or any file written."""
+    from koenig_check.arguments import ArgumentTypeError, ArgumentValueError, check_formulas
+
+    try:
+        check_formulas(getattr(args, "formulas", None))
+    except (ArgumentValueError, ArgumentTypeError) as err:
+        _usage_error(args, str(err))
+    if getattr(args, "pose_kind", None) == "grid" and not args.grid_joints and not args.pose_file:
+        _usage_error(args, "--pose-kind grid needs --grid-joints A B (the names of two joints)")
+    if getattr(args, "grid_joints", None) and args.pose_kind != "grid":
+        _usage_error(args, "--grid-joints is only used with --pose-kind grid")
+    for name in ("duration", "velocity_scale"):
+        value = getattr(args, name, None)
+        if value is not None and not (0 < value < float("inf")):
+            _usage_error(args, f"--{name.replace('_', '-')} must be a finite number > 0, got {value}")
+    if getattr(args, "seed", 0) < 0:
+        _usage_error(args, f"--seed must be >= 0, got {args.seed}")
+    _check_out(args)
 
 
 def _load_options(args: argparse.Namespace) -> LoadOptions:
@@ -206,6 +337,8 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     from koenig_check.api import compare
     from koenig_check.progress import Progress
 
+    _check_compare_usage(args)
+    load_options = _load_options(args)
     client = None
     if args.scheduler:
         try:
@@ -217,8 +350,10 @@ def _cmd_compare(args: argparse.Namespace) -> int:
         client = Client(args.scheduler)
     sink = None
     if args.out:
+        from koenig_check.output_dir import clean_out_dir
         from koenig_check.report import RecordFiles
 
+        clean_out_dir(args.out)
         sink = RecordFiles(Path(args.out))
     figures_need_records = args.pose_kind in ("grid", "trajectory")
     with Progress(len(args.models), "models") as bar:
@@ -230,7 +365,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             n_poses=args.poses,
             seed=args.seed,
             formulas=args.formulas,
-            load_options=_load_options(args),
+            load_options=load_options,
             velocity_scale=args.velocity_scale,
             grid_joints=args.grid_joints,
             duration=args.duration,
@@ -252,8 +387,11 @@ def _cmd_compare(args: argparse.Namespace) -> int:
 
 def _cmd_demo(args: argparse.Namespace) -> int:
     from koenig_check.demo import run_demo
+    from koenig_check.output_dir import clean_out_dir
 
+    _check_compare_usage(args)
     check, figures = run_demo(n_poses=args.poses, seed=args.seed, rtol=args.rtol)
+    clean_out_dir(args.out)
     return _finish(check, args.out, figures)
 
 
@@ -310,7 +448,7 @@ def _add_dynamics_command(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--formulas", nargs="+", metavar="NAME", choices=list(FORMULAS), help="formulas (default: all; exact always)"
     )
-    p.add_argument("--out", help="write dynamics.md and dynamics.json into this directory")
+    _add_out(p, "write dynamics.md and dynamics.json into this directory")
     p.add_argument("--m-rtol", type=_tolerance, default=M_RTOL, help=f"tolerance on M of exact (default {M_RTOL:g})")
     p.add_argument("--q-rtol", type=_tolerance, default=Q_RTOL, help=f"tolerance on Q* of exact (default {Q_RTOL:g})")
     p.set_defaults(func=_cmd_dynamics)
@@ -323,6 +461,7 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
     from koenig_check.implied_dynamics.analysis import dynamics
     from koenig_check.implied_dynamics.markdown import terminal_lines, write_dynamics
 
+    _check_out(args)
     options = asdict(LoadOptions.from_namespace(args))
     result = dynamics(
         args.model,
@@ -335,8 +474,11 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
     )
     print("\n".join(terminal_lines(result)))
     if args.out:
-        written = write_dynamics(Path(args.out), result)
-        print(f"\nreport: {Path(args.out).resolve()} ({len(written)} files)")
+        from koenig_check.output_dir import clean_out_dir, file_listing, finish_out_dir
+
+        clean_out_dir(args.out)
+        written = finish_out_dir(args.out, write_dynamics(Path(args.out), result))
+        print("\n" + file_listing(args.out, written))
     if result.ok:
         return 0
     print(f"koenig-check: exact disagrees with an engine: {result.reason()}", file=sys.stderr)
@@ -362,11 +504,20 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 2
     args.debug = bool(getattr(args, "debug", False))
+    from koenig_check.noise import route_mujoco_warnings
+
+    route_mujoco_warnings()  # no MUJOCO_LOG.TXT in the user's directory; load warnings are findings already
+    if args.debug:
+        import logging
+
+        logging.basicConfig(level=logging.INFO, format="koenig-check: %(name)s: %(message)s")
     try:
         return int(args.func(args))
     except KeyboardInterrupt:
         print("koenig-check: interrupted", file=sys.stderr)
         return 130
+    except KoenigCheckUsageErrors as err:  # raised by the API's argument checks: a usage error
+        _usage_error(args, str(err))
     except BrokenPipeError:  # output piped into a command that stopped reading (e.g. head)
         sys.stderr.close()
         return 0

@@ -88,6 +88,8 @@ def run_demo(
     with Progress(len(jobs), "models") as bar:
         for label, options in jobs:
             bar.step(label)
+            check.settings[label] = {"seed": seed, "velocity_scale": 1.0, **options}
+            check.settings[label].pop("model")
             try:
                 comp = compare_model(label=label, rtol=rtol, **options)
             except Exception as err:  # the other models still report

@@ -27,6 +27,7 @@ import numpy as np
 from koenig_check.causes import FrameOffset, model_causes
 from koenig_check.engines.state_map import mujoco_coordinate_names
 from koenig_check.findings import Finding, Kind
+from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.segments import SegmentStates
 
 #: Default relative tolerance of parity comparisons.
@@ -524,8 +525,10 @@ def format_parity(report: ParityReport) -> str:
     for d in report.dofs:
         verdict = "same" if not d.causes else "DIFFERS: " + ", ".join(d.causes)
         lines.append(
-            f"{d.joint[:24]:24s} {d.armature[0]:16.6g} {d.armature[1]:14.6g} {d.jacobian_difference:12.2e}  {verdict}"
+            f"{d.joint[:24]:24s} {shown(d.armature[0]):16.6g} {shown(d.armature[1]):14.6g} "
+            f"{d.jacobian_difference:12.2e}  {verdict}"
         )
+    lines.append(f"(armature values below {ROUNDOFF:g} kg m² are rounding, printed as 0)")
     if report.only_in_mujoco:
         lines.append(f"\nsegments only in MuJoCo: {report.only_in_mujoco}")
     if report.only_in_pinocchio:

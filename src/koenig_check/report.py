@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
@@ -12,12 +13,21 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
-from matplotlib.figure import Figure
 
-from koenig_check.formulas import FORMULAS
-from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison, relative_error
+from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import FULL_SCHEMA, RECORD_FIELDS, TEXT_FIELDS, RecordTable, with_derived
-from koenig_check.stats import QuantileSketch
+from koenig_check.report_content import (
+    COLUMNS,
+    POSE_LABELS,
+    glossary,
+    model_findings,
+    model_table,
+    refusal_lines,
+    run_conditions,
+    run_overview,
+    shared_notes,
+)
+from koenig_check.roundoff import ROUNDOFF, fmt
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
@@ -36,8 +46,14 @@ def summary_markdown(
     parities: Sequence[EngineParity],
     failures: Sequence[tuple[str, str]] = (),
     rtol: float = 1e-9,
+    settings: dict[str, dict] | None = None,
 ) -> str:
-    """The Markdown summary: per model, engine parity then one line per formula, one column per engine.
+    """The Markdown summary, readable without the paper.
+
+    Sections: what this run found (per model, in plain words), the formulas (glossary with the paper's
+    equation numbers in brackets), how to read the tables (every column and pose label), one section per
+    model (conditions, engine parity, the table, refusals), models that could not be compared, notes (each
+    once, with the models it concerns).
 
     Parameters
     ----------
@@ -47,69 +63,95 @@ def summary_markdown(
     failures : sequence of (model, reason)
         Models that could not be compared.
     rtol : float
+    settings : dict, optional
+        Per model, the run's pose settings (:attr:`koenig_check.api.CrossCheck.settings`).
 
     Returns
     -------
     str
     """
-    lines = [
-        "# koenig-check report",
-        "",
-        f"Tolerance: relative {rtol:g}. Each cell: max relative error of the formula's total energy, "
-        "evaluated on that engine's segment states, against that engine's own rigid-body kinetic energy "
-        "(armature excluded); then the median, and the fraction of poses where the formula over- / "
-        "under-estimates.",
-        "",
-    ]
+    settings = settings or {}
+    parity = {p.model: p for p in parities}
     by_model: dict[str, list[FormulaSummary]] = {}
     for s in summaries:
         by_model.setdefault(s.model, []).append(s)
-    parity = {p.model: p for p in parities}
+    formulas = list(dict.fromkeys(s.formula for s in summaries)) + sorted(
+        {r["formula"] for c in comparisons for r in c.refusals} - {s.formula for s in summaries}
+    )
+    lines = [
+        "# koenig-check report",
+        "",
+        "Kinetic energy of every moving segment of each model, computed by MuJoCo and by Pinocchio from the "
+        "same joint positions and rates, and by each formula under test (Yu. Alyushin, *Correction of the "
+        "Koenig formula for the kinetic energy of a rotating solid*) from each engine's segment states. "
+        f"Tolerance: relative {rtol:g}. Numbers below {ROUNDOFF:g} are rounding and are printed as 0.",
+        "",
+        "## What this run found",
+        "",
+        *[" ".join(run_overview(comparisons, summaries, parities, failures))],
+        "",
+    ]
+    for comp in comparisons:
+        f = model_findings(comp, by_model.get(comp.model, []), parity.get(comp.model), rtol)
+        lines.append(f"- **{comp.model}** ({f.poses}): {f.engines}.")
+        if f.exact:
+            lines.append(f"  - exact to rounding: {', '.join(f'`{n}`' for n in f.exact)}.")
+        for text in f.inexact:
+            name, rest = text.split(": ", 1)
+            lines.append(f"  - not exact: `{name}` {rest}.")
+        if f.refused:
+            lines.append(f"  - refused (does not apply to this motion): {', '.join(f'`{n}`' for n in f.refused)}.")
+    for model, reason in failures:
+        lines.append(f"- **{model}**: could not be compared: {reason}")
+    lines += ["", "## Formulas", "", "The paper's equation numbers are in brackets.", ""]
+    lines += [f"- `{g.name}` [{g.equations}]: {g.text}." for g in glossary(formulas)]
+    lines += ["", "## How to read the tables", ""]
+    lines += [f"- **{name}**: {text}." for name, text in COLUMNS.items()]
+    lines += ["", "Pose labels:", ""]
+    lines += [f"- `{label}`: {text}." for label, text in POSE_LABELS.items()]
+    lines.append("")
     for comp in comparisons:
         p = parity.get(comp.model)
-        lines.append(f"## {comp.model}")
-        lines.append("")
-        lines.append(f"{comp.n_poses} poses ({comp.pose_kind}).")
+        lines += [f"## {comp.model}", "", f"Conditions: {run_conditions(comp, settings.get(comp.model))}.", ""]
         if p is not None:
-            verdict = "engines agree" if p.agrees else f"ENGINES DISAGREE: {p.reason}"
+            exact = ", ".join(f"{k} {fmt(v)}" for k, v in p.exact_vs_engine.items())
+            verdict = "the engines agree" if p.agrees else f"the engines DISAGREE: {p.reason}"
             lines.append(
-                f"Engine parity: {verdict}. MuJoCo vs Pinocchio rigid energy max relative difference "
-                f"{_fmt(p.rigid_max_rel)}; armature energy max difference {_fmt(p.armature_max_abs)} J; "
-                + "; ".join(f"exact on {k} states vs {k} energy {_fmt(v)}" for k, v in p.exact_vs_engine.items())
-                + "."
+                f"Engine parity: {verdict}. MuJoCo vs Pinocchio rigid-body energy, largest relative difference "
+                f"{fmt(p.rigid_max_rel)} (pose {p.worst_pose}); armature energy, largest difference "
+                f"{fmt(p.armature_max_abs)} J; `exact` on each engine's states vs that engine's energy: {exact}."
             )
-        lines.append("")
+            lines.append("")
         engines = list(comp.engines)
-        lines.append("| formula | equations | " + " | ".join(engines) + " |")
-        lines.append("| --- | --- | " + " | ".join("---" for _ in engines) + " |")
-        cells: dict[tuple[str, str], FormulaSummary] = {
-            (s.formula, s.source): s for s in by_model.get(comp.model, []) if s.source == s.reference
-        }
-        for formula in dict.fromkeys(s.formula for s in by_model.get(comp.model, [])):
-            row = [formula, FORMULAS[formula].equations]
-            for e in engines:
-                s = cells.get((formula, e))
-                if s is None:
-                    row.append("—")
-                    continue
-                mark = "agrees" if s.agrees else "differs"
-                row.append(
-                    f"{mark}: max {_fmt(s.max_rel_error)}, median {_fmt(s.median_rel_error)}, "
-                    f"over {s.over_fraction:.0%} / under {s.under_fraction:.0%}; worst {s.worst_pose}"
-                    + (f", segment {s.worst_segment}" if s.worst_segment and not s.agrees else "")
-                )
-            lines.append("| " + " | ".join(row) + " |")
-        for r in comp.refusals:
-            lines.append(f"\n- `{r['formula']}` refused on {r['source']} states: {r['reason']}")
-        for note in comp.notes:
-            lines.append(f"- note: {note}")
+        lines.append(f"Max rel. error is given as {' / '.join(engines)}.")
+        lines.append("")
+        lines.append("| " + " | ".join(COLUMN_TITLES) + " |")
+        lines.append("| " + " | ".join("---" for _ in COLUMN_TITLES) + " |")
+        for row in model_table(by_model.get(comp.model, []), engines):
+            lines.append(
+                f"| `{row.formula}` [{row.equations}] | {row.verdict} | {row.max_error} | {row.median} | "
+                f"{row.over_under} | {row.worst_pose} | {row.worst_segment or '—'} |"
+            )
+        refusals = refusal_lines(comp)
+        if refusals:
+            lines.append("")
+            lines += [f"- {text}" for text in refusals]
         lines.append("")
     if failures:
-        lines.append("## Models that could not be compared")
-        lines.append("")
+        lines += ["## Models that could not be compared", ""]
         lines += [f"- {model}: {reason}" for model, reason in failures]
         lines.append("")
+    notes = shared_notes(comparisons)
+    if notes:
+        lines += ["## Notes", "", "Each note once, with the models it concerns.", ""]
+        for note, models in notes:
+            lines.append(f"- {note} ({'all models' if not models else ', '.join(models)})")
+        lines.append("")
     return "\n".join(lines)
+
+
+#: Column titles of the per-model tables (defined in :data:`koenig_check.report_content.COLUMNS`).
+COLUMN_TITLES = ("formula", "verdict", "max rel. error", "median", "over / under", "worst pose", "worst segment")
 
 
 def _text_columns(table: pa.Table) -> pa.Table:
@@ -277,175 +319,10 @@ def write_json(
     return path
 
 
-def error_distribution_figure(comparisons: Sequence[ModelComparison], path: Path) -> Path:
-    """Distribution of relative error per formula (totals, each engine against itself), log scale.
-
-    Drawn from the merged statistics of every model (no record needed): boxes span the quartiles,
-    whiskers the minimum and the maximum.
-
-    Parameters
-    ----------
-    comparisons : sequence of ModelComparison
-    path : Path
-
-    Returns
-    -------
-    Path
-    """
-    pooled: dict[tuple[str, str], QuantileSketch] = {}
-    for comp in comparisons:
-        if comp.stats is None:
-            continue
-        for (formula, source, reference), g in comp.stats.kept_groups().items():
-            if source == reference:
-                pooled.setdefault((formula, source), QuantileSketch()).merge(g.sketch)
-    formulas = list(dict.fromkeys(f for f, _ in pooled))
-    engines = list(dict.fromkeys(e for _, e in pooled))
-    fig = Figure(figsize=(10, 0.45 * max(len(formulas), 4) + 1.5), layout="constrained")
-    ax = fig.add_subplot()
-    colors = {"mujoco": "tab:blue", "pinocchio": "tab:orange"}
-    for k, engine in enumerate(engines):
-        boxes, positions = [], []
-        for i, f in enumerate(formulas):
-            sketch = pooled.get((f, engine))
-            if sketch is None or not sketch.n:
-                continue
-            q = [np.log10(max(sketch.quantile(x), LOG_FLOOR)) for x in (0.0, 0.25, 0.5, 0.75, 1.0)]
-            boxes.append({"whislo": q[0], "q1": q[1], "med": q[2], "q3": q[3], "whishi": q[4], "fliers": []})
-            positions.append(i + (k - (len(engines) - 1) / 2) * 0.35)
-        if not boxes:
-            continue
-        parts = ax.bxp(
-            boxes, positions=positions, widths=0.3, orientation="horizontal", patch_artist=True, manage_ticks=False
-        )
-        for box in parts["boxes"]:
-            box.set_facecolor(colors.get(engine, "tab:gray"))
-            box.set_alpha(0.6)
-        ax.plot(
-            [],
-            [],
-            color=colors.get(engine, "tab:gray"),
-            linewidth=8,
-            alpha=0.6,
-            label=f"{engine} states vs {engine} energy",
-        )
-    ax.set_yticks(np.arange(len(formulas)), formulas)
-    ax.invert_yaxis()
-    ax.set_xlabel(
-        f"log10 relative error of total kinetic energy (dimensionless; exact agreement drawn at {LOG_FLOOR:g})"
-    )
-    ax.set_title(
-        "Relative error of each formula against the engines' own kinetic energy, all models and poses\n"
-        "(boxes: quartiles; whiskers: minimum and maximum)"
-    )
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), ncol=2, frameon=False)
-    ax.grid(True, axis="x", alpha=0.3)
-    fig.savefig(path, dpi=110)
-    return path
-
-
-def error_map_figure(comparison: ModelComparison, formulas: Sequence[str], path: Path, engine: str = "mujoco") -> Path:
-    """Relative error of formulas over a two-joint grid sweep (the paper's section-3 gimbal).
-
-    Parameters
-    ----------
-    comparison : ModelComparison
-        Built on a grid :class:`~koenig_check.poses.PoseSet`.
-    formulas : sequence of str
-    path : Path
-    engine : str
-        Whose states and energy are used.
-
-    Returns
-    -------
-    Path
-    """
-    grid = comparison.poses.grid
-    if grid is None:
-        raise ValueError(f"{comparison.model}: the poses are not a grid sweep")
-    shape = grid["shape"]
-    va, vb = grid["values"]
-    ja, jb = grid["joints"]
-    fig = Figure(figsize=(4.2 * len(formulas), 4.0), layout="constrained")
-    for k, formula in enumerate(formulas):
-        rows = comparison.records.where(formula=formula, scope="total", source=engine, reference=engine)
-        signed = relative_error(rows["value"], rows["reference_value"])
-        ax = fig.add_subplot(1, len(formulas), k + 1)
-        lim = max(np.abs(signed).max(), 1e-16)
-        mesh = ax.pcolormesh(
-            np.degrees(vb),
-            np.degrees(va),
-            signed.reshape(shape),
-            cmap="RdBu_r",
-            vmin=-lim,
-            vmax=lim,
-            shading="auto",
-        )
-        fig.colorbar(mesh, ax=ax, label="signed relative error (formula − engine) / engine")
-        ax.set_xlabel(f"{jb} angle (deg)")
-        ax.set_ylabel(f"{ja} angle (deg)")
-        ax.set_title(formula)
-    fig.suptitle(f"{comparison.model}: error over the two joint angles ({engine}, joint rates fixed)")
-    fig.savefig(path, dpi=110)
-    return path
-
-
-def trajectory_figure(comparison: ModelComparison, formulas: Sequence[str], path: Path) -> Path:
-    """Kinetic energy along a simulated trajectory for each formula against both engines.
-
-    Parameters
-    ----------
-    comparison : ModelComparison
-        Built on a trajectory :class:`~koenig_check.poses.PoseSet`.
-    formulas : sequence of str
-    path : Path
-
-    Returns
-    -------
-    Path
-    """
-    times = comparison.poses.times
-    if times is None:
-        raise ValueError(f"{comparison.model}: the poses are not a trajectory")
-    fig = Figure(figsize=(10, 7), layout="constrained")
-    ax, ax_err = fig.add_subplot(2, 1, 1), fig.add_subplot(2, 1, 2, sharex=None)
-    energy = {
-        engine: comparison.records.where(formula="exact", scope="total", source=engine, reference=engine)[
-            "reference_value"
-        ]
-        for engine in comparison.engines
-    }
-    for engine, rigid in energy.items():
-        if not len(rigid):
-            continue
-        ax.plot(
-            times,
-            rigid,
-            linewidth=4,
-            alpha=0.4,
-            color="k" if engine == "mujoco" else "0.6",
-            label=f"{engine} (engine energy)",
-        )
-    mj = energy.get("mujoco", np.empty(0))
-    palette = dict(zip(formulas, (f"C{k}" for k in range(10)), strict=False))
-    for formula in formulas:
-        rows = comparison.records.where(formula=formula, scope="total", source="mujoco", reference="mujoco")
-        if not len(rows):
-            continue
-        value = rows["value"]
-        ax.plot(times, value, linewidth=1.2, color=palette.get(formula), label=formula)
-        ax_err.plot(times, relative_error(value, mj), linewidth=1.2, color=palette.get(formula), label=formula)
-    ax.set_ylabel("kinetic energy (J)")
-    ax.set_title(f"{comparison.model}: kinetic energy along a torque-free MuJoCo trajectory from the reference pose")
-    ax.legend(fontsize=7, ncol=2)
-    ax.grid(True, alpha=0.3)
-    ax_err.set_xlabel("time (s)")
-    ax_err.set_ylabel("relative error vs MuJoCo (dimensionless)")
-    ax_err.set_title("formula − engine, relative")
-    ax_err.legend(fontsize=7, ncol=2)
-    ax_err.grid(True, alpha=0.3)
-    fig.savefig(path, dpi=110)
-    return path
+def figure_name(model: str) -> str:
+    """The file name of a model's error-distribution figure (``error_distribution_<model>.png``)."""
+    slug = re.sub(r"[^A-Za-z0-9._-]+", "_", model).strip("_")
+    return f"error_distribution_{slug}.png"
 
 
 def write_report(
@@ -463,7 +340,11 @@ def write_report(
     ),
     records: RecordFiles | None = None,
 ) -> list[Path]:
-    """Write the report directory: summary.md, records.json, the record files and the figures.
+    """Write the report directory: summary.md, report.html, records.json, the record files and the figures.
+
+    Figures: ``error_distribution_<model>.png`` per model, ``error_distribution.png`` pooled over the models
+    (labelled so, with the models named) when there are several, ``error_map.png`` for a grid sweep and
+    ``trajectory_energy.png`` for a trajectory.  ``report.html`` embeds them all.
 
     Parameters
     ----------
@@ -485,6 +366,9 @@ def write_report(
     list of Path
         Every file written.
     """
+    from koenig_check.figures import error_distribution_figure, error_map_figure, trajectory_figure
+    from koenig_check.report_html import report_html
+
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     if records is None:
@@ -494,7 +378,9 @@ def write_report(
     written = [
         _write_text(
             out / "summary.md",
-            summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol),
+            summary_markdown(
+                check.comparisons, check.summaries, check.parities, check.failures, check.rtol, check.settings
+            ),
         ),
         *records.close(),
     ]
@@ -511,16 +397,55 @@ def write_report(
                 "record_count": records.rows,
                 "notes": {c.model: c.notes for c in check.comparisons},
                 "refusals": [r for c in check.comparisons for r in c.refusals],
+                "settings": check.settings,
             },
         )
     )
-    if check.summaries:
-        written.append(error_distribution_figure(check.comparisons, out / "error_distribution.png"))
+    figures: dict[int | None, list[tuple[Path, str]]] = {}  # by position in check.comparisons; None: the run
+    with_stats = [c for c in check.comparisons if c.stats is not None and c.stats.kept_groups()]
+    names: set[str] = set()
+    for k, comp in enumerate(check.comparisons):
+        if comp not in with_stats:
+            continue
+        name = figure_name(comp.model)
+        while name in names:  # two comparisons with one label: both figures kept
+            name = name.replace(".png", "_.png")
+        names.add(name)
+        caption = run_conditions(comp, check.settings.get(comp.model))
+        path = error_distribution_figure([comp], out / name, check.rtol, caption)
+        figures.setdefault(k, []).append(
+            (path, f"{comp.model}: relative error of each formula's total energy. {caption}.")
+        )
+    if len(with_stats) > 1:
+        names = ", ".join(c.model for c in with_stats)
+        caption = f"pooled over {len(with_stats)} models ({names}); each model's own figure is in its section"
+        path = error_distribution_figure(with_stats, out / "error_distribution.png", check.rtol, caption)
+        figures.setdefault(None, []).append((path, f"Relative error of each formula, {caption}."))
     if grid_comparison is not None:
-        written.append(error_map_figure(grid_comparison, map_formulas, out / "error_map.png"))
+        caption = run_conditions(grid_comparison, check.settings.get(grid_comparison.model))
+        path = error_map_figure(grid_comparison, map_formulas, out / "error_map.png", caption=caption)
+        figures.setdefault(_position(check, grid_comparison), []).append(
+            (path, f"Signed relative error over the two joint angles (MuJoCo), one colour scale. {caption}.")
+        )
     if trajectory_comparison is not None:
-        written.append(trajectory_figure(trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png"))
+        caption = run_conditions(trajectory_comparison, check.settings.get(trajectory_comparison.model))
+        path = trajectory_figure(
+            trajectory_comparison, trajectory_formulas, out / "trajectory_energy.png", check.rtol, caption
+        )
+        figures.setdefault(_position(check, trajectory_comparison), []).append(
+            (path, f"Kinetic energy along the trajectory and each formula's error. {caption}.")
+        )
+    written += [path for items in figures.values() for path, _ in items]
+    written.append(_write_text(out / "report.html", report_html(check, figures)))
     return written
+
+
+def _position(check: CrossCheck, comparison: ModelComparison) -> int | None:
+    """Where a comparison stands in the check (None when it is not one of them: shown with the whole run)."""
+    for k, comp in enumerate(check.comparisons):
+        if comp is comparison:
+            return k
+    return None
 
 
 def _write_text(path: Path, text: str) -> Path:

@@ -1,23 +1,96 @@
-"""The verdict table printed on the terminal: engines first, then formulas."""
+"""The verdict printed on the terminal, within 100 columns: one row per model, then one row per formula."""
 
 from __future__ import annotations
 
+import textwrap
+from collections.abc import Sequence
+from dataclasses import dataclass
+
 from koenig_check.api import CrossCheck
+from koenig_check.grid import FormulaSummary
+from koenig_check.roundoff import ROUNDOFF, shown
+
+#: Terminal width the verdict fits in.
+WIDTH = 100
 
 
-def _cell(value: float | None, rtol: float) -> str:
-    if value is None:
-        return "—"
-    return f"= {value:7.1e}" if value <= rtol else f"≠ {value:7.1e}"
+def _number(value: float) -> str:
+    value = shown(value)
+    return "0" if value == 0 else f"{value:.1e}"
+
+
+def _wrap(head: str, text: str, width: int = WIDTH) -> list[str]:
+    """``head`` then ``text``, continued under the text's first column; words are never cut."""
+    indent = " " * min(len(head), width - 24)
+    lines = textwrap.wrap(
+        text, width=width, initial_indent=head, subsequent_indent=indent, break_long_words=False, break_on_hyphens=False
+    )
+    return lines or [head.rstrip()]
+
+
+def _cause(check: CrossCheck, model: str) -> str:
+    from koenig_check import tiebreak
+
+    for comparison, parity in zip(check.comparisons, check.parities, strict=True):
+        if parity.model == model:
+            lead = tiebreak.lead_line(comparison.findings)
+            return "; ".join(t for t in (lead, "" if parity.agrees else parity.reason) if t)
+    return ""
+
+
+@dataclass
+class FormulaRow:
+    """One formula over a whole run: its worst summary, on how many models it is exact, over/under shares."""
+
+    worst: FormulaSummary
+    exact_on: int
+    models: int
+    over: float
+    under: float
+
+
+def formula_rows(summaries: Sequence[FormulaSummary], poses: dict[str, int]) -> dict[str, FormulaRow]:
+    """Per formula, pooled over models and engines (each engine's states against its own energy).
+
+    Parameters
+    ----------
+    summaries : sequence of FormulaSummary
+    poses : dict
+        Poses per model (weights of the over/under fractions).
+
+    Returns
+    -------
+    dict of str to FormulaRow
+    """
+    worst: dict[str, FormulaSummary] = {}
+    per_model: dict[tuple[str, str], bool] = {}
+    weights: dict[str, list[tuple[float, float, float]]] = {}
+    for s in summaries:
+        if s.source != s.reference:
+            continue
+        if s.formula not in worst or s.max_rel_error > worst[s.formula].max_rel_error:
+            worst[s.formula] = s
+        per_model[(s.formula, s.model)] = per_model.get((s.formula, s.model), True) and s.agrees
+        weights.setdefault(s.formula, []).append((poses.get(s.model, 1), s.over_fraction, s.under_fraction))
+    out = {}
+    for f, s in worst.items():
+        flags = [ok for (formula, _), ok in per_model.items() if formula == f]
+        n = sum(w for w, _, _ in weights[f]) or 1
+        over = sum(w * o for w, o, _ in weights[f]) / n
+        under = sum(w * u for w, _, u in weights[f]) / n
+        out[f] = FormulaRow(s, sum(flags), len(flags), over, under)
+    return out
 
 
 def verdict_table(check: CrossCheck) -> str:
-    """Render a cross-check for the terminal.
+    """Render a cross-check for a 100-column terminal.
 
-    One line per model says whether the engines agree with each other and with
-    ``exact``; then one row per formula and one column per model, each cell the largest
-    relative error of the formula's total energy over both engines and every pose
-    (``=`` within tolerance, ``≠`` beyond, ``refused`` where the formula does not apply).
+    First one row per model: do MuJoCo and Pinocchio agree (the largest relative difference of their
+    rigid-body kinetic energies, "engine gap"), does ``exact`` on each engine's segment states reproduce
+    that engine's energy, and the root cause when they disagree (wrapped, never cut).  Then one row per
+    formula: the worst relative error of its total energy over every model, pose and engine (each
+    engine's states against its own energy), on how many models it is exact, and where the worst is.
+    Values below :data:`~koenig_check.roundoff.ROUNDOFF` print as 0.
 
     Parameters
     ----------
@@ -28,42 +101,39 @@ def verdict_table(check: CrossCheck) -> str:
     str
     """
     rtol = check.rtol
-    lines = [f"Engines (tolerance {rtol:g}):"]
+    names = [p.model for p in check.parities] + [m for m, _ in check.failures]
+    mw = min(max([len(n) for n in names] + [5]), 40)
+    lines = [
+        f"Models: do MuJoCo and Pinocchio agree? (tolerance {rtol:g} relative; 0: below {ROUNDOFF:g}, rounding)",
+        f"{'model':{mw}s}  {'verdict':8s}  {'engine gap':>10s}  {'exact vs own':>12s}  root cause",
+    ]
     for p in check.parities:
         status = "agree" if p.agrees else "DISAGREE"
-        lines.append(
-            f"  {p.model:34s} {status:8s} MuJoCo vs Pinocchio {p.rigid_max_rel:8.1e}; "
-            + ", ".join(f"exact vs {k} {v:8.1e}" for k, v in p.exact_vs_engine.items())
-            + ("" if p.agrees else f"\n      {p.reason}")
-        )
+        exact = max(p.exact_vs_engine.values(), default=0.0)
+        head = f"{p.model:{mw}s}  {status:8s}  {_number(p.rigid_max_rel):>10s}  {_number(exact):>12s}  "
+        lines += _wrap(head, _cause(check, p.model) or "—")
     for model, reason in check.failures:
-        lines.append(f"  {model:34s} FAILED   {reason}")
-    models = [c.model for c in check.comparisons]
-    if not models:
+        lines += _wrap(f"{model:{mw}s}  {'FAILED':8s}  {'':>10s}  {'':>12s}  ", reason)
+    if not check.summaries:
         return "\n".join(lines)
-    worst: dict[tuple[str, str], float] = {}
-    for s in check.summaries:
-        if s.source != s.reference:
-            continue
-        key = (s.formula, s.model)
-        worst[key] = max(worst.get(key, 0.0), s.max_rel_error)
-    refused = {(r["formula"], c.model) for c in check.comparisons for r in c.refusals}
-    formulas = list(dict.fromkeys([s.formula for s in check.summaries] + [f for f, _ in refused]))
-    short = [m if len(m) <= 14 else m[:13] + "…" for m in models]
-    width = max(len(f) for f in formulas) + 2
+    rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})
+    refused = {r["formula"] for c in check.comparisons for r in c.refusals}
+    fw = max(len(f) for f in [*rows, *refused, "formula"])
     lines += [
         "",
-        "Formulas: max relative error against each engine's own energy (= within tolerance, ≠ beyond)",
-        "formula".ljust(width) + "".join(s.rjust(16) for s in short),
+        "Formulas: worst relative error of the total energy, each engine's states vs its own energy",
+        f"{'formula':{fw}s}  {'worst':9s}  {'exact':>5s}  {'over/under':>10s}  worst at: model, pose, engine",
     ]
-    for f in formulas:
-        cells = []
-        for m in models:
-            if (f, m) in worst:
-                cells.append(_cell(worst[(f, m)], rtol))
-            elif (f, m) in refused:
-                cells.append("refused")
-            else:
-                cells.append("—")
-        lines.append(f.ljust(width) + "".join(c.rjust(16) for c in cells))
+    for formula, row in rows.items():
+        s = row.worst
+        mark = "=" if s.agrees else "≠"
+        share = f"{row.over:.0%}/{row.under:.0%}"
+        head = f"{formula:{fw}s}  {mark} {_number(s.max_rel_error):7s}  {f'{row.exact_on}/{row.models}':>5s}  "
+        lines += _wrap(f"{head}{share:>10s}  ", f"{s.model}, {s.worst_pose}, {s.source}")
+    for formula in sorted(refused - set(rows)):
+        lines.append(f"{formula:{fw}s}  {'refused':9s}  {'0':>5s}  {'':>10s}  not defined for these motions")
+    lines += [
+        f"=: every pose within {rtol:g}; ≠: beyond. exact: models where every pose is within tolerance.",
+        "over/under: share of poses where the formula over- / under-estimates the engine's energy.",
+    ]
     return "\n".join(lines)

@@ -60,8 +60,9 @@ def test_short_names_aliases_and_duplicates():
 
 
 def test_ambiguous_and_unknown_names_are_clear_errors():
-    with pytest.raises(ModelLoadError, match=r"ambiguous.*serial7\.urdf"):
-        resolve_model("serial7")
+    assert resolve_model("serial7").format == "mjcf"  # a project model in both formats: the bare name is MJCF
+    with pytest.raises(ModelLoadError, match=r"ambiguous.*anymal_b_simple/anymal"):
+        resolve_model("anymal")
     with pytest.raises(ModelLoadError, match=r"did you mean.*ur5"):
         resolve_model("ur55")
 

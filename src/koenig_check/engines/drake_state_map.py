@@ -24,6 +24,7 @@ pairs through the body it moves when that body has one joint in MuJoCo.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -203,7 +204,9 @@ class DrakeStateMap:
                 q[:, p.dq] = qpos[:, p.qadr] - p.q_offset
             elif p.kind == "ball":
                 quat = qpos[:, p.qadr : p.qadr + 4]
-                q[:, p.dq : p.dq + 3] = Rotation.from_quat(quat, scalar_first=True).as_euler("xyz")
+                with warnings.catch_warnings():  # at pitch ±90° the angles are not unique, the rotation is exact
+                    warnings.filterwarnings("ignore", message="Gimbal lock detected", category=UserWarning)
+                    q[:, p.dq : p.dq + 3] = Rotation.from_quat(quat, scalar_first=True).as_euler("xyz")
             else:
                 quat = qpos[:, p.qadr + 3 : p.qadr + 7]
                 q[:, p.dq : p.dq + 4] = quat / np.linalg.norm(quat, axis=-1, keepdims=True)

@@ -5,7 +5,9 @@ Names
 * Project models live in the repository's ``models/`` directory, installed with the package as
   the package data ``koenig_check.models``.  The environment variable ``KOENIG_CHECK_MODELS``
   overrides the location.  Their name is the file stem; the same mechanism usually exists as ``.xml`` (MJCF) and
-  ``.urdf``, so a bare name can be ambiguous: pass ``fmt`` or write ``"name.urdf"``.
+  ``.urdf``: ``"name.xml"`` and ``"name.urdf"`` pick one, and the bare name means the MJCF file
+  (:data:`DEFAULT_FORMAT`).  A relative path such as ``models/gimbal.xml`` that does not exist where the
+  caller runs is read from the project's root.
 * example-robot-data (version 6 installs its robots as data files under its install prefix, with no
   Python loader) is located through ``importlib.metadata``.  A robot's name is its file stem
   (``ur5_robot``, ``panda``, ``talos_reduced``...).  When a stem occurs in several packages, or
@@ -223,6 +225,8 @@ def resolve_model(name_or_path: str | os.PathLike[str], fmt: str | None = None) 
         raise ValueError(f"fmt must be 'mjcf', 'urdf' or None, got {fmt!r}")
     text = os.fspath(name_or_path)
     path = Path(text).expanduser()
+    if not (path.is_file() or path.is_absolute() or path.is_dir()):
+        path = _project_relative(path) or path
     if path.is_file() or path.is_absolute() or path.is_dir():
         path = path.resolve()
         dirs = tuple(path.parents[:4]) + _erd_package_dirs()
@@ -237,15 +241,124 @@ def resolve_model(name_or_path: str | os.PathLike[str], fmt: str | None = None) 
     hits = [s for s in catalogue if s.name == name or name in s.aliases]
     if fmt is not None:
         hits = [s for s in hits if s.format == fmt]
+    if len(hits) > 1 and fmt is None and {s.origin for s in hits} == {"project"}:
+        hits = [s for s in hits if s.format == DEFAULT_FORMAT]  # a project model in both formats: MJCF
     if len(hits) == 1:
         return hits[0]
+    if not hits and fmt is None:  # a stem that only exists qualified (anymal: two packages)
+        hits = [s for s in catalogue if s.origin == "example-robot-data" and s.name.split("/")[-1] == name]
     if len(hits) > 1:
-        options = [f"{s.name}.{'urdf' if s.format == 'urdf' else 'xml'}" for s in hits]
-        raise ModelLoadError(f"{text}: ambiguous model name, pick a format: {options}")
-    known = sorted({s.name for s in catalogue} | {a for s in catalogue for a in s.aliases})
-    close = difflib.get_close_matches(name, known, n=5)
+        options = sorted(_spelling(s) for s in hits)
+        raise ModelLoadError(f"{text}: ambiguous model name, it names {len(hits)} models: {options}")
+    if len(hits) == 1:
+        return hits[0]
+    looks_like_file = bool(suffix) or "/" in text or os.sep in text
+    close = suggest_names(name, strict=looks_like_file)
     hint = f"; did you mean {close}?" if close else ""
-    raise ModelLoadError(f"{text}: no such file and no model of that name{hint}")
+    what = "no such file" if looks_like_file else "no such file and no model of that name"
+    raise ModelLoadError(f"{text}: {what} (`koenig-check models` lists every name){hint}")
+
+
+#: The format a bare project-model name means when the model exists in both (``gimbal`` = ``gimbal.xml``).
+DEFAULT_FORMAT = "mjcf"
+
+
+@dataclass(frozen=True)
+class ModelName:
+    """One line of ``koenig-check models``: the name to type, the other names of the same file, where from.
+
+    Attributes
+    ----------
+    name : str
+        The unambiguous name (``gimbal.xml``, ``ur5_robot``, ``anymal_b_simple/anymal``).
+    aliases : tuple of str
+        Other names :func:`resolve_model` accepts for the same file (``gimbal``, ``ur5``, ``talos``).
+    format : str
+    source : str
+        ``project`` or ``example-robot-data`` (the package is in the qualified alias ``<package>/<stem>``).
+    path : Path
+    """
+
+    name: str
+    aliases: tuple[str, ...]
+    format: str
+    source: str
+    path: Path
+
+
+def model_names() -> list[ModelName]:
+    """Every model name and alias :func:`resolve_model` accepts, one entry per file.
+
+    Returns
+    -------
+    list of ModelName
+        Project models first, then example-robot-data, by name.
+    """
+    entries = []
+    for s in list_models():
+        if s.origin == "project":
+            aliases = (s.name,) if s.format == DEFAULT_FORMAT or not _has_twin(s) else ()
+            entries.append(ModelName(_spelling(s), aliases, s.format, "project", s.path))
+            continue
+        entries.append(ModelName(s.name, s.aliases, s.format, s.origin, s.path))
+    return entries
+
+
+def _has_twin(source: ModelSource) -> bool:
+    return any(s.name == source.name and s.format != source.format for s in _catalogue() if s.origin == "project")
+
+
+def _spelling(source: ModelSource) -> str:
+    if source.origin == "project":
+        return f"{source.name}.{'urdf' if source.format == 'urdf' else 'xml'}"
+    return source.name
+
+
+def _project_relative(path: Path) -> Path | None:
+    """A relative path such as ``models/gimbal.xml`` read from the project's root, wherever the caller runs."""
+    project = project_models_dir()
+    if project is None or path.is_absolute() or not path.parts:
+        return None
+    candidate = project.parent / path
+    return candidate if candidate.is_file() else None
+
+
+def accepted_names() -> list[str]:
+    """Every spelling :func:`resolve_model` accepts by name: names, aliases and ``name.xml``/``name.urdf``.
+
+    Returns
+    -------
+    list of str
+    """
+    names: set[str] = set()
+    for s in _catalogue():
+        names.add(s.name)
+        names.update(s.aliases)
+        if s.origin == "project":
+            names.add(_spelling(s))
+    return sorted(names)
+
+
+def suggest_names(name: str, strict: bool = False) -> list[str]:
+    """Close names from :func:`accepted_names` only (at most five).
+
+    Parameters
+    ----------
+    name : str
+        The name asked for (without a ``.xml``/``.urdf`` suffix).
+    strict : bool
+        The input looked like a file path: suggest only very close names.
+
+    Returns
+    -------
+    list of str
+    """
+    known = accepted_names()
+    stem = Path(name).name
+    close = difflib.get_close_matches(stem, known, n=5, cutoff=0.85 if strict else 0.6)
+    if not strict:
+        close += [k for k in known if stem and stem in k.split("/")[-1] and k not in close]
+    return close[:5]
 
 
 def resolve_uri(uri: str, base_dir: Path, package_dirs: tuple[Path, ...]) -> Path | None:

@@ -1,0 +1,204 @@
+"""Argument checks shared by the API and the command line, run before any work starts.
+
+A bad argument is a usage error: :class:`ArgumentValueError` (a :class:`ValueError`) or
+:class:`ArgumentTypeError` (a :class:`TypeError`), both :class:`~koenig_check.findings.KoenigCheckError`.
+The API raises them instead of recording a model failure; the command line exits with status 2.
+"""
+
+from __future__ import annotations
+
+import difflib
+import inspect
+import math
+from collections.abc import Callable, Mapping, Sequence
+from numbers import Integral, Real
+from typing import Any
+
+from koenig_check.findings import KoenigCheckError
+
+POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
+
+#: One line per pose kind, for ``--help`` and the report's glossary.
+POSE_KIND_HELP = {
+    "random": "N random joint positions within limits, random joint rates (normal, std --velocity-scale)",
+    "keyframes": "the model's own keyframes, with random joint rates",
+    "grid": "an N x N sweep of the two --grid-joints over their range, unit rate on each, other joints at rest",
+    "trajectory": "N samples of a torque-free MuJoCo simulation (gravity off) of --duration seconds",
+}
+
+
+class ArgumentValueError(KoenigCheckError, ValueError):
+    """An argument with a value the tool cannot use (a usage error)."""
+
+
+class ArgumentTypeError(KoenigCheckError, TypeError):
+    """A keyword the function does not take, or an argument of the wrong type (a usage error)."""
+
+
+def check_keywords(given: Mapping[str, Any], accepted: Sequence[str], where: str) -> None:
+    """Refuse keywords a function does not take, suggesting the closest accepted one.
+
+    Parameters
+    ----------
+    given : mapping
+        The keywords passed.
+    accepted : sequence of str
+        The keywords the function takes.
+    where : str
+        The function's name, for the message.
+
+    Raises
+    ------
+    ArgumentTypeError
+    """
+    for key in given:
+        if key in accepted:
+            continue
+        close = difflib.get_close_matches(key, list(accepted), n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else f"; it takes {sorted(accepted)}"
+        raise ArgumentTypeError(f"{where}() got an unexpected keyword argument {key!r}{hint}")
+
+
+def keywords_of(*functions: Callable[..., Any]) -> set[str]:
+    """The named keyword parameters of functions (``**kwargs`` excluded).
+
+    Parameters
+    ----------
+    *functions : callable
+
+    Returns
+    -------
+    set of str
+    """
+    names: set[str] = set()
+    for func in functions:
+        for p in inspect.signature(func).parameters.values():
+            if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY):
+                names.add(p.name)
+    return names
+
+
+def check_tolerance(value: Any, name: str = "rtol") -> float:
+    """A relative tolerance: a finite real number > 0.
+
+    Parameters
+    ----------
+    value : Any
+    name : str
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ArgumentTypeError
+        Not a real number (a string, None, ...).
+    ArgumentValueError
+        Not finite or not > 0.
+    """
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise ArgumentTypeError(f"{name} must be a real number > 0, got {value!r} ({type(value).__name__})")
+    value = float(value)
+    if not (value > 0 and math.isfinite(value)):
+        raise ArgumentValueError(f"{name} must be a finite number > 0, got {value!r}")
+    return value
+
+
+def check_count(value: Any, name: str, minimum: int = 1) -> int:
+    """A whole number >= ``minimum``.
+
+    Parameters
+    ----------
+    value : Any
+    name : str
+    minimum : int
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ArgumentTypeError, ArgumentValueError
+    """
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        raise ArgumentTypeError(f"{name} must be a whole number, got {value!r} ({type(value).__name__})")
+    if value < minimum:
+        raise ArgumentValueError(f"{name} must be >= {minimum}, got {value}")
+    return int(value)
+
+
+def check_positive(value: Any, name: str) -> float:
+    """A finite real number > 0 (a duration, a velocity scale).
+
+    Raises
+    ------
+    ArgumentTypeError, ArgumentValueError
+    """
+    return check_tolerance(value, name)
+
+
+def check_formulas(formulas: Sequence[str] | None) -> None:
+    """Refuse unknown formula names, suggesting close ones.
+
+    Parameters
+    ----------
+    formulas : sequence of str, optional
+
+    Raises
+    ------
+    ArgumentValueError, ArgumentTypeError
+    """
+    from koenig_check.formulas import FORMULAS
+
+    if formulas is None:
+        return
+    if isinstance(formulas, str):
+        raise ArgumentTypeError(f"formulas must be a list of names, got the string {formulas!r}")
+    if len(formulas) == 0:
+        raise ArgumentValueError("formulas: give at least one name (or None for all)")
+    for name in formulas:
+        if name not in FORMULAS:
+            close = difflib.get_close_matches(str(name), list(FORMULAS), n=3)
+            hint = f"; did you mean {close}?" if close else ""
+            raise ArgumentValueError(f"unknown formula {name!r}{hint} Known: {', '.join(FORMULAS)}")
+
+
+def check_compare_arguments(rtol: Any, options: Mapping[str, Any]) -> None:
+    """Check the arguments of :func:`koenig_check.compare` before any model is loaded.
+
+    Parameters
+    ----------
+    rtol : Any
+    options : mapping
+        The other keywords (see :func:`koenig_check.api.compare_model`).
+
+    Raises
+    ------
+    ArgumentTypeError, ArgumentValueError
+    """
+    from koenig_check.grid import RECORD_MODES
+
+    check_tolerance(rtol)
+    kind = options.get("pose_kind", "random")
+    if kind not in POSE_KINDS:
+        raise ArgumentValueError(f"pose_kind must be one of {POSE_KINDS}, got {kind!r}")
+    has_poses = options.get("pose_set") is not None or options.get("pose_file") is not None
+    if "n_poses" in options:
+        check_count(options["n_poses"], "n_poses")
+    if "seed" in options:
+        check_count(options["seed"], "seed", minimum=0)
+    for name in ("velocity_scale", "duration"):
+        if name in options:
+            check_positive(options[name], name)
+    check_formulas(options.get("formulas"))
+    if kind == "grid" and not has_poses:
+        joints = options.get("grid_joints")
+        if joints is None or isinstance(joints, str) or len(joints) != 2:
+            raise ArgumentValueError("pose_kind 'grid' needs grid_joints: the names of two joints")
+    records = options.get("records", "totals")
+    if records not in RECORD_MODES:
+        raise ArgumentValueError(f"records must be one of {RECORD_MODES}, got {records!r}")
+    if "jobs" in options:
+        check_count(options["jobs"], "jobs")

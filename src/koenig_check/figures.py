@@ -1,0 +1,236 @@
+"""The report's figures: error distributions per model (or labelled pooled), the error map, the trajectory.
+
+Conventions: relative errors on a log axis from :data:`~koenig_check.roundoff.ROUNDOFF` up; values below it
+(exact to rounding) are drawn in a band of their own at the left, labelled, never as box-plot outliers; the
+tolerance is a dashed line; panels that are compared share one colour scale; the conditions of the run
+(poses, seed, joint rates, gravity) are in the title.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from koenig_check.grid import ModelComparison, relative_error
+from koenig_check.roundoff import ROUNDOFF
+from koenig_check.stats import QuantileSketch
+
+#: Engine colours, the same in every figure.
+ENGINE_COLORS = {"mujoco": "tab:blue", "pinocchio": "tab:orange", "drake": "tab:green"}
+#: Where the rounding band is drawn (log10 units), left of the axis proper.
+_BAND = np.log10(ROUNDOFF) - 2.0
+
+
+def _sketches(comparisons: Sequence[ModelComparison]) -> dict[tuple[str, str], QuantileSketch]:
+    pooled: dict[tuple[str, str], QuantileSketch] = {}
+    for comp in comparisons:
+        if comp.stats is None:
+            continue
+        for (formula, source, reference), g in comp.stats.kept_groups().items():
+            if source == reference:
+                pooled.setdefault((formula, source), QuantileSketch()).merge(g.sketch)
+    return pooled
+
+
+def _position(x: float) -> float:
+    """log10 of a relative error, or the rounding band for values below ROUNDOFF."""
+    return _BAND if x < ROUNDOFF else float(np.log10(x))
+
+
+def error_distribution_figure(
+    comparisons: Sequence[ModelComparison], path: Path, rtol: float, caption: str = "", dpi: int = 110
+) -> Path:
+    """Distribution of the relative error of each formula's total energy, per engine, on a log axis.
+
+    Boxes span the quartiles, whiskers the minimum and maximum; a formula exact to rounding on every pose
+    (maximum below :data:`ROUNDOFF`) is one marker in the rounding band; box parts below ROUNDOFF are drawn
+    in the band too.  The dashed line is the tolerance.  With several comparisons the title says the data
+    are pooled and names the models.
+
+    Parameters
+    ----------
+    comparisons : sequence of ModelComparison
+        One model, or several pooled.
+    path : Path
+    rtol : float
+    caption : str
+        Conditions of the run, printed under the title.
+    dpi : int
+
+    Returns
+    -------
+    Path
+    """
+    pooled = _sketches(comparisons)
+    formulas = list(dict.fromkeys(f for f, _ in pooled))
+    engines = list(dict.fromkeys(e for _, e in pooled))
+    fig = Figure(figsize=(7.2, 0.36 * max(len(formulas), 4) + 2.1), layout="constrained")
+    ax = fig.add_subplot()
+    top = max([_position(s.quantile(1.0)) for s in pooled.values() if s.n] + [np.log10(rtol) + 1, 0.0])
+    for k, engine in enumerate(engines):
+        color = ENGINE_COLORS.get(engine, "tab:gray")
+        offset = (k - (len(engines) - 1) / 2) * 0.36
+        boxes, positions, exact = [], [], []
+        for i, f in enumerate(formulas):
+            sketch = pooled.get((f, engine))
+            if sketch is None or not sketch.n:
+                continue
+            q = [_position(sketch.quantile(x)) for x in (0.0, 0.25, 0.5, 0.75, 1.0)]
+            if q[4] == _BAND:
+                exact.append(i + offset)
+                continue
+            boxes.append({"whislo": q[0], "q1": q[1], "med": q[2], "q3": q[3], "whishi": q[4], "fliers": []})
+            positions.append(i + offset)
+        if boxes:
+            parts = ax.bxp(
+                boxes, positions=positions, widths=0.3, orientation="horizontal", patch_artist=True, manage_ticks=False
+            )
+            for box in parts["boxes"]:
+                box.set_facecolor(color)
+                box.set_alpha(0.6)
+            for median in parts["medians"]:
+                median.set_color("black")
+        if exact:
+            ax.plot([_BAND] * len(exact), exact, "o", color=color, markersize=7, markeredgecolor="black")
+        ax.plot([], [], "s", color=color, alpha=0.6, markersize=10, label=f"{engine} states vs {engine} energy")
+    ax.axvspan(_BAND - 0.6, _BAND + 0.6, color="0.92", zorder=0)
+    ax.axvline(np.log10(rtol), color="tab:red", linestyle="--", linewidth=1.2, label=f"tolerance {rtol:g}")
+    ax.set_xlim(_BAND - 0.8, top + 0.3)
+    ticks = list(range(int(np.ceil(np.log10(ROUNDOFF))), int(np.floor(top)) + 1, 2))
+    ax.set_xticks([_BAND, *ticks], [f"< {ROUNDOFF:g}\n(rounding)", *[f"1e{t}" for t in ticks]])
+    ax.set_yticks(np.arange(len(formulas)), formulas, fontsize=8)
+    ax.tick_params(axis="x", labelsize=8)
+    ax.set_ylim(len(formulas) - 0.5, -0.5)
+    ax.set_xlabel("relative error of the total energy |formula − engine| / engine (log scale)", fontsize=8)
+    models = [c.model for c in comparisons]
+    if len(models) == 1:
+        title = f"{models[0]}: relative error of each formula"
+    else:
+        title = textwrap.fill(f"Pooled over {len(models)} models ({', '.join(models)}): relative error", 95)
+    sub = "boxes: quartiles; whiskers: min and max over the poses; dots: exact to rounding on every pose"
+    ax.set_title(f"{title}\n{sub}" + (f"\n{textwrap.fill(caption, 95)}" if caption else ""), fontsize=8)
+    fig.legend(loc="outside lower center", ncol=3, frameon=False, fontsize=7)
+    ax.grid(True, axis="x", alpha=0.3)
+    fig.savefig(path, dpi=dpi)
+    return path
+
+
+def error_map_figure(
+    comparison: ModelComparison,
+    formulas: Sequence[str],
+    path: Path,
+    engine: str = "mujoco",
+    caption: str = "",
+    dpi: int = 110,
+) -> Path:
+    """Signed relative error of formulas over a two-joint grid sweep, one colour scale for every panel.
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+        Built on a grid :class:`~koenig_check.poses.PoseSet`.
+    formulas : sequence of str
+    path : Path
+    engine : str
+        Whose states and energy are used.
+    caption : str
+        Conditions of the run (joint rates), printed in the title.
+    dpi : int
+
+    Returns
+    -------
+    Path
+    """
+    grid = comparison.poses.grid
+    if grid is None:
+        raise ValueError(f"{comparison.model}: the poses are not a grid sweep")
+    shape = grid["shape"]
+    va, vb = grid["values"]
+    ja, jb = grid["joints"]
+    signed = {}
+    for formula in formulas:
+        rows = comparison.records.where(formula=formula, scope="total", source=engine, reference=engine)
+        signed[formula] = relative_error(rows["value"], rows["reference_value"]).reshape(shape)
+    lim = max([float(np.abs(v).max()) for v in signed.values()] + [ROUNDOFF])
+    fig = Figure(figsize=(4.0 * len(formulas) + 1.2, 4.6), layout="constrained")
+    axes = [fig.add_subplot(1, len(formulas), k + 1) for k in range(len(formulas))]
+    mesh = None
+    for ax, formula in zip(axes, formulas, strict=True):
+        mesh = ax.pcolormesh(
+            np.degrees(vb), np.degrees(va), signed[formula], cmap="RdBu_r", vmin=-lim, vmax=lim, shading="auto"
+        )
+        ax.set_xlabel(f"{jb} angle (deg)")
+        ax.set_title(formula, fontsize=10)
+    axes[0].set_ylabel(f"{ja} angle (deg)")
+    if mesh is not None:
+        fig.colorbar(mesh, ax=axes, label="signed relative error\n(formula − engine) / engine")
+    title = (
+        f"{comparison.model}: signed relative error over the two joint angles ({engine} states and energy; "
+        "one colour scale for all panels)"
+    )
+    fig.suptitle(title + (f"\n{textwrap.fill(caption, 130)}" if caption else ""), fontsize=10)
+    fig.savefig(path, dpi=dpi)
+    return path
+
+
+def trajectory_figure(
+    comparison: ModelComparison, formulas: Sequence[str], path: Path, rtol: float, caption: str = "", dpi: int = 110
+) -> Path:
+    """Kinetic energy along a simulated trajectory for each formula against both engines.
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+        Built on a trajectory :class:`~koenig_check.poses.PoseSet`.
+    formulas : sequence of str
+    path : Path
+    rtol : float
+        Drawn as a band around zero in the error panel.
+    caption : str
+        Conditions of the run (duration, gravity off, seed).
+    dpi : int
+
+    Returns
+    -------
+    Path
+    """
+    times = comparison.poses.times
+    if times is None:
+        raise ValueError(f"{comparison.model}: the poses are not a trajectory")
+    fig = Figure(figsize=(10, 7), layout="constrained")
+    ax, ax_err = fig.add_subplot(2, 1, 1), fig.add_subplot(2, 1, 2)
+    energy = {
+        engine: comparison.records.where(formula="exact", scope="total", source=engine, reference=engine)[
+            "reference_value"
+        ]
+        for engine in comparison.engines
+    }
+    for engine, rigid in energy.items():
+        if len(rigid):
+            ax.plot(times, rigid, linewidth=4, alpha=0.4, color=ENGINE_COLORS.get(engine), label=f"{engine} energy")
+    mj = energy.get("mujoco", np.empty(0))
+    palette = dict(zip(formulas, (f"C{k + 2}" for k in range(10)), strict=False))
+    for formula in formulas:
+        rows = comparison.records.where(formula=formula, scope="total", source="mujoco", reference="mujoco")
+        if not len(rows):
+            continue
+        value = rows["value"]
+        ax.plot(times, value, linewidth=1.2, color=palette.get(formula), label=formula)
+        ax_err.plot(times, relative_error(value, mj), linewidth=1.2, color=palette.get(formula), label=formula)
+    ax_err.axhspan(-rtol, rtol, color="tab:red", alpha=0.3, label=f"tolerance ±{rtol:g}")
+    ax.set_ylabel("kinetic energy (J)")
+    title = f"{comparison.model}: kinetic energy along a torque-free MuJoCo trajectory, gravity off"
+    ax.set_title(title + (f"\n{textwrap.fill(caption, 120)}" if caption else ""), fontsize=10)
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(True, alpha=0.3)
+    ax_err.set_xlabel("time (s)")
+    ax_err.set_ylabel("signed relative error vs MuJoCo")
+    ax_err.set_title("(formula − engine) / engine, on MuJoCo's states", fontsize=9)
+    ax_err.legend(fontsize=7, ncol=2)
+    ax_err.grid(True, alpha=0.3)
+    fig.savefig(path, dpi=dpi)
+    return path

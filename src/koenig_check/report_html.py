@@ -1,0 +1,234 @@
+"""``report.html``: one self-contained page with the content of ``summary.md``.
+
+Figures are embedded as base64 PNG (no network); one section per model, its figures beside its table, and
+the parity causes.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from koenig_check.grid import FormulaSummary, ModelComparison
+from koenig_check.report_content import (
+    COLUMNS,
+    POSE_LABELS,
+    glossary,
+    model_findings,
+    model_table,
+    refusal_lines,
+    run_conditions,
+    run_overview,
+    shared_notes,
+)
+from koenig_check.roundoff import ROUNDOFF, fmt
+
+if TYPE_CHECKING:
+    from koenig_check.api import CrossCheck
+
+_CSS = """
+body { font-family: system-ui, -apple-system, 'Segoe UI', sans-serif; margin: 0 auto; max-width: 1500px;
+       padding: 1em 2em; color: #1a1a1a; line-height: 1.45; }
+h1 { border-bottom: 2px solid #444; }
+h2 { border-bottom: 1px solid #bbb; margin-top: 2em; }
+code { background: #f2f2f2; padding: 0 .25em; border-radius: 3px; }
+table { border-collapse: collapse; font-size: 0.88em; }
+th, td { border: 1px solid #ccc; padding: .25em .5em; text-align: left; vertical-align: top; }
+th { background: #eee; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+tr.exact td.verdict { color: #1b6e20; font-weight: 600; }
+tr.differs td.verdict { color: #a12020; font-weight: 600; }
+.side { display: grid; grid-template-columns: minmax(0, 11fr) minmax(0, 7fr); gap: 1.2em; align-items: start; }
+.side > div:first-child { overflow-x: auto; }
+.side table { font-size: 0.78em; }
+td.pose { white-space: nowrap; }
+@media (max-width: 1000px) { .side { grid-template-columns: 1fr; } }
+small { color: #555; }
+figure { margin: 0 0 1em 0; }
+.wide figure img { max-width: min(100%, 1200px); }
+figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
+figcaption { font-size: .85em; color: #444; }
+.agree { color: #1b6e20; font-weight: 600; }
+.disagree { color: #a12020; font-weight: 600; }
+dl dt { font-weight: 600; } dl dd { margin: 0 0 .4em 1.5em; }
+"""
+
+
+def _e(text: object) -> str:
+    return html.escape(str(text), quote=True)
+
+
+def image_tag(png: Path, alt: str) -> str:
+    """An ``<img>`` holding the PNG file itself as a ``data:`` URI.
+
+    Parameters
+    ----------
+    png : Path
+    alt : str
+
+    Returns
+    -------
+    str
+    """
+    data = base64.b64encode(Path(png).read_bytes()).decode("ascii")
+    return f'<img src="data:image/png;base64,{data}" alt="{_e(alt)}">'
+
+
+def _figure(png: Path, caption: str) -> str:
+    return f"<figure>{image_tag(png, caption)}<figcaption>{_e(caption)}</figcaption></figure>"
+
+
+def _table(comp: ModelComparison, summaries: Sequence[FormulaSummary]) -> str:
+    titles = ("formula", "verdict", "max rel. error", "median", "over / under", "worst pose", "worst segment")
+    engines = list(comp.engines)
+    out = [f"<p>Max rel. error: {_e(', then '.join(engines))}.</p>", "<table>"]
+    out.append("<thead><tr>" + "".join(f"<th>{_e(t)}</th>" for t in titles) + "</tr></thead><tbody>")
+    for row in model_table(summaries, engines):
+        maxima = "<br>".join(map(_e, row.max_error.split(" / ")))
+        out.append(
+            f'<tr class="{row.verdict}"><td><code>{_e(row.formula)}</code><br><small>[{_e(row.equations)}]</small></td>'
+            f'<td class="verdict">{_e(row.verdict)}</td><td class="num">{maxima}</td>'
+            f'<td class="num">{_e(row.median)}</td><td class="num">{_e(row.over_under)}</td>'
+            f'<td class="pose">{_e(row.worst_pose)}</td><td class="pose">{_e(row.worst_segment or "—")}</td></tr>'
+        )
+    out.append("</tbody></table>")
+    return "\n".join(out)
+
+
+def _causes(comp: ModelComparison) -> str:
+    from koenig_check.findings import Kind
+
+    lead = [f for f in comp.findings if f.kind is Kind.VERDICT or f.root_cause]
+    energy = [f for f in comp.findings if f.affects_energy and f not in lead]
+    if not lead and not energy:
+        return "<p>Parity causes: no import difference that changes the kinetic energy.</p>"
+    items = [f"<li><strong>{_e(f.kind.value)}</strong>: {_e(f.message())}</li>" for f in lead + energy]
+    return "<p>Parity causes (root causes first):</p><ul>" + "".join(items) + "</ul>"
+
+
+def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[Path, str]]]) -> str:
+    """The page: the content of ``summary.md`` with each model's figures beside its table.
+
+    Parameters
+    ----------
+    check : CrossCheck
+    figures : mapping
+        Per position in ``check.comparisons``, that model's figures as (PNG file, caption); the key ``None``
+        holds figures of the whole run (shown after the findings).
+
+    Returns
+    -------
+    str
+    """
+    rtol = check.rtol
+    parity = {p.model: p for p in check.parities}
+    by_model: dict[str, list[FormulaSummary]] = {}
+    for s in check.summaries:
+        by_model.setdefault(s.model, []).append(s)
+    formulas = list(dict.fromkeys(s.formula for s in check.summaries)) + sorted(
+        {r["formula"] for c in check.comparisons for r in c.refusals} - {s.formula for s in check.summaries}
+    )
+    body = [
+        "<h1>koenig-check report</h1>",
+        "<p>Kinetic energy of every moving segment of each model, computed by MuJoCo and by Pinocchio from the "
+        "same joint positions and rates, and by each formula under test (Yu. Alyushin, <em>Correction of the "
+        "Koenig formula for the kinetic energy of a rotating solid</em>) from each engine's segment states. "
+        f"Tolerance: relative {_e(f'{rtol:g}')}. Numbers below {_e(f'{ROUNDOFF:g}')} are rounding and are "
+        "printed as 0.</p>",
+        "<nav><p>Models: "
+        + ", ".join(f'<a href="#{_anchor(c.model)}">{_e(c.model)}</a>' for c in check.comparisons)
+        + "</p></nav>",
+        '<section id="findings"><h2>What this run found</h2>',
+        "<p>"
+        + _code(" ".join(run_overview(check.comparisons, check.summaries, check.parities, check.failures)))
+        + "</p><ul>",
+    ]
+    for k, comp in enumerate(check.comparisons):
+        f = model_findings(comp, by_model.get(comp.model, []), parity.get(comp.model), rtol)
+        cls = "agree" if "DISAGREE" not in f.engines else "disagree"
+        items = []
+        if f.exact:
+            items.append("exact to rounding: " + ", ".join(f"<code>{_e(n)}</code>" for n in f.exact))
+        for text in f.inexact:
+            name, rest = text.split(": ", 1)
+            items.append(f"not exact: <code>{_e(name)}</code> {_e(rest)}")
+        if f.refused:
+            items.append("refused (does not apply): " + ", ".join(f"<code>{_e(n)}</code>" for n in f.refused))
+        body.append(
+            f'<li><a href="#{_anchor(comp.model)}-{k}"><strong>{_e(comp.model)}</strong></a> ({_e(f.poses)}): '
+            f'<span class="{cls}">{_e(f.engines)}</span>.<ul>' + "".join(f"<li>{i}.</li>" for i in items) + "</ul></li>"
+        )
+    for model, reason in check.failures:
+        body.append(
+            f'<li><strong>{_e(model)}</strong>: <span class="disagree">could not be compared</span>: {_e(reason)}</li>'
+        )
+    body.append("</ul>")
+    body += [_figure(png, caption) for png, caption in figures.get(None, ())]
+    body.append("</section>")
+    body += ['<section id="formulas"><h2>Formulas</h2><p>The paper\'s equation numbers are in brackets.</p><dl>']
+    body += [
+        f"<dt><code>{_e(g.name)}</code> [{_e(g.equations)}]</dt><dd>{_e(g.text)}.</dd>" for g in glossary(formulas)
+    ]
+    body += ["</dl></section>", '<section id="reading"><h2>How to read the tables</h2><dl>']
+    body += [f"<dt>{_e(name)}</dt><dd>{_e(text)}.</dd>" for name, text in COLUMNS.items()]
+    body += ["</dl><p>Pose labels:</p><dl>"]
+    body += [f"<dt><code>{_e(label)}</code></dt><dd>{_e(text)}.</dd>" for label, text in POSE_LABELS.items()]
+    body.append("</dl></section>")
+    for k, comp in enumerate(check.comparisons):
+        p = parity.get(comp.model)
+        body.append(f'<section class="model" id="{_anchor(comp.model)}-{k}"><h2>{_e(comp.model)}</h2>')
+        body.append(f"<p>Conditions: {_e(run_conditions(comp, check.settings.get(comp.model)))}.</p>")
+        if p is not None:
+            verdict = (
+                '<span class="agree">the engines agree</span>'
+                if p.agrees
+                else f'<span class="disagree">the engines DISAGREE</span>: {_e(p.reason)}'
+            )
+            exact = ", ".join(f"{k} {fmt(v)}" for k, v in p.exact_vs_engine.items())
+            body.append(
+                f"<p>Engine parity: {verdict}. MuJoCo vs Pinocchio rigid-body energy, largest relative difference "
+                f"{_e(fmt(p.rigid_max_rel))} (pose {_e(p.worst_pose)}); armature energy, largest difference "
+                f"{_e(fmt(p.armature_max_abs))} J; <code>exact</code> on each engine's states vs that engine's "
+                f"energy: {_e(exact)}.</p>"
+            )
+        body.append(_causes(comp))
+        mine = figures.get(k, ())
+        figs = "".join(_figure(png, caption) for png, caption in mine if png.name.startswith("error_distribution"))
+        wide = "".join(_figure(png, caption) for png, caption in mine if not png.name.startswith("error_distribution"))
+        body.append(f'<div class="side"><div>{_table(comp, by_model.get(comp.model, []))}</div>')
+        body.append(f"<div>{figs}</div></div>" if figs else "</div>")
+        if wide:  # the error map and the trajectory are wide: full width under the table they illustrate
+            body.append(f'<div class="wide">{wide}</div>')
+        refusals = refusal_lines(comp)
+        if refusals:
+            body.append("<ul>" + "".join(f"<li>{_e(t)}</li>" for t in refusals) + "</ul>")
+        body.append("</section>")
+    if check.failures:
+        body.append('<section id="failures"><h2>Models that could not be compared</h2><ul>')
+        body += [f"<li>{_e(m)}: {_e(r)}</li>" for m, r in check.failures]
+        body.append("</ul></section>")
+    notes = shared_notes(check.comparisons)
+    if notes:
+        body.append('<section id="notes"><h2>Notes</h2><p>Each note once, with the models it concerns.</p><ul>')
+        body += [f"<li>{_e(n)} ({_e('all models' if not m else ', '.join(m))})</li>" for n, m in notes]
+        body.append("</ul></section>")
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f"<title>koenig-check report</title><style>{_CSS}</style></head><body>\n"
+        + "\n".join(body)
+        + "\n</body></html>\n"
+    )
+
+
+def _code(text: str) -> str:
+    """Escape text, turning `name` into <code>name</code>."""
+    parts = _e(text).split("`")
+    return "".join(f"<code>{p}</code>" if k % 2 else p for k, p in enumerate(parts))
+
+
+def _anchor(model: str) -> str:
+    return "model-" + "".join(c if c.isalnum() else "-" for c in model)

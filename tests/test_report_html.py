@@ -1,0 +1,133 @@
+"""report.html: parsed with the stdlib's html.parser; per-model sections, tables, every figure embedded."""
+
+from __future__ import annotations
+
+import base64
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+import koenig_check
+from koenig_check.api import compare_model
+from koenig_check.report import figure_name, write_report
+
+CAUSES = Path(__file__).parent / "models" / "causes"
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+class _Page(HTMLParser):
+    """Collects sections, tables, images and every URL-bearing attribute."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.stack: list[str] = []
+        self.sections: list[dict] = []
+        self.images: list[dict] = []
+        self.urls: list[tuple[str, str, str]] = []
+        self.h2: list[str] = []
+        self._in_h2 = False
+        self.tags: list[str] = []
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        a = dict(attrs)
+        self.tags.append(tag)
+        for name in ("src", "href", "srcset", "data", "action", "poster"):
+            if a.get(name):
+                self.urls.append((tag, name, a[name] or ""))
+        if tag == "section":
+            self.sections.append({"id": a.get("id"), "class": a.get("class"), "tables": 0, "images": 0})
+        section = self.sections[-1] if self.sections and "section" in [*self.stack, tag] else None
+        if tag == "table" and section is not None:
+            section["tables"] += 1
+        if tag == "img":
+            self.images.append({**a, "section": section["id"] if section else None})
+            if section is not None:
+                section["images"] += 1
+        if tag == "h2":
+            self._in_h2 = True
+            self.h2.append("")
+        if tag not in ("img", "meta", "br", "link"):
+            self.stack.append(tag)
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag == "h2":
+            self._in_h2 = False
+        if tag in self.stack:
+            while self.stack.pop() != tag:
+                pass
+
+    def handle_data(self, data: str) -> None:
+        if self._in_h2:
+            self.h2[-1] += data
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory: pytest.TempPathFactory):
+    check = koenig_check.compare(
+        ["gimbal.xml", "serial7.urdf", CAUSES / "class_mass.xml", "no_such_robot"], n_poses=4, seed=3
+    )
+    grid = compare_model("gimbal.xml", pose_kind="grid", grid_joints=("outer_z", "inner_x"), n_poses=5)
+    check.add(grid)  # the same label as the random run of gimbal.xml: both keep their section and figures
+    out = tmp_path_factory.mktemp("html")
+    written = write_report(out, check, grid_comparison=grid)
+    page = _Page()
+    page.feed((out / "report.html").read_text(encoding="utf-8"))
+    page.close()
+    return check, out, written, page
+
+
+def test_one_section_per_model_with_its_table_and_figure(report) -> None:
+    check, _, _, page = report
+    models = [s for s in page.sections if s["class"] == "model"]
+    assert len(models) == len(check.comparisons)
+    for section in models:
+        assert section["tables"] == 1 and section["images"] >= 1
+    assert [h for h in page.h2 if h in {c.model for c in check.comparisons}] == [c.model for c in check.comparisons]
+
+
+def test_summary_sections_are_on_the_page(report) -> None:
+    _, _, _, page = report
+    for title in ("What this run found", "Formulas", "How to read the tables", "Notes"):
+        assert title in page.h2
+    assert "Models that could not be compared" in page.h2
+
+
+def test_every_figure_is_embedded_as_a_png_data_uri_identical_to_the_file(report) -> None:
+    check, out, written, page = report
+    pngs = sorted(p for p in written if p.suffix == ".png")
+    assert len(page.images) == len(pngs) and all(p.exists() for p in pngs)
+    embedded = set()
+    for img in page.images:
+        src = img["src"]
+        assert src.startswith("data:image/png;base64,") and img.get("alt")
+        data = base64.b64decode(src.split(",", 1)[1], validate=True)
+        assert data.startswith(PNG_MAGIC)
+        embedded.add(data)
+    assert embedded == {p.read_bytes() for p in pngs}
+    for comp in check.comparisons:
+        assert (out / figure_name(comp.model)).exists()
+
+
+def test_no_external_resource(report) -> None:
+    _, _, _, page = report
+    for tag, attr, url in page.urls:
+        assert url.startswith(("data:", "#")), (tag, attr, url[:60])
+    assert "script" not in page.tags and "link" not in page.tags and "iframe" not in page.tags
+
+
+def test_parity_causes_of_a_disagreeing_model_are_shown(report) -> None:
+    check, out, _, _ = report
+    text = (out / "report.html").read_text(encoding="utf-8")
+    comp = next(c for c in check.comparisons if c.model == "class_mass.xml")
+    root = [f for f in comp.findings if f.root_cause]
+    assert root and all(f.element in text for f in root)
+    assert text.count("Parity causes") == len(check.comparisons)
+
+
+def test_figure_of_the_grid_is_in_the_grid_models_section(report) -> None:
+    check, _, _, page = report
+    k = len(check.comparisons) - 1
+    anchor = "model-" + "".join(c if c.isalnum() else "-" for c in check.comparisons[k].model) + f"-{k}"
+    assert sum(1 for img in page.images if img["section"] == anchor) == 2  # its distribution and the map
+    assert sum(1 for img in page.images if img["section"] == anchor.replace(f"-{k}", "-0")) == 1
