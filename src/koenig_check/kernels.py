@@ -128,3 +128,63 @@ def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, o
         v = v_com[:, :, None, :]
         return np.concatenate([v + u, v - u], axis=2)
     return v_com[:, :, None, :] + cross(omega[:, :, None, :], rotate_points(R, offsets))
+
+
+def components(a: np.ndarray) -> np.ndarray:
+    """The last axis moved first, contiguous: (..., K) → (K, ...), one plane per component.
+
+    Parameters
+    ----------
+    a : ndarray, shape (..., K)
+
+    Returns
+    -------
+    ndarray, shape (K, ...)
+    """
+    return np.ascontiguousarray(np.moveaxis(a, -1, 0), dtype=float)
+
+
+def inertia_world_components(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
+    """The six unique entries of ``R I Rᵀ`` from component planes, elementwise.
+
+    Parameters
+    ----------
+    R : ndarray, shape (9, P, B)
+        Row-major entries of the rotations.
+    inertia : ndarray, shape (B, 3, 3)
+        Symmetric matrices (segment axes), the same at every pose.
+
+    Returns
+    -------
+    ndarray, shape (6, P, B)
+        ``(xx, yy, zz, yz, xz, xy)``.
+    """
+    A = np.empty((3, 3, *R.shape[1:]))  # A = R I
+    for i in range(3):
+        for k in range(3):
+            A[i, k] = R[3 * i] * inertia[:, 0, k] + R[3 * i + 1] * inertia[:, 1, k] + R[3 * i + 2] * inertia[:, 2, k]
+    out = np.empty((6, *R.shape[1:]))
+    for n, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))):
+        out[n] = A[i, 0] * R[3 * j] + A[i, 1] * R[3 * j + 1] + A[i, 2] * R[3 * j + 2]
+    return out
+
+
+def times_transpose_components(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
+    """``R R_refᵀ`` from component planes: ``R`` (9, P, B), ``R_ref`` (B, 3, 3) → (9, P, B).
+
+    Parameters
+    ----------
+    R : ndarray, shape (9, ...)
+        Row-major entries.
+    R_ref : ndarray, shape (B, 3, 3)
+        Broadcast against the last axis of ``R``'s planes.
+
+    Returns
+    -------
+    ndarray, shape (9, ...)
+    """
+    out = np.empty(R.shape)
+    for i in range(3):
+        for j in range(3):
+            out[3 * i + j] = R[3 * i] * R_ref[:, j, 0] + R[3 * i + 1] * R_ref[:, j, 1] + R[3 * i + 2] * R_ref[:, j, 2]
+    return out
