@@ -105,8 +105,10 @@ def times_transpose(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
 def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, offsets: np.ndarray) -> np.ndarray:
     """Velocities of points fixed in rigid segments, ``v_C + ω × (R r_k)``.
 
-    A point set symmetric about the centre of mass (the second half the negated first half, as the
-    equimomental points) costs half: ``v_C ± ω × (R r_k)``.
+    Elementwise on component planes (no stacked 3 × 3 ``matmul``); the result is a (P, B, K, 3)
+    view of contiguous (K, 3, P, B) planes.  A point set symmetric about the centre of mass (the
+    second half the negated first half, as the equimomental points) costs half:
+    ``v_C ± ω × (R r_k)``.
 
     Parameters
     ----------
@@ -123,11 +125,19 @@ def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, o
     """
     K = offsets.shape[1]
     half = K // 2
-    if K % 2 == 0 and np.array_equal(offsets[:, half:], -offsets[:, :half]):
-        u = cross(omega[:, :, None, :], rotate_points(R, offsets[:, :half]))
-        v = v_com[:, :, None, :]
-        return np.concatenate([v + u, v - u], axis=2)
-    return v_com[:, :, None, :] + cross(omega[:, :, None, :], rotate_points(R, offsets))
+    symmetric = K % 2 == 0 and np.array_equal(offsets[:, half:], -offsets[:, :half])
+    Rc = components(R.reshape(*R.shape[:-2], 9))
+    w, v = components(omega), components(v_com)
+    out = np.empty((K, 3, *v.shape[1:]))
+    for k in range(half if symmetric else K):
+        r = offsets[:, k]
+        a = [Rc[3 * i] * r[:, 0] + Rc[3 * i + 1] * r[:, 1] + Rc[3 * i + 2] * r[:, 2] for i in range(3)]  # R r_k
+        u = (w[1] * a[2] - w[2] * a[1], w[2] * a[0] - w[0] * a[2], w[0] * a[1] - w[1] * a[0])  # ω × R r_k
+        for i in range(3):
+            np.add(v[i], u[i], out=out[k, i])
+            if symmetric:
+                np.subtract(v[i], u[i], out=out[k + half, i])
+    return np.moveaxis(out, (0, 1), (2, 3))
 
 
 def components(a: np.ndarray) -> np.ndarray:
