@@ -37,7 +37,14 @@ def rotate(R: np.ndarray, v: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (..., 3)
     """
-    return (R @ v[..., None])[..., 0]
+    out = np.empty(np.broadcast_shapes(R.shape[:-1], v.shape))
+    v0, v1, v2 = v[..., 0], v[..., 1], v[..., 2]
+    for i in range(3):  # elementwise: a stacked 3 x 3 matmul pays a per-matrix overhead
+        o = out[..., i]
+        np.multiply(R[..., i, 0], v0, out=o)
+        o += R[..., i, 1] * v1
+        o += R[..., i, 2] * v2
+    return out
 
 
 def rotate_points(R: np.ndarray, points: np.ndarray) -> np.ndarray:
