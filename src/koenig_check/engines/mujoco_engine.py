@@ -173,9 +173,9 @@ class MujocoEngine:
         # MjData's arrays are views of its own buffers: taken once, each attribute access would build a new view.
         d_qpos, d_qvel, d_energy = d.qpos, d.qvel, d.energy
         d_xpos, d_xmat, d_cvel, d_sub = d.xpos, d.xmat, d.cvel, d.subtree_com
-        for p in range(P):
-            d_qpos[:] = qpos[p]
-            d_qvel[:] = qvel[p]
+        for p, (qpos_p, qvel_p) in enumerate(zip(qpos, qvel, strict=True)):
+            d_qpos[:] = qpos_p
+            d_qvel[:] = qvel_p
             kinematics(m, d)
             com_pos(m, d)
             com_vel(m, d)

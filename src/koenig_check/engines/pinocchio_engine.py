@@ -131,12 +131,14 @@ class PinocchioEngine:
         if energies:
             # One kinematic pass on the armature-free copy (the same tree, so the same placements and
             # Jacobian, bit for bit): forwardKinematics with v, then the energy and the Jacobians from it.
-            for p in range(P):
-                kinematics(m_rigid, d_rigid, q[p], v[p])
+            # data.J and data.oMi are handed out by reference: taken once, they follow every pose.
+            J_live, placements = d_rigid.J, d_rigid.oMi
+            for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
+                kinematics(m_rigid, d_rigid, q_p, v_p)
                 rigid[p] = kinetic(m_rigid, d_rigid)
                 jacobians(m_rigid, d_rigid)
-                Jp[p] = d_rigid.J
-                H[p] = [M.homogeneous for M in d_rigid.oMi.tolist()]
+                Jp[p] = J_live
+                H[p] = [M.homogeneous for M in placements.tolist()]
         else:
             for p in range(P):
                 jacobians(m, d, q[p])
