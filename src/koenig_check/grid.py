@@ -316,14 +316,15 @@ def _chunk_table(
     values = np.concatenate([b[4].reshape(P, -1) for b in blocks], axis=1)
     refs = np.concatenate([b[5].reshape(P, -1) for b in blocks], axis=1)
     widths = [1 if b[3] is None else len(b[3]) for b in blocks]
-    f = np.repeat([b[0] for b in blocks], widths)
-    s = np.repeat([b[1] for b in blocks], widths)
-    r = np.repeat([b[2] for b in blocks], widths)
-    sc = np.concatenate([np.zeros(1, dtype=np.int64) if b[3] is None else b[3] for b in blocks])
+    # Codes built in their stored widths (the columns' index types), so that no column is converted.
+    f = np.repeat(np.array([b[0] for b in blocks], dtype=np.int8), widths)
+    s = np.repeat(np.array([b[1] for b in blocks], dtype=np.int8), widths)
+    r = np.repeat(np.array([b[2] for b in blocks], dtype=np.int8), widths)
+    sc = np.concatenate([np.zeros(1, dtype=np.int16) if b[3] is None else b[3].astype(np.int16) for b in blocks])
     K = values.shape[1]
     arrays = [
-        categorical(np.zeros(P * K, dtype=np.int64), [label], "model"),
-        categorical(np.repeat(np.arange(P), K), list(ids), "pose"),
+        categorical(np.zeros(P * K, dtype=np.int16), [label], "model"),
+        categorical(np.repeat(np.arange(P, dtype=np.int32), K), list(ids), "pose"),
         categorical(np.tile(f, P), formulas, "formula"),
         categorical(np.tile(s, P), sources, "source"),
         categorical(np.tile(r, P), references, "reference"),

@@ -7,7 +7,7 @@ import pytest
 
 from koenig_check.analytic import random_physical_inertia, random_rotations, rigid_states, rotation_about
 from koenig_check.formulas import FORMULAS, integrate_angular_velocity
-from koenig_check.formulas.alyushin import alyushin_pole, centrifugal_update_33
+from koenig_check.formulas.alyushin import alyushin_pole, centrifugal_update_33, double_angle_trig
 from koenig_check.formulas.angles import CONVENTIONS
 
 #: Index of the centrifugal moment of the plane normal to world axis k in ``(I_yz, I_zx, I_xy)``.
@@ -101,3 +101,16 @@ def test_eq37_paper_recipe_reads_only_the_reference_offset(rng: np.random.Genera
     # The current recipe does read them: the perturbation is large enough to show.
     rel = np.abs(alyushin_pole(moved, "current") / alyushin_pole(states, "current") - 1)
     assert rel.min() > 1e-3
+
+
+def test_double_angle_trig_hand_values_and_sin_cos(rng: np.random.Generator) -> None:
+    angles = np.array([0.0, np.pi / 6, np.pi / 4, np.pi / 2, -np.pi / 3, np.pi, 3.0])
+    sin2, cos2 = double_angle_trig(angles)
+    hand_sin = [0.0, np.sqrt(3) / 2, 1.0, 0.0, -np.sqrt(3) / 2, 0.0, np.sin(6.0)]
+    hand_cos = [1.0, 0.5, 0.0, -1.0, -0.5, 1.0, np.cos(6.0)]
+    np.testing.assert_allclose(sin2, hand_sin, atol=1e-15)
+    np.testing.assert_allclose(cos2, hand_cos, atol=1e-15)
+    theta = rng.uniform(-4.0, 4.0, size=(50, 3))
+    sin2, cos2 = double_angle_trig(theta)
+    np.testing.assert_allclose(sin2, np.sin(2 * theta), atol=1e-15)
+    np.testing.assert_allclose(cos2, np.cos(2 * theta), atol=1e-15)

@@ -170,17 +170,20 @@ class MujocoEngine:
         m_energy = self._m_energy
         kinematics, com_pos, com_vel = mujoco.mj_kinematics, mujoco.mj_comPos, mujoco.mj_comVel
         make_m, energy_vel = mujoco.mj_makeM, mujoco.mj_energyVel
-        for p in range(P):
-            d.qpos[:] = qpos[p]
-            d.qvel[:] = qvel[p]
+        # MjData's arrays are views of its own buffers: taken once, each attribute access would build a new view.
+        d_qpos, d_qvel, d_energy = d.qpos, d.qvel, d.energy
+        d_xpos, d_xmat, d_cvel, d_sub = d.xpos, d.xmat, d.cvel, d.subtree_com
+        for p, (qpos_p, qvel_p) in enumerate(zip(qpos, qvel, strict=True)):
+            d_qpos[:] = qpos_p
+            d_qvel[:] = qvel_p
             kinematics(m, d)
             com_pos(m, d)
             com_vel(m, d)
-            xpos[p], xmat[p], cvel[p], sub[p] = d.xpos, d.xmat, d.cvel, d.subtree_com
+            xpos[p], xmat[p], cvel[p], sub[p] = d_xpos, d_xmat, d_cvel, d_sub
             if energies:
                 make_m(m_energy, d)
                 energy_vel(m_energy, d)
-                rigid[p] = d.energy[1]
+                rigid[p] = d_energy[1]
         idx = self._seg_body
         out = {
             "xpos": xpos[:, idx],

@@ -116,23 +116,34 @@ class PinocchioEngine:
         velocity of the segment point at the world origin, so a point ``p`` moves with
         ``v_O + ω × p``.  Per pose: one engine call, the world Jacobian ``data.J`` copied whole
         and the placements; the sum over supports is vectorized.  With ``energies``, the same
-        pass evaluates ``computeKineticEnergy`` on the model (``reported``) and on its
-        armature-free copy (``rigid``), the quantities of :meth:`kinetic_energy`.
+        pass evaluates ``computeKineticEnergy`` on the armature-free copy (``rigid`` of
+        :meth:`kinetic_energy`): ``forwardKinematics(q, v)`` once, then the energy and the
+        Jacobians from that pass (the copy has the model's kinematic tree).
         """
         m, d, idx = self.model, self._data, self._joints
         P = q.shape[0]
         H = np.empty((P, m.njoints, 4, 4))
         J = np.empty((P, 6, m.nv))
         rigid = np.empty(P) if energies else None
-        jacobians, kinetic = pin.computeJointJacobians, pin.computeKineticEnergy
+        jacobians, kinetic, kinematics = pin.computeJointJacobians, pin.computeKineticEnergy, pin.forwardKinematics
         m_rigid, d_rigid = self._m_rigid, self._d_rigid
         Jp = J if m.nv > 1 else J[..., 0]  # the bindings hand a 6 x 1 Jacobian out as a vector
-        for p in range(P):
-            jacobians(m, d, q[p])
-            Jp[p] = d.J
-            H[p] = [M.homogeneous for M in d.oMi.tolist()]
-            if energies:
-                rigid[p] = kinetic(m_rigid, d_rigid, q[p], v[p])
+        if energies:
+            # One kinematic pass on the armature-free copy (the same tree, so the same placements and
+            # Jacobian, bit for bit): forwardKinematics with v, then the energy and the Jacobians from it.
+            # data.J and data.oMi are handed out by reference: taken once, they follow every pose.
+            J_live, placements = d_rigid.J, d_rigid.oMi
+            for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
+                kinematics(m_rigid, d_rigid, q_p, v_p)
+                rigid[p] = kinetic(m_rigid, d_rigid)
+                jacobians(m_rigid, d_rigid)
+                Jp[p] = J_live
+                H[p] = [M.homogeneous for M in placements.tolist()]
+        else:
+            for p in range(P):
+                jacobians(m, d, q[p])
+                Jp[p] = d.J
+                H[p] = [M.homogeneous for M in d.oMi.tolist()]
         twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
         return H[:, idx], twists, rigid
 

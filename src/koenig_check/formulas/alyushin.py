@@ -14,9 +14,11 @@ from typing import Literal
 
 import numpy as np
 
-from koenig_check.formulas.angles import Convention, paper_angles
+from koenig_check.formulas import terms
+from koenig_check.formulas.angles import Convention, angle_components
 from koenig_check.formulas.cache import memo
 from koenig_check.formulas.exact import translational
+from koenig_check.kernels import components
 from koenig_check.segments import SegmentStates, second_moments
 
 Recipe = Literal["current", "paper"]
@@ -45,6 +47,30 @@ def rotational_energy_30(omega: np.ndarray, axial: np.ndarray, centrifugal: np.n
     i_yz, i_zx, i_xy = centrifugal[..., 0], centrifugal[..., 1], centrifugal[..., 2]
     axial_part = wx * wx * axial[..., 0] + wy * wy * axial[..., 1] + wz * wz * axial[..., 2]
     return 0.5 * axial_part - wy * wz * i_yz - wx * wz * i_zx - wy * wx * i_xy
+
+
+def rotational_energy_30_planes(
+    squares: np.ndarray, products: np.ndarray, axial: np.ndarray, centrifugal: np.ndarray
+) -> np.ndarray:
+    """:func:`rotational_energy_30` on component planes, with ``θ_i²`` and ``θ_i θ_j`` given (shared).
+
+    Parameters
+    ----------
+    squares : ndarray, shape (3, ...)
+        ``(θ_x², θ_y², θ_z²)``.
+    products : ndarray, shape (3, ...)
+        ``(θ_y θ_z, θ_x θ_z, θ_y θ_x)``.
+    axial : ndarray, shape (3, ...)
+        ``(J^x, J^y, J^z)``, broadcast against the planes.
+    centrifugal : ndarray, shape (3, ...)
+        ``(I_yz, I_zx, I_xy)``, broadcast against the planes.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    axial_part = squares[0] * axial[0] + squares[1] * axial[1] + squares[2] * axial[2]
+    return 0.5 * axial_part - products[0] * centrifugal[0] - products[1] * centrifugal[1] - products[2] * centrifugal[2]
 
 
 def centrifugal_of(S: np.ndarray) -> np.ndarray:
@@ -84,17 +110,39 @@ def centrifugal_update_33(
     ndarray, shape (P, B, 3)
         ``(I_yz, I_zx, I_xy)``.
     """
+    sin2, cos2 = trig if trig is not None else double_angle_trig(dtheta)
+    out = centrifugal_update_33_planes(S_ref, np.moveaxis(sin2, -1, 0), np.moveaxis(cos2, -1, 0))
+    return np.moveaxis(out, 0, -1)
+
+
+def centrifugal_update_33_planes(S_ref: np.ndarray, sin2: np.ndarray, cos2: np.ndarray) -> np.ndarray:
+    """:func:`centrifugal_update_33` on component planes: ``sin 2Δθ``, ``cos 2Δθ`` (3, P, B) → (3, P, B).
+
+    Parameters
+    ----------
+    S_ref : ndarray, shape (B, 3, 3)
+    sin2, cos2 : ndarray, shape (3, P, B)
+
+    Returns
+    -------
+    ndarray, shape (3, P, B)
+        ``(I_yz, I_zx, I_xy)``.
+    """
     ia, ib, ig = S_ref[:, 0, 0], S_ref[:, 1, 1], S_ref[:, 2, 2]
     iab, ibg, iag = S_ref[:, 0, 1], S_ref[:, 1, 2], S_ref[:, 0, 2]
-    sin2, cos2 = trig if trig is not None else double_angle_trig(dtheta)
-    i_xy = 0.5 * sin2[..., 2] * (ia - ib) + cos2[..., 2] * iab
-    i_yz = 0.5 * sin2[..., 0] * (ib - ig) + cos2[..., 0] * ibg
-    i_zx = 0.5 * sin2[..., 1] * (ig - ia) + cos2[..., 1] * iag
-    return np.stack([i_yz, i_zx, i_xy], axis=-1)
+    i_xy = 0.5 * sin2[2] * (ia - ib) + cos2[2] * iab
+    i_yz = 0.5 * sin2[0] * (ib - ig) + cos2[0] * ibg
+    i_zx = 0.5 * sin2[1] * (ig - ia) + cos2[1] * iag
+    return np.stack([i_yz, i_zx, i_xy])
 
 
 def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``(sin 2Δθ, cos 2Δθ)``, the trigonometric factors of eq. (33)/(36).
+
+    From ``t = tan Δθ``: ``sin 2Δθ = 2t / (1 + t²)``, ``cos 2Δθ = (1 − t²) / (1 + t²)`` (the same
+    numbers to rounding; numpy's float64 ``tan`` is about 20 times faster than its ``sin`` and
+    ``cos`` here, and one call replaces two).  Both are π-periodic, like ``tan``; at
+    ``Δθ = ±π/2`` the float ``tan`` is finite (about 1.6e16), giving ``(≈0, −1)``.
 
     Parameters
     ----------
@@ -104,10 +152,19 @@ def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     -------
     (ndarray, ndarray)
     """
-    return np.sin(2 * dtheta), np.cos(2 * dtheta)
+    t = np.tan(dtheta)
+    t2 = t * t
+    d = t2 + 1.0
+    t *= 2.0
+    t /= d  # sin 2Δθ
+    np.subtract(1.0, t2, out=t2)
+    t2 /= d  # cos 2Δθ
+    return t, t2
 
 
-def _shared_trig(states, convention: str, angles: np.ndarray | None, dtheta: np.ndarray):
+def _shared_trig(states, convention: str, angles: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """``(sin 2Δθ, cos 2Δθ)`` as planes (3, P, B), once per convention and shared state set."""
+    dtheta = angle_components(states, convention, angles)
     key = f"double_angle_trig:{convention}" + (f":{id(angles)}" if angles is not None else "")
     return memo(states, key, lambda: double_angle_trig(dtheta))
 
@@ -133,15 +190,6 @@ def shift_inertia(mass: np.ndarray, inertia_c: np.ndarray, offset: np.ndarray) -
     return inertia_c + mass[..., None, None] * (d2[..., None, None] * np.eye(3) - outer)
 
 
-def _moments(inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Axial moments (diagonal) and centrifugal moments (second-moment products).
-
-    The off-diagonal second moments are the negated off-diagonal inertia entries (eq. 27), exactly.
-    """
-    centrifugal = -np.stack([inertia[..., 1, 2], inertia[..., 0, 2], inertia[..., 0, 1]], axis=-1)
-    return np.diagonal(inertia, axis1=-2, axis2=-1), centrifugal
-
-
 def alyushin_current(states: SegmentStates) -> np.ndarray:
     """Eq. (38) with the axial (35) and centrifugal (27) moments of the current configuration.
 
@@ -153,8 +201,12 @@ def alyushin_current(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B)
     """
-    axial, centrifugal = memo(states, "moments_world", lambda: _moments(states.inertia_world()))
-    return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
+    inertia = terms.inertia_world6(states)
+    centrifugal = memo(states, "centrifugal_world", lambda: -inertia[3:])  # (I_yz, I_zx, I_xy), eq. (27)
+    rot = rotational_energy_30_planes(
+        terms.omega_squares(states), terms.omega_products(states), inertia[:3], centrifugal
+    )
+    return translational(states) + rot
 
 
 def alyushin_paper(
@@ -178,15 +230,14 @@ def alyushin_paper(
     -------
     ndarray, shape (P, B)
     """
-    dtheta = paper_angles(states, convention, angles)
     I_ref = states.inertia_world_ref()
-    axial = np.broadcast_to(np.diagonal(I_ref, axis1=-2, axis2=-1), states.omega.shape)
-    centrifugal = centrifugal_update_33(
-        memo(states, "second_moments_ref", lambda: second_moments(I_ref)),
-        dtheta,
-        _shared_trig(states, convention, angles, dtheta),
+    sin2, cos2 = _shared_trig(states, convention, angles)
+    centrifugal = centrifugal_update_33_planes(
+        memo(states, "second_moments_ref", lambda: second_moments(I_ref)), sin2, cos2
     )
-    return translational(states) + rotational_energy_30(states.omega, axial, centrifugal)
+    axial = np.diagonal(I_ref, axis1=-2, axis2=-1).T  # (3, B)
+    rot = rotational_energy_30_planes(terms.omega_squares(states), terms.omega_products(states), axial, centrifugal)
+    return translational(states) + rot
 
 
 def alyushin_pole(
@@ -220,24 +271,40 @@ def alyushin_pole(
     trans = memo(
         states,
         "translational_pole",
-        lambda: 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_pole, states.v_pole),
+        lambda: 0.5 * states.mass[None, :] * terms.squared_norm(components(states.v_pole)),
     )
     if recipe == "current":
-        I_P = shift_inertia(states.mass, states.inertia_world(), states.com - states.pole)
-        axial, centrifugal = _moments(I_P)
+        axial, centrifugal = memo(states, "pole_moments", lambda: _pole_moments(states))
     elif recipe == "paper":
-        dtheta = paper_angles(states, convention, angles)
         I_P_ref = memo(
             states,
             "pole_inertia_ref",
             lambda: shift_inertia(states.mass, states.inertia_world_ref(), states.com_ref - states.pole_ref),
         )
-        axial = np.broadcast_to(np.diagonal(I_P_ref, axis1=-2, axis2=-1), states.omega.shape)
-        centrifugal = centrifugal_update_33(
-            memo(states, "pole_second_moments_ref", lambda: second_moments(I_P_ref)),
-            dtheta,
-            _shared_trig(states, convention, angles, dtheta),
+        sin2, cos2 = _shared_trig(states, convention, angles)
+        centrifugal = centrifugal_update_33_planes(
+            memo(states, "pole_second_moments_ref", lambda: second_moments(I_P_ref)), sin2, cos2
         )
+        axial = np.diagonal(I_P_ref, axis1=-2, axis2=-1).T  # (3, B)
     else:
         raise ValueError(f"unknown recipe {recipe!r}; choose one of {RECIPES}")
-    return trans + rotational_energy_30(states.omega, axial, centrifugal)
+    return trans + rotational_energy_30_planes(
+        terms.omega_squares(states), terms.omega_products(states), axial, centrifugal
+    )
+
+
+def _pole_moments(states: SegmentStates) -> tuple[np.ndarray, np.ndarray]:
+    """Axial and centrifugal moments about the pole at the current pose (eqs. 28, 27), as planes (3, P, B).
+
+    The parallel-axis theorem of :func:`shift_inertia` entry by entry on the six world components:
+    ``J_P^i = I_ii + m(|d|² − d_i²)``, ``I_ij(P) = −(I_ij + m(−d_i d_j))`` with ``d = C − P``.
+    """
+    inertia = terms.inertia_world6(states)
+    d = components(states.com - states.pole)
+    m = states.mass
+    d2 = terms.squared_norm(d)
+    axial = np.stack([inertia[i] + m * (d2 - d[i] * d[i]) for i in range(3)])
+    centrifugal = np.stack(
+        [-(inertia[3 + n] + m * -(d[i] * d[j])) for n, (i, j) in enumerate(((1, 2), (0, 2), (0, 1)))]
+    )
+    return axial, centrifugal

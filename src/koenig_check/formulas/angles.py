@@ -20,7 +20,8 @@ from typing import Literal
 import numpy as np
 
 from koenig_check.formulas.cache import SharedStates, memo
-from koenig_check.kernels import times_transpose
+from koenig_check.formulas.terms import delta_rotation_components
+from koenig_check.kernels import components, times_transpose
 from koenig_check.segments import SegmentStates
 
 States = SegmentStates | SharedStates
@@ -94,23 +95,37 @@ def rotvec_of(R: np.ndarray) -> np.ndarray:
     ndarray, shape (..., 3)
     """
     R = np.asarray(R, dtype=float)
-    r = R.reshape(-1, 9)
-    skew = np.stack([r[:, 7] - r[:, 5], r[:, 2] - r[:, 6], r[:, 3] - r[:, 1]], axis=-1)  # 2 sin θ u
-    two_sin = np.linalg.norm(skew, axis=-1)
-    cos = 0.5 * (r[:, 0] + r[:, 4] + r[:, 8] - 1.0)
+    out = rotvec_components(components(R.reshape(*R.shape[:-2], 9)))
+    return np.moveaxis(out, 0, -1)
+
+
+def rotvec_components(r: np.ndarray) -> np.ndarray:
+    """:func:`rotvec_of` on component planes: row-major entries (9, ...) → rotation vectors (3, ...).
+
+    Parameters
+    ----------
+    r : ndarray, shape (9, ...)
+
+    Returns
+    -------
+    ndarray, shape (3, ...)
+    """
+    skew = np.stack([r[7] - r[5], r[2] - r[6], r[3] - r[1]])  # 2 sin θ u
+    two_sin = np.sqrt(skew[0] * skew[0] + skew[1] * skew[1] + skew[2] * skew[2])
+    cos = 0.5 * (r[0] + r[4] + r[8] - 1.0)
     angle = np.arctan2(0.5 * two_sin, cos)
     small = angle <= 1e-3
     a2 = angle**2
     with np.errstate(divide="ignore", invalid="ignore"):
         scale = np.where(small, 0.5 + a2 / 12.0 + 7.0 * a2**2 / 720.0, angle / two_sin)  # θ / (2 sin θ)
-    out = scale[:, None] * skew
+    out = skew * scale
     hard = (two_sin < 0.2) & (cos < 0)  # θ within ~6° of π
     if hard.any():
-        q = quaternion_of(r[hard].reshape(-1, 3, 3))
+        q = quaternion_of(np.moveaxis(r[:, hard], 0, -1).reshape(-1, 3, 3))
         v, w = q[:, :3], q[:, 3]
         half = np.arctan2(np.linalg.norm(v, axis=-1), w)
-        out[hard] = (2.0 * half / np.sin(half))[:, None] * v
-    return out.reshape(*R.shape[:-2], 3)
+        out[:, hard] = ((2.0 * half / np.sin(half))[:, None] * v).T
+    return out
 
 
 def euler_xyz_of(R: np.ndarray) -> np.ndarray:
@@ -127,14 +142,29 @@ def euler_xyz_of(R: np.ndarray) -> np.ndarray:
         set to 0 there.
     """
     R = np.asarray(R, dtype=float)
-    b = np.arctan2(-R[..., 2, 0], np.hypot(R[..., 0, 0], R[..., 1, 0]))
-    a = np.arctan2(R[..., 2, 1], R[..., 2, 2])
-    c = np.arctan2(R[..., 1, 0], R[..., 0, 0])
-    lock = np.hypot(R[..., 0, 0], R[..., 1, 0]) < 1e-12
+    return np.moveaxis(euler_xyz_components(components(R.reshape(*R.shape[:-2], 9))), 0, -1)
+
+
+def euler_xyz_components(r: np.ndarray) -> np.ndarray:
+    """:func:`euler_xyz_of` on component planes: row-major entries (9, ...) → ``(a, b, c)`` (3, ...).
+
+    Parameters
+    ----------
+    r : ndarray, shape (9, ...)
+
+    Returns
+    -------
+    ndarray, shape (3, ...)
+    """
+    h = np.hypot(r[0], r[3])
+    b = np.arctan2(-r[6], h)
+    a = np.arctan2(r[7], r[8])
+    c = np.arctan2(r[3], r[0])
+    lock = h < 1e-12
     if np.any(lock):  # only a - c (b > 0) or a + c (b < 0) is defined: keep c = 0
-        a = np.where(lock, np.arctan2(-R[..., 1, 2], R[..., 1, 1]), a)
+        a = np.where(lock, np.arctan2(-r[5], r[4]), a)
         c = np.where(lock, 0.0, c)
-    return np.stack([a, b, c], axis=-1)
+    return np.stack([a, b, c])
 
 
 def rotvec_angles(states: States) -> np.ndarray:
@@ -148,7 +178,7 @@ def rotvec_angles(states: States) -> np.ndarray:
     -------
     ndarray, shape (P, B, 3)
     """
-    return memo(states, "rotvec_angles", lambda: rotvec_of(delta_rotation(states)))
+    return np.moveaxis(angle_components(states, "rotvec"), 0, -1)
 
 
 def euler_xyz_angles(states: States) -> np.ndarray:
@@ -163,7 +193,29 @@ def euler_xyz_angles(states: States) -> np.ndarray:
     ndarray, shape (P, B, 3)
         ``(a, b, c)`` with ``ΔR = R_z(c) R_y(b) R_x(a)``.
     """
-    return memo(states, "euler_xyz_angles", lambda: euler_xyz_of(delta_rotation(states)))
+    return np.moveaxis(angle_components(states, "euler_xyz"), 0, -1)
+
+
+def angle_components(states: States, convention: Convention, angles: np.ndarray | None = None) -> np.ndarray:
+    """:func:`paper_angles` as component planes (3, P, B), computed once per shared state set.
+
+    Parameters
+    ----------
+    states : SegmentStates
+    convention : {"rotvec", "euler_xyz", "integrated"}
+    angles : ndarray, shape (P, B, 3), optional
+        Required for, and only for, ``integrated``.
+
+    Returns
+    -------
+    ndarray, shape (3, P, B)
+    """
+    if convention == "rotvec" and angles is None:
+        return memo(states, "rotvec_c", lambda: rotvec_components(delta_rotation_components(states)))
+    if convention == "euler_xyz" and angles is None:
+        return memo(states, "euler_xyz_c", lambda: euler_xyz_components(delta_rotation_components(states)))
+    dtheta = paper_angles(states, convention, angles)
+    return memo(states, f"angles_c:{convention}:{id(dtheta)}", lambda: components(dtheta))
 
 
 def integrate_angular_velocity(omega: np.ndarray, times: np.ndarray) -> np.ndarray:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from koenig_check.formulas import terms
 from koenig_check.formulas.cache import memo
 from koenig_check.segments import SegmentStates
 
@@ -19,11 +20,7 @@ def translational(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B)
     """
-    return memo(
-        states,
-        "translational",
-        lambda: 0.5 * states.mass[None, :] * np.einsum("pbi,pbi->pb", states.v_com, states.v_com),
-    )
+    return terms.translational(states)
 
 
 def body_angular_velocity(states: SegmentStates) -> np.ndarray:
@@ -43,7 +40,9 @@ def body_angular_velocity(states: SegmentStates) -> np.ndarray:
 def exact(states: SegmentStates) -> np.ndarray:
     """Kinetic energy ``½ m v_C² + ½ ω·I_C ω`` with the full current inertia tensor.
 
-    This is the textbook (König) decomposition about the centre of mass with the
+    Evaluated in world axes, ``½ Σ_i I_ii ω_i² + Σ_{i<j} I_ij ω_i ω_j``, from the six world
+    inertia components shared with the other formulas.  This is the textbook (König) decomposition
+    about the centre of mass with the
     complete central inertia tensor ``I_C = R I_body R^T``, i.e. the encyclopedia's
     ``T = ½ M V·V + ½ ω·[I_R]ω`` (second seed).  It is what the paper's eq. (10)
     integrates to for a rigid body.
@@ -57,7 +56,6 @@ def exact(states: SegmentStates) -> np.ndarray:
     ndarray, shape (P, B)
         Per-segment energy; the total is the sum over the last axis.
     """
-    w_body = body_angular_velocity(states)
-    I_w = (states.inertia_body[None] @ w_body[..., None])[..., 0]
-    rot = 0.5 * np.einsum("pbi,pbi->pb", w_body, I_w)
+    inertia, prod = terms.inertia_world6(states), terms.omega_products(states)
+    rot = 0.5 * terms.axial_part_world(states) + (prod[0] * inertia[3] + prod[1] * inertia[4] + prod[2] * inertia[5])
     return translational(states) + rot

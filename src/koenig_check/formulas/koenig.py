@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from koenig_check.formulas.exact import body_angular_velocity, translational
+from koenig_check.formulas import terms
+from koenig_check.formulas.exact import translational
 from koenig_check.segments import SegmentStates
 
 
@@ -25,8 +26,7 @@ def koenig_world(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B)
     """
-    J = np.diagonal(states.inertia_world(), axis1=-2, axis2=-1)
-    return translational(states) + 0.5 * np.einsum("pbi,pbi->pb", states.omega**2, J)
+    return translational(states) + 0.5 * terms.axial_part_world(states)
 
 
 def principal_axes(inertia_body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -62,5 +62,10 @@ def koenig_principal(states: SegmentStates) -> np.ndarray:
     ndarray, shape (P, B)
     """
     moments, axes = principal_axes(states.inertia_body)
-    w_principal = np.einsum("bji,pbj->pbi", axes, body_angular_velocity(states))
-    return translational(states) + 0.5 * np.einsum("pbi,bi->pb", w_principal**2, moments)
+    R, w = terms.rotation_components(states), terms.omega_components(states)
+    w_body = [R[i] * w[0] + R[3 + i] * w[1] + R[6 + i] * w[2] for i in range(3)]  # Rᵀ ω
+    rot = 0.0
+    for k in range(3):
+        w_k = axes[:, 0, k] * w_body[0] + axes[:, 1, k] * w_body[1] + axes[:, 2, k] * w_body[2]
+        rot = rot + w_k * w_k * moments[:, k]
+    return translational(states) + 0.5 * rot

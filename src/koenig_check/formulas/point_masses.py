@@ -113,4 +113,9 @@ def point_masses(states: SegmentStates, point_velocities: np.ndarray | None = No
         expected = (states.n_poses, states.n_segments, POINTS_PER_SEGMENT, 3)
         if v.shape != expected:
             raise ValueError(f"point_velocities: shape {v.shape}, expected {expected}")
-    return 0.5 * (np.einsum("pbki,pbki->pbk", v, v) * masses[None]).sum(axis=-1)
+    planes = np.moveaxis(v, (2, 3), (0, 1))  # (K, 3, P, B): contiguous for the engines' point velocities
+    total = 0.0
+    for k in range(planes.shape[0]):
+        vk = planes[k]
+        total = total + masses[:, k] * (vk[0] * vk[0] + vk[1] * vk[1] + vk[2] * vk[2])
+    return 0.5 * total
