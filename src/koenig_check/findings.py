@@ -174,9 +174,16 @@ def of_kind(findings: Iterable[Finding], *kinds: Kind) -> list[Finding]:
     return [f for f in findings if f.kind in kinds]
 
 
+#: A sequence value longer than this is shown by its first items and a count (the record keeps all).
+SHOWN_ITEMS = 6
+
+
 def _fmt(value: Any) -> str:
     if isinstance(value, float):
         return f"{value:.6g}"
+    if isinstance(value, (tuple, list)) and len(value) > SHOWN_ITEMS:
+        head = ", ".join(repr(v) if isinstance(v, str) else _fmt(v) for v in value[: SHOWN_ITEMS - 2])
+        return f"({head}, +{len(value) - SHOWN_ITEMS + 2} more)"
     return str(value)
 
 
