@@ -53,7 +53,7 @@ def _bare(model: str, n_poses: int) -> None:
     from koenig_check.engines import load_model
     from koenig_check.poses import random_poses
 
-    pair = load_model(model, allow_coupled=True)
+    pair = load_model(model)
     poses = random_poses(pair.mujoco.model, n_poses, seed=0)
     m = pair.mujoco.model
     m.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
@@ -74,7 +74,7 @@ def _api(model: str, n_poses: int, jobs: int) -> None:
     import koenig_check
 
     options = {"jobs": jobs} if jobs > 1 else {}
-    check = koenig_check.compare(model, n_poses=n_poses, seed=0, allow_coupled=True, debug=True, **options)
+    check = koenig_check.compare(model, n_poses=n_poses, seed=0, debug=True, **options)
     if not check.comparisons:
         raise SystemExit(f"{model}: {check.reason()}")
 
@@ -83,7 +83,7 @@ def _report(model: str, n_poses: int) -> None:
     from koenig_check.cli import main
 
     with tempfile.TemporaryDirectory() as out:
-        code = main(["compare", model, "--poses", str(n_poses), "--allow-coupled", "--out", out])
+        code = main(["compare", model, "--poses", str(n_poses), "--out", out])
         size = sum(f.stat().st_size for f in Path(out).iterdir())
     print(json.dumps({"exit": code, "report_bytes": size}), file=sys.stderr)
 
