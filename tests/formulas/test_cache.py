@@ -75,3 +75,16 @@ def test_numpy_euler_angles_match_scipy(rng: np.random.Generator) -> None:
     for b in (np.pi / 2, -np.pi / 2):
         lock = Rotation.from_euler("xyz", [a, b, c]).as_matrix()
         np.testing.assert_allclose(Rotation.from_euler("xyz", euler_xyz_of(lock)).as_matrix(), lock, atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["alyushin_paper:integrated", "alyushin_pole:paper:integrated"])
+def test_other_integrated_angles_on_the_same_cache_are_not_served_stale(rng: np.random.Generator, name: str) -> None:
+    """Two different angle sets given as temporaries (lists): the second must not get the first's entries."""
+    states = random_states(rng, n_poses=12, n_segments=3)
+    first = integrate_angular_velocity(states.omega, np.linspace(0.0, 1.0, states.n_poses))
+    second = 2.0 * first
+    shared = SharedStates(states)
+    for angles in (first, second, first):
+        np.testing.assert_array_equal(
+            FORMULAS[name](shared, angles=angles.tolist()), FORMULAS[name](states, angles=angles)
+        )

@@ -16,7 +16,7 @@ import numpy as np
 
 from koenig_check.formulas import terms
 from koenig_check.formulas.angles import Convention, angle_components
-from koenig_check.formulas.cache import memo
+from koenig_check.formulas.cache import memo, memo_of
 from koenig_check.formulas.exact import translational
 from koenig_check.kernels import components
 from koenig_check.segments import SegmentStates, second_moments
@@ -165,8 +165,9 @@ def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _shared_trig(states, convention: str, angles: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
     """``(sin 2Δθ, cos 2Δθ)`` as planes (3, P, B), once per convention and shared state set."""
     dtheta = angle_components(states, convention, angles)
-    key = f"double_angle_trig:{convention}" + (f":{id(angles)}" if angles is not None else "")
-    return memo(states, key, lambda: double_angle_trig(dtheta))
+    if angles is None:
+        return memo(states, f"double_angle_trig:{convention}", lambda: double_angle_trig(dtheta))
+    return memo_of(states, f"double_angle_trig:{convention}:given", angles, lambda: double_angle_trig(dtheta))
 
 
 def shift_inertia(mass: np.ndarray, inertia_c: np.ndarray, offset: np.ndarray) -> np.ndarray:

@@ -19,7 +19,7 @@ from typing import Literal
 
 import numpy as np
 
-from koenig_check.formulas.cache import SharedStates, memo
+from koenig_check.formulas.cache import SharedStates, memo, memo_of
 from koenig_check.formulas.terms import delta_rotation_components
 from koenig_check.kernels import components, times_transpose
 from koenig_check.segments import SegmentStates
@@ -215,7 +215,7 @@ def angle_components(states: States, convention: Convention, angles: np.ndarray 
     if convention == "euler_xyz" and angles is None:
         return memo(states, "euler_xyz_c", lambda: euler_xyz_components(delta_rotation_components(states)))
     dtheta = paper_angles(states, convention, angles)
-    return memo(states, f"angles_c:{convention}:{id(dtheta)}", lambda: components(dtheta))
+    return memo_of(states, f"angles_c:{convention}:given", angles, lambda: components(dtheta))
 
 
 def integrate_angular_velocity(omega: np.ndarray, times: np.ndarray) -> np.ndarray:

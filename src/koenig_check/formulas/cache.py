@@ -83,3 +83,30 @@ def memo(states: SegmentStates | SharedStates, key: str, compute: Callable[[], A
     if isinstance(states, SharedStates):
         return states.memo(key, compute)
     return compute()
+
+
+def memo_of(states: SegmentStates | SharedStates, key: str, source: Any, compute: Callable[[], Any]) -> Any:
+    """Like :func:`memo`, for a value derived from a caller's array ``source`` (integrated angles).
+
+    The entry keeps ``source`` itself and is used only while the same object is passed again: an
+    ``id()`` alone can be reused by a later array once the first is freed.
+
+    Parameters
+    ----------
+    states : SegmentStates or SharedStates
+    key : str
+        Name of the derived array.
+    source : object
+        The array the value is derived from.
+    compute : callable
+
+    Returns
+    -------
+    object
+    """
+    if not isinstance(states, SharedStates):
+        return compute()
+    entry = states.memo(key, lambda: (source, compute()))
+    if entry[0] is not source:
+        entry = states._memo[key] = (source, compute())
+    return entry[1]
