@@ -305,3 +305,8 @@ def test_pose_file_entirely_at_rest_is_refused_and_partial_rest_is_noted(tmp_pat
     np.savetxt(path, rows, delimiter=",")
     poses = load_pose_file(path, gimbal)
     assert any("2 pose(s) at rest (first: row 1)" in n for n in poses.notes)
+
+
+def test_a_failed_model_is_named_once_in_the_reason() -> None:
+    check = compare(["my_robot.urdf", "gimbal.xml"], n_poses=2, formulas=["exact"])
+    assert check.reason() == "my_robot.urdf: no such file (`koenig-check models` lists every name)"

@@ -78,7 +78,7 @@ class CrossCheck:
 
     def reason(self) -> str:
         """One line saying why :attr:`ok` is False (empty when it is True)."""
-        parts = [f"{m}: {r}" for m, r in self.failures]
+        parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in self.failures]  # once, not twice
         for comparison, parity in zip(self.comparisons, self.parities, strict=True):
             lead = tiebreak.lead_line(comparison.findings)
             if lead or not parity.agrees:
