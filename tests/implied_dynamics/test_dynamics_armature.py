@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from dynamics_helpers import states_with_accelerations
@@ -56,3 +58,13 @@ def test_engines_with_different_armature_agree_once_each_removes_its_own():
     qpos, qvel, qacc = states_with_accelerations(pair, 3)
     result = dynamics_of_pair(pair, qpos, qvel, qacc, formulas=["exact"])
     assert result.ok, result.reason()
+
+
+def test_a_one_dof_model_goes_through_every_route() -> None:
+    # Pinocchio's bindings hand a one-dof model's frame Jacobian out as a (6,) vector, not (6, 1).
+    import koenig_check
+
+    path = Path(__file__).resolve().parents[1] / "engines" / "models" / "hinge_armature.xml"
+    dyn = koenig_check.dynamics(path, n_poses=3, formulas=["exact"])
+    assert {e.route for e in dyn.errors if e.formula == "exact"} >= {"kane@mujoco", "kane@pinocchio"}
+    assert dyn.ok

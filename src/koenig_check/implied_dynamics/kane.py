@@ -107,7 +107,8 @@ def kane_pinocchio(engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.nda
         pin.forwardKinematics(model, data, q[p], v[p], a[p])
         for i in joints:
             Y = model.inertias[i]
-            J = pin.getFrameJacobian(model, data, i, placements[i], world)
+            # a one-dof model's Jacobian comes out of the bindings as a (6,) vector, not (6, 1)
+            J = np.reshape(pin.getFrameJacobian(model, data, i, placements[i], world), (6, nv))
             acc = pin.getFrameClassicalAcceleration(model, data, i, placements[i], world)
             R = data.oMi[i].rotation
             inertia = R @ Y.inertia @ R.T
