@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import numpy as np
 import pytest
 
 import koenig_check
@@ -34,3 +37,14 @@ def test_drake_not_run_where_the_engines_agree_by_default() -> None:
     assert any(
         f.kind is Kind.ENGINE_NOT_USED and f.summary.startswith("Drake not used: not needed") for f in dyn.findings
     )
+
+
+def test_drake_reflected_inertia_is_taken_out_of_its_mass_matrix_and_forces() -> None:
+    # Drake alone reads the rotor inertia (0.5 kg m² × gear ratio 3² = 4.5 kg m² reflected on 'spin'); with it
+    # taken out, Drake's rigid M and Q* equal MuJoCo's, which has no armature here.
+    path = Path(__file__).resolve().parents[1] / "models" / "tiebreak" / "rotor_inertia.urdf"
+    dyn = koenig_check.dynamics(path, n_poses=3, formulas=["exact"], engines=ALL)
+    np.testing.assert_allclose(dyn.engine_mass["drake"], dyn.engine_mass["mujoco"], rtol=1e-12)
+    np.testing.assert_allclose(dyn.engine_forces["drake"], dyn.engine_forces["mujoco"], rtol=1e-12, atol=1e-12)
+    raw = dyn.engine_mass["drake"][:, 0, 0] + 4.5  # by hand: the reflected inertia the engine's M carries
+    assert np.all(raw > dyn.engine_mass["mujoco"][:, 0, 0] + 4.4)

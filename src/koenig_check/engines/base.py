@@ -45,6 +45,14 @@ class EngineModel(Protocol):
         """Return generalized forces (P, nv), gravity off, canonical coordinates."""
         ...
 
+    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return the armature part (P, nv, nv) of :meth:`mass_matrix`."""
+        ...
+
+    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return the armature part (P, nv) of :meth:`inverse_dynamics`."""
+        ...
+
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by joint kind."""
         ...

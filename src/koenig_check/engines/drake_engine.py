@@ -341,6 +341,37 @@ class DrakeEngine:
                 out[p.vadr] = self._reflected[p.dv]
         return out
 
+    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
+
+        The reflected inertia :meth:`armature_per_dof` on the diagonal.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
+        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
+        return np.broadcast_to(np.diag(self.armature_per_dof()), (qpos.shape[0], self.nv, self.nv))
+
+    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel, qacc : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
+        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
+        return qacc * self.armature_per_dof()
+
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Drake joint type.
 

@@ -398,6 +398,36 @@ class MujocoEngine:
             out[p] = d.qfrc_inverse
         return out
 
+    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
+        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
+        arm = np.diag(np.asarray(self.model.dof_armature, dtype=float))
+        return np.broadcast_to(arm, (qpos.shape[0], self.nv, self.nv))
+
+    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel, qacc : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
+        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
+        return qacc * np.asarray(self.model.dof_armature, dtype=float)
+
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by MuJoCo joint type.
 

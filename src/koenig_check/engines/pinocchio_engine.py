@@ -299,6 +299,41 @@ class PinocchioEngine:
             tau[p] = pin.rnea(self._m_dyn, self._d_dyn, q[p], v[p], a[p])
         return self.state_map.force_to_canonical(qpos, tau)
 
+    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
+
+        ``Tᵀ diag(armature) T`` with ``v = T q̇`` the state map's velocity matrix.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
+        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
+        arm = np.diag(np.asarray(self.model.armature, dtype=float))
+        return self.state_map.matrix_to_canonical(qpos, np.broadcast_to(arm, (qpos.shape[0], *arm.shape)))
+
+    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
+
+        ``Tᵀ (armature ⊙ a)`` with ``a`` Pinocchio's acceleration.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel, qacc : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
+        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
+        a = self.state_map.acceleration_to_pinocchio(qpos, qvel, qacc)
+        return self.state_map.force_to_canonical(qpos, a * np.asarray(self.model.armature, dtype=float))
+
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Pinocchio joint model.
 

@@ -12,31 +12,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-import numpy as np
-
 from koenig_check.implied_dynamics.errors import discrepancy
-
-
-def drake_rigid_dynamics(
-    engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Drake's mass matrix and ``Q* = −(τ − τ_reflected)`` with its reflected inertia taken out.
-
-    Parameters
-    ----------
-    engine : DrakeEngine
-    qpos : ndarray, shape (P, nq)
-    qvel, qacc : ndarray, shape (P, nv)
-
-    Returns
-    -------
-    M : ndarray, shape (P, nv, nv)
-    Q : ndarray, shape (P, nv)
-    """
-    reflected = engine.armature_per_dof()
-    M = engine.mass_matrix(qpos) - np.diag(reflected)
-    Q = -(engine.inverse_dynamics(qpos, qvel, qacc) - qacc * reflected)
-    return M, Q
+from koenig_check.implied_dynamics.reference import rigid_inertia_forces, rigid_mass_matrix
 
 
 def add_drake_column(result: Any, pair: Any, engines: Sequence[str] | None, parity_label: str) -> None:
@@ -64,7 +41,8 @@ def add_drake_column(result: Any, pair: Any, engines: Sequence[str] | None, pari
     result.notes += [f.message() for f in drake.findings]
     if not drake.used:
         return
-    M, Q = drake_rigid_dynamics(drake.engine, result.qpos, result.qvel, result.qacc)
+    M = rigid_mass_matrix(drake.engine, result.qpos)
+    Q = rigid_inertia_forces(drake.engine, result.qpos, result.qvel, result.qacc)
     result.engine_mass["drake"], result.engine_forces["drake"] = M, Q
     for (name, route), r in list(result.routes.items()):
         result.errors.append(discrepancy(r.M, M, name, route, "drake"))

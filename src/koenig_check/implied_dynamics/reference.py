@@ -9,7 +9,10 @@ armature array (never from the other engine):
 * MuJoCo: ``M − diag(dof_armature)``, ``τ − dof_armature ⊙ q̈``;
 * Pinocchio: ``M − Tᵀ diag(armature) T`` and ``τ − Tᵀ (armature ⊙ a)`` with ``v = T q̇`` the state
   map's velocity matrix and ``a`` Pinocchio's acceleration (exact also for free joints, whose
-  linear velocity is in a different frame in the two engines).
+  linear velocity is in a different frame in the two engines);
+* Drake: its actuators' reflected inertia, the same way as MuJoCo's armature.
+
+Each adapter says what its armature contributes (``armature_matrix``, ``armature_forces``).
 
 ``inverse_dynamics`` of both adapters already runs with gravity off, and MuJoCo's with constraints,
 springs, dampers and fluid forces disabled; Pinocchio's ``rnea`` has no passive forces.  The
@@ -23,60 +26,19 @@ from typing import Any
 import numpy as np
 
 
-def armature_matrix(engine: Any, qpos: np.ndarray) -> np.ndarray:
-    """The armature part of an engine's mass matrix, in canonical coordinates.
-
-    Parameters
-    ----------
-    engine : MujocoEngine or PinocchioEngine
-    qpos : ndarray, shape (P, nq)
-
-    Returns
-    -------
-    ndarray, shape (P, nv, nv)
-    """
-    qpos = np.atleast_2d(np.asarray(qpos, dtype=float))
-    P = qpos.shape[0]
-    if engine.engine == "mujoco":
-        return np.broadcast_to(np.diag(np.asarray(engine.model.dof_armature, dtype=float)), (P, engine.nv, engine.nv))
-    arm = np.diag(np.asarray(engine.model.armature, dtype=float))
-    return engine.state_map.matrix_to_canonical(qpos, np.broadcast_to(arm, (P, *arm.shape)))
-
-
-def armature_forces(engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-    """The armature part of an engine's inverse dynamics, in canonical coordinates.
-
-    Parameters
-    ----------
-    engine : MujocoEngine or PinocchioEngine
-    qpos : ndarray, shape (P, nq)
-    qvel, qacc : ndarray, shape (P, nv)
-
-    Returns
-    -------
-    ndarray, shape (P, nv)
-    """
-    qacc = np.atleast_2d(np.asarray(qacc, dtype=float))
-    if engine.engine == "mujoco":
-        return qacc * np.asarray(engine.model.dof_armature, dtype=float)
-    sm = engine.state_map
-    a = sm.acceleration_to_pinocchio(qpos, qvel, qacc)
-    return sm.force_to_canonical(qpos, a * np.asarray(engine.model.armature, dtype=float))
-
-
 def rigid_mass_matrix(engine: Any, qpos: np.ndarray) -> np.ndarray:
     """The engine's mass matrix without its armature.
 
     Parameters
     ----------
-    engine : MujocoEngine or PinocchioEngine
+    engine : MujocoEngine, PinocchioEngine or DrakeEngine
     qpos : ndarray, shape (P, nq)
 
     Returns
     -------
     ndarray, shape (P, nv, nv)
     """
-    return engine.mass_matrix(qpos) - armature_matrix(engine, qpos)
+    return engine.mass_matrix(qpos) - engine.armature_matrix(qpos)
 
 
 def rigid_inertia_forces(engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
@@ -86,7 +48,7 @@ def rigid_inertia_forces(engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: 
 
     Parameters
     ----------
-    engine : MujocoEngine or PinocchioEngine
+    engine : MujocoEngine, PinocchioEngine or DrakeEngine
     qpos : ndarray, shape (P, nq)
     qvel, qacc : ndarray, shape (P, nv)
 
@@ -95,4 +57,4 @@ def rigid_inertia_forces(engine: Any, qpos: np.ndarray, qvel: np.ndarray, qacc: 
     ndarray, shape (P, nv)
     """
     tau = engine.inverse_dynamics(qpos, qvel, qacc)
-    return -(tau - armature_forces(engine, qpos, qvel, qacc))
+    return -(tau - engine.armature_forces(qpos, qvel, qacc))
