@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from koenig_check.analytic import random_states
 from koenig_check.segments import SegmentStates
+
+#: The comparison scripts live in ``comparisons/`` (scripts, not a package): their shared corpus
+#: definitions (``common``) are importable from the tests.
+COMPARISONS = Path(__file__).resolve().parents[1] / "comparisons"
+if str(COMPARISONS) not in sys.path:
+    sys.path.insert(0, str(COMPARISONS))
 
 
 @pytest.fixture(autouse=True, scope="session")

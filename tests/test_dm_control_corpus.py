@@ -4,10 +4,10 @@ engines' own mass matrices) and a disagreement carries a root cause or a per-seg
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from common import dm_control_corpus, dm_control_root
 
 import koenig_check
 from independent_energy import engines_agree
@@ -15,27 +15,9 @@ from koenig_check.engines import load_model
 from koenig_check.findings import Kind, KoenigCheckError
 from koenig_check.parity import import_parity
 
-dm_control = pytest.importorskip("dm_control")
-ROOT = Path(dm_control.__file__).resolve().parent
-GLOBS = (
-    "suite/*.xml",
-    "locomotion/walkers/assets/**/*.xml",
-    "locomotion/soccer/assets/**/*.xml",
-    "third_party/**/*.xml",
-    "mujoco/testing/assets/*.xml",
-)
-
-
-def _is_model(path: Path) -> bool:
-    """An MJCF file with a <worldbody> (not a schema, defaults-only or assets-only fragment)."""
-    try:
-        root = ET.parse(path).getroot()
-    except ET.ParseError:
-        return False
-    return root.tag == "mujoco" and root.find("worldbody") is not None
-
-
-CORPUS = sorted({p for g in GLOBS for p in ROOT.glob(g) if _is_model(p)})
+pytest.importorskip("dm_control")
+ROOT = dm_control_root()
+CORPUS = dm_control_corpus()
 
 
 def test_corpus_is_found() -> None:
