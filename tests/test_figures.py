@@ -83,3 +83,28 @@ def test_trajectory_title_says_gravity_off(drawn, tmp_path: Path) -> None:
     comp = compare_model("gimbal.xml", pose_kind="trajectory", n_poses=20, duration=0.5)
     figures.trajectory_figure(comp, ("exact", "koenig_world"), tmp_path / "t.png", rtol=1e-9)
     assert "gravity off" in _title(drawn[0])
+
+
+def test_boxes_span_the_quartiles_and_whiskers_reach_min_and_max(two_models, drawn, tmp_path: Path) -> None:
+    from matplotlib.collections import LineCollection, PolyCollection
+
+    comp = two_models.comparisons[0]
+    figures.error_distribution_figure([comp], tmp_path / "a.png", rtol=1e-9)
+    ax = drawn[0].axes[0]
+    labels = [t.get_text() for t in ax.get_yticklabels()]
+    row = labels.index("koenig_world")
+    # Independent route: the relative errors of the records, not the sketch the figure reads.
+    rows = comp.records.where(formula="koenig_world", source="mujoco", reference="mujoco", scope="total")
+    err = np.abs(rows["value"] - rows["reference_value"]) / np.abs(rows["reference_value"])
+    lo, q1, med, q3, hi = np.log10(np.quantile(err, [0, 0.25, 0.5, 0.75, 1]))
+    polys = [c for c in ax.collections if isinstance(c, PolyCollection)]
+    boxes = [p.vertices for c in polys for p in c.get_paths()]
+    middle = [(v[:, 1].min() + v[:, 1].max()) / 2 for v in boxes]
+    box = boxes[int(np.argmin(np.abs(np.array(middle) - (row - 0.18))))]  # mujoco's box sits above the row
+    assert abs((box[:, 1].min() + box[:, 1].max()) / 2 - (row - 0.18)) < 1e-9
+    np.testing.assert_allclose([box[:, 0].min(), box[:, 0].max()], [q1, q3], atol=1e-9)
+    segments = [s for c in ax.collections if isinstance(c, LineCollection) for s in c.get_segments()]
+    at_row = [s for s in segments if np.allclose(s[:, 1].mean(), row - 0.18)]
+    xs = np.concatenate([s[:, 0] for s in at_row])
+    np.testing.assert_allclose([xs.min(), xs.max()], [lo, hi], atol=1e-9)
+    assert any(np.allclose(s[:, 0], med, atol=1e-9) for s in at_row)  # the median line

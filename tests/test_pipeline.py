@@ -155,15 +155,23 @@ def test_record_files_are_parquet_with_categorical_columns(tmp_path: Path) -> No
     code = main(["compare", str(FREE_BALL_HINGE), "--poses", "30", "--records", "segments", "--out", str(out)])
     assert code == 0
     table = pq.read_table(out / "records.parquet")
-    assert table.column_names == list(RECORD_FIELDS)
+    # The file stores value and reference; the error columns are derived when read.
+    assert table.column_names == [k for k in RECORD_FIELDS if k not in ("abs_error", "rel_error", "signed_error")]
     for name in ("model", "formula", "source", "reference", "scope"):
         assert str(table.schema.field(name).type).startswith("dictionary<"), name
+    assert b"koenig_check.rel_error" in table.schema.metadata
     doc = json.loads((out / "records.json").read_text())
     assert doc["record_count"] == table.num_rows == len(doc["records"])
     assert set(table.column("scope").to_pylist()) >= {"total", "root", "shoulder", "elbow"}
-    rel = table.column("rel_error").to_numpy()
     value, ref = table.column("value").to_numpy(), table.column("reference_value").to_numpy()
-    np.testing.assert_allclose(rel, np.abs(value - ref) / np.abs(ref), rtol=1e-12, atol=0)
+    records = koenig_check.read_records(out / "records.parquet")
+    assert records.to_arrow().column_names == list(RECORD_FIELDS)
+    np.testing.assert_allclose(records["rel_error"], np.abs(value - ref) / np.abs(ref), rtol=1e-12, atol=0)
+    np.testing.assert_array_equal(records["signed_error"], value - ref)
+    np.testing.assert_array_equal(records["abs_error"], np.abs(value - ref))
+    # The JSON rows (a small run) carry the same records, errors included.
+    rows = np.array([r[RECORD_FIELDS.index("rel_error")] for r in doc["records"]], dtype=float)
+    np.testing.assert_allclose(rows, records["rel_error"], rtol=1e-12, atol=0)
     code = main(["compare", str(FREE_BALL_HINGE), "--poses", "30", "--records", "none", "--out", str(tmp_path / "n")])
     assert code == 0 and pq.read_table(tmp_path / "n" / "records.parquet").num_rows == 0
 

@@ -7,10 +7,13 @@ from typing import TYPE_CHECKING, Any
 from koenig_check.segments import SegmentStates
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from koenig_check.api import CrossCheck
     from koenig_check.implied_dynamics.analysis import DynamicsResult
+    from koenig_check.records import RecordTable
 
-__all__ = ["SegmentStates", "compare", "dynamics"]
+__all__ = ["SegmentStates", "compare", "dynamics", "read_records"]
 __version__ = "0.1.0"
 
 
@@ -58,3 +61,22 @@ def dynamics(model: Any, **options: Any) -> DynamicsResult:
     from koenig_check.implied_dynamics.analysis import dynamics as _dynamics
 
     return _dynamics(model, **options)
+
+
+def read_records(path: str | Path) -> RecordTable:
+    """Read a report's ``records.parquet`` back, the error columns included.
+
+    See :func:`koenig_check.records.read_records`.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    RecordTable
+        Index by column name (``value``, ``rel_error``, …) for numpy arrays; ``.to_arrow()`` for a table.
+    """
+    from koenig_check.records import read_records as _read
+
+    return _read(path)

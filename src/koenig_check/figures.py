@@ -11,8 +11,10 @@ from __future__ import annotations
 import textwrap
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.figure import Figure
 
 from koenig_check.grid import ModelComparison, relative_error
@@ -39,6 +41,30 @@ def _sketches(comparisons: Sequence[ModelComparison]) -> dict[tuple[str, str], Q
 def _position(x: float) -> float:
     """log10 of a relative error, or the rounding band for values below ROUNDOFF."""
     return _BAND if x < ROUNDOFF else float(np.log10(x))
+
+
+def _draw_boxes(ax: Any, boxes: np.ndarray, color: str, height: float = 0.3) -> None:
+    """Horizontal box plots, one per row of ``boxes`` = (y, min, q1, median, q3, max): three collections.
+
+    The same drawing as ``Axes.bxp`` (quartile box, median line, whiskers to min and max with caps),
+    as one collection per kind instead of six artists per box: a figure of ~20 boxes draws in half the time.
+    """
+    y, lo, q1, med, q3, hi = boxes.T
+    top, bottom = y - height / 2, y + height / 2
+    rects = np.stack([np.c_[q1, top], np.c_[q3, top], np.c_[q3, bottom], np.c_[q1, bottom]], axis=1)
+    ax.add_collection(PolyCollection(rects, facecolors=color, alpha=0.6, edgecolors="black", linewidths=0.8))
+    caps = height / 4
+    whiskers = np.concatenate(
+        [
+            np.stack([np.c_[lo, y], np.c_[q1, y]], axis=1),
+            np.stack([np.c_[q3, y], np.c_[hi, y]], axis=1),
+            np.stack([np.c_[lo, y - caps], np.c_[lo, y + caps]], axis=1),
+            np.stack([np.c_[hi, y - caps], np.c_[hi, y + caps]], axis=1),
+        ]
+    )
+    ax.add_collection(LineCollection(whiskers, colors="black", linewidths=0.8))
+    medians = np.stack([np.c_[med, top], np.c_[med, bottom]], axis=1)
+    ax.add_collection(LineCollection(medians, colors="black", linewidths=1.2))
 
 
 def error_distribution_figure(
@@ -74,7 +100,7 @@ def error_distribution_figure(
     for k, engine in enumerate(engines):
         color = ENGINE_COLORS.get(engine, "tab:gray")
         offset = (k - (len(engines) - 1) / 2) * 0.36
-        boxes, positions, exact = [], [], []
+        boxes, exact = [], []  # boxes: (row, min, q1, median, q3, max) in axis units
         for i, f in enumerate(formulas):
             sketch = pooled.get((f, engine))
             if sketch is None or not sketch.n:
@@ -83,17 +109,9 @@ def error_distribution_figure(
             if q[4] == _BAND:
                 exact.append(i + offset)
                 continue
-            boxes.append({"whislo": q[0], "q1": q[1], "med": q[2], "q3": q[3], "whishi": q[4], "fliers": []})
-            positions.append(i + offset)
+            boxes.append((i + offset, *q))
         if boxes:
-            parts = ax.bxp(
-                boxes, positions=positions, widths=0.3, orientation="horizontal", patch_artist=True, manage_ticks=False
-            )
-            for box in parts["boxes"]:
-                box.set_facecolor(color)
-                box.set_alpha(0.6)
-            for median in parts["medians"]:
-                median.set_color("black")
+            _draw_boxes(ax, np.array(boxes), color)
         if exact:
             ax.plot([_BAND] * len(exact), exact, "o", color=color, markersize=7, markeredgecolor="black")
         ax.plot([], [], "s", color=color, alpha=0.6, markersize=10, label=f"{engine} states vs {engine} energy")

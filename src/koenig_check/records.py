@@ -11,12 +11,19 @@ run in one piece.
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pyarrow as pa
 
+from koenig_check.findings import KoenigCheckError
 from koenig_check.stats import relative_error
+
+
+class RecordFileError(KoenigCheckError, ValueError):
+    """A file read as records is not a record file."""
+
 
 #: The columns of every record, in order.
 RECORD_FIELDS = (
@@ -43,10 +50,17 @@ _INDEX_TYPES = {
     "reference": pa.int8(),
     "scope": pa.int16(),
 }
-#: The stored columns (the error columns are derived).
+#: How the error columns follow from the stored ones (kept in the metadata of record files).
+DERIVATION = {
+    "abs_error": "|value - reference_value|",
+    "rel_error": "|value - reference_value| / |reference_value| (0 where both are 0, inf where only the reference is)",
+    "signed_error": "value - reference_value",
+}
+#: The stored columns (the error columns are derived), the schema of ``records.parquet``.
 STORED_SCHEMA = pa.schema(
     [pa.field(k, pa.dictionary(_INDEX_TYPES[k], pa.string())) for k in TEXT_FIELDS]
-    + [pa.field("value", pa.float64()), pa.field("reference_value", pa.float64())]
+    + [pa.field("value", pa.float64()), pa.field("reference_value", pa.float64())],
+    metadata={f"koenig_check.{k}": v for k, v in DERIVATION.items()},
 )
 #: The schema of record files: every column of :data:`RECORD_FIELDS`.
 FULL_SCHEMA = pa.schema(list(STORED_SCHEMA) + [pa.field(k, pa.float64()) for k in DERIVED_FIELDS])
@@ -254,3 +268,32 @@ def with_derived(table: pa.Table) -> pa.Table:
     for k in DERIVED_FIELDS:
         table = table.append_column(pa.field(k, pa.float64()), pa.array(cols[k]))
     return table
+
+
+def read_records(path: str | Path) -> RecordTable:
+    """Read a record file written by a report (``records.parquet``).
+
+    The file stores the columns of :data:`STORED_SCHEMA`; the returned table answers every column
+    of :data:`RECORD_FIELDS`, the error columns computed as :data:`DERIVATION` says
+    (``.to_arrow()`` gives them as an Arrow table).
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    RecordTable
+
+    Raises
+    ------
+    RecordFileError
+        If the file is not a record file (columns missing), naming the file and the missing columns.
+    """
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(path)
+    missing = [k for k in STORED_SCHEMA.names if k not in table.column_names]
+    if missing:
+        raise RecordFileError(f"{path}: not a koenig-check record file: no column {', '.join(missing)}")
+    return RecordTable(table)

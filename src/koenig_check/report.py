@@ -15,7 +15,7 @@ import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
 from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
-from koenig_check.records import FULL_SCHEMA, RECORD_FIELDS, TEXT_FIELDS, RecordTable, with_derived
+from koenig_check.records import RECORD_FIELDS, STORED_SCHEMA, TEXT_FIELDS, RecordTable
 from koenig_check.report_content import (
     COLUMNS,
     POSE_LABELS,
@@ -193,9 +193,11 @@ class RecordFiles:
 
     Every chunk goes straight to ``records.parquet`` (Parquet through pyarrow: columnar,
     categorical columns stored as dictionary codes, read directly by pandas, polars, DuckDB,
-    Spark).  Runs of at most ``csv_rows`` records also get ``records.csv`` when closed, and keep
-    their rows for ``records.json``; beyond that the small copy is dropped, so memory stays
-    bounded.
+    Spark).  The file holds the stored columns (:data:`~koenig_check.records.STORED_SCHEMA`); the
+    error columns are one subtraction away (:func:`~koenig_check.records.read_records` adds them)
+    and would triple its size and its writing time, being incompressible floats.  Runs of at most
+    ``csv_rows`` records also get ``records.csv`` when closed, and keep their rows for
+    ``records.json``; beyond that the small copy is dropped, so memory stays bounded.
 
     Parameters
     ----------
@@ -216,8 +218,11 @@ class RecordFiles:
         self.rows = 0
         self._small: list[pa.Table] | None = [] if csv_rows > 0 else None
         # Dictionary pages for the text columns only: the float columns are all distinct, and trying a
-        # dictionary for them first doubles the writing time.
-        self._writer = pq.ParquetWriter(self.parquet, FULL_SCHEMA, use_dictionary=list(TEXT_FIELDS))
+        # dictionary for them first doubles the writing time.  No min/max statistics: they cost half the
+        # writing time, and every chunk spans the same models, formulas and a wide range of values.
+        self._writer = pq.ParquetWriter(
+            self.parquet, STORED_SCHEMA, use_dictionary=list(TEXT_FIELDS), write_statistics=False
+        )
         self.written: list[Path] = []
 
     def write(self, table: pa.Table) -> None:
@@ -230,7 +235,7 @@ class RecordFiles:
         """
         if not table.num_rows:
             return
-        self._writer.write_table(with_derived(table))
+        self._writer.write_table(table)
         self.rows += table.num_rows
         if self._small is not None:
             self._small.append(table)

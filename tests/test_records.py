@@ -1,0 +1,69 @@
+"""Record files: what ``records.parquet`` stores and how it reads back (koenig_check.records)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.parquet as pq
+import pytest
+
+import koenig_check
+from koenig_check.records import STORED_SCHEMA, RecordFileError, RecordTable, categorical
+from koenig_check.report import RecordFiles
+
+
+def _table(value: list[float], reference: list[float]) -> pa.Table:
+    n = len(value)
+    codes = np.zeros(n, dtype=np.int8)
+    arrays = [
+        categorical(np.zeros(n, dtype=np.int16), ["m"], "model"),
+        categorical(np.arange(n, dtype=np.int32), [f"p{i}" for i in range(n)], "pose"),
+        categorical(codes, ["exact"], "formula"),
+        categorical(codes, ["mujoco"], "source"),
+        categorical(codes, ["pinocchio"], "reference"),
+        categorical(np.zeros(n, dtype=np.int16), ["total"], "scope"),
+        pa.array(value, pa.float64()),
+        pa.array(reference, pa.float64()),
+    ]
+    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+
+
+def test_record_file_reads_back_with_errors_computed_by_hand(tmp_path: Path) -> None:
+    files = RecordFiles(tmp_path, csv_rows=0)
+    files.write(_table([3.0, -1.0], [2.0, 4.0]))
+    files.write(_table([0.0, 5.0], [0.0, 0.0]))
+    files.close()
+    records = koenig_check.read_records(tmp_path / "records.parquet")
+    assert len(records) == 4
+    # By hand: |3-2|/2, |-1-4|/4, 0/0 is 0, 5/0 is inf.
+    np.testing.assert_array_equal(records["rel_error"], [0.5, 1.25, 0.0, np.inf])
+    np.testing.assert_array_equal(records["signed_error"], [1.0, -5.0, 0.0, 5.0])
+    np.testing.assert_array_equal(records["abs_error"], [1.0, 5.0, 0.0, 5.0])
+    np.testing.assert_array_equal(records["pose"], ["p0", "p1", "p0", "p1"])
+
+
+def test_record_file_stores_no_error_columns_and_says_how_to_derive_them(tmp_path: Path) -> None:
+    files = RecordFiles(tmp_path, csv_rows=0)
+    files.write(_table([1.0], [1.0]))
+    files.close()
+    schema = pq.read_schema(tmp_path / "records.parquet")
+    assert schema.names == STORED_SCHEMA.names
+    assert schema.metadata[b"koenig_check.signed_error"] == b"value - reference_value"
+
+
+def test_a_parquet_file_that_is_not_records_is_refused_naming_file_and_columns(tmp_path: Path) -> None:
+    path = tmp_path / "other.parquet"
+    pq.write_table(pa.table({"value": [1.0]}), path)
+    with pytest.raises(RecordFileError, match=r"other\.parquet.*no column model, pose, formula"):
+        koenig_check.read_records(path)
+
+
+def test_record_table_round_trips_through_the_file(tmp_path: Path) -> None:
+    table = _table([1.5, 2.5, 3.5], [1.0, 2.0, 4.0])
+    files = RecordFiles(tmp_path, csv_rows=0)
+    files.write(table)
+    files.close()
+    back = koenig_check.read_records(tmp_path / "records.parquet")
+    assert back.rows() == RecordTable(table).rows()
