@@ -67,3 +67,33 @@ def test_record_table_round_trips_through_the_file(tmp_path: Path) -> None:
     files.close()
     back = koenig_check.read_records(tmp_path / "records.parquet")
     assert back.rows() == RecordTable(table).rows()
+
+
+def test_chunks_written_in_the_background_keep_their_order(tmp_path: Path) -> None:
+    import time
+
+    files = RecordFiles(tmp_path, csv_rows=0)
+    write = files._writer.write_table
+
+    def slow(table: pa.Table) -> None:  # a slow disk: the next chunk arrives while this one is written
+        time.sleep(0.05)
+        write(table)
+
+    files._writer.write_table = slow
+    for k in range(4):
+        files.write(_table([float(k), float(k) + 0.5], [1.0, 1.0]))
+    files.close()
+    back = koenig_check.read_records(tmp_path / "records.parquet")
+    np.testing.assert_array_equal(back["value"], [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5])
+
+
+def test_a_failed_background_write_is_raised_not_lost(tmp_path: Path) -> None:
+    files = RecordFiles(tmp_path, csv_rows=0)
+
+    def full(table: pa.Table) -> None:
+        raise OSError(f"{files.parquet}: No space left on device")
+
+    files._writer.write_table = full
+    files.write(_table([1.0], [1.0]))
+    with pytest.raises(OSError, match="No space left"):
+        files.close()

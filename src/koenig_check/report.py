@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import re
 from collections.abc import Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
@@ -223,6 +224,10 @@ class RecordFiles:
         self._writer = pq.ParquetWriter(
             self.parquet, STORED_SCHEMA, use_dictionary=list(TEXT_FIELDS), write_statistics=False
         )
+        # One chunk is written in a thread while the next is computed (Arrow's writer releases the GIL);
+        # at most one write is pending, so at most two chunks of records are held.
+        self._thread = ThreadPoolExecutor(max_workers=1, thread_name_prefix="records-parquet")
+        self._pending: Future[None] | None = None
         self.written: list[Path] = []
 
     def write(self, table: pa.Table) -> None:
@@ -235,12 +240,19 @@ class RecordFiles:
         """
         if not table.num_rows:
             return
-        self._writer.write_table(table)
+        self._wait()
+        self._pending = self._thread.submit(self._writer.write_table, table)
         self.rows += table.num_rows
         if self._small is not None:
             self._small.append(table)
             if self.rows > self.csv_rows:
                 self._small = None
+
+    def _wait(self) -> None:
+        """Finish the pending write (raising its error, if any)."""
+        pending, self._pending = self._pending, None
+        if pending is not None:
+            pending.result()
 
     @property
     def small(self) -> RecordTable | None:
@@ -257,8 +269,12 @@ class RecordFiles:
         list of Path
         """
         if self._writer is not None:
-            self._writer.close()
-            self._writer = None
+            try:
+                self._wait()
+            finally:
+                self._thread.shutdown()
+                self._writer.close()
+                self._writer = None
             self.written = [self.parquet]
             small = self.small
             if small is not None:
