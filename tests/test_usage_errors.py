@@ -29,6 +29,7 @@ USAGE_ERRORS = {
 def no_model_loaded(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     """Fail loudly if any model is loaded; collect the names asked for."""
     import koenig_check.engines as engines
+    import koenig_check.implied_dynamics.analysis  # noqa: F401  (imported, so bound to the real load_model, first)
 
     asked: list[str] = []
 
@@ -135,3 +136,60 @@ def test_valid_keywords_still_reach_the_model(no_model_loaded: list[str]) -> Non
     """Every load option and every compare_model keyword passes the check (then the stub refuses to load)."""
     result = koenig_check.compare("ur5", n_poses=3, seed=1, floating=True, records="none", jobs=1)
     assert no_model_loaded == ["ur5"] and result.failures
+
+
+DYNAMICS_TYPE_ERRORS = {
+    "misspelt keyword": {"n_pose": 5},
+    "misspelt load option": {"flaoting": True},
+    "n_poses a float": {"n_poses": 2.5},
+    "formulas a string": {"formulas": "exact"},
+    "m_rtol a string": {"m_rtol": "tight"},
+}
+DYNAMICS_VALUE_ERRORS = {
+    "zero poses": {"n_poses": 0},
+    "negative seed": {"seed": -1},
+    "unknown formula": {"formulas": ["exakt"]},
+    "q_rtol negative": {"q_rtol": -1e-6},
+    "velocity scale zero": {"velocity_scale": 0.0},
+}
+
+
+@pytest.fixture
+def no_dynamics_model_loaded(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """Fail loudly if dynamics() loads its model; collect the names asked for."""
+    from koenig_check.implied_dynamics import analysis
+
+    asked: list[str] = []
+
+    def refuse(name, *args, **kwargs):
+        asked.append(str(name))
+        raise AssertionError(f"a model was loaded before the usage error: {name}")
+
+    monkeypatch.setattr(analysis, "load", refuse)
+    return asked
+
+
+@pytest.mark.parametrize("kwargs", DYNAMICS_TYPE_ERRORS.values(), ids=DYNAMICS_TYPE_ERRORS.keys())
+def test_dynamics_raises_type_error_before_loading(kwargs: dict, no_dynamics_model_loaded: list[str]) -> None:
+    with pytest.raises(ArgumentTypeError) as exc:
+        koenig_check.dynamics("gimbal.xml", **kwargs)
+    assert isinstance(exc.value, TypeError) and not no_dynamics_model_loaded and "\n" not in str(exc.value)
+
+
+@pytest.mark.parametrize("kwargs", DYNAMICS_VALUE_ERRORS.values(), ids=DYNAMICS_VALUE_ERRORS.keys())
+def test_dynamics_raises_value_error_before_loading(kwargs: dict, no_dynamics_model_loaded: list[str]) -> None:
+    with pytest.raises(ArgumentValueError) as exc:
+        koenig_check.dynamics("gimbal.xml", **kwargs)
+    assert isinstance(exc.value, ValueError) and not no_dynamics_model_loaded
+    assert str(next(iter(kwargs))) in str(exc.value) or "formula" in str(exc.value)
+
+
+def test_dynamics_misspelt_keyword_names_the_right_one() -> None:
+    with pytest.raises(TypeError, match=r"'flaoting'.*did you mean 'floating'"):
+        koenig_check.dynamics("gimbal.xml", flaoting=True)
+
+
+def test_dynamics_valid_keywords_reach_the_model(no_dynamics_model_loaded: list[str]) -> None:
+    with pytest.raises(AssertionError):
+        koenig_check.dynamics("gimbal.xml", n_poses=2, seed=0, formulas=["exact"], m_rtol=1e-9, floating=True)
+    assert no_dynamics_model_loaded == ["gimbal.xml"]

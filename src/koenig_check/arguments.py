@@ -202,3 +202,25 @@ def check_compare_arguments(rtol: Any, options: Mapping[str, Any]) -> None:
         raise ArgumentValueError(f"records must be one of {RECORD_MODES}, got {records!r}")
     if "jobs" in options:
         check_count(options["jobs"], "jobs")
+
+
+def check_dynamics_arguments(
+    n_poses: Any, seed: Any, formulas: Any, m_rtol: Any, q_rtol: Any, velocity_scale: Any
+) -> None:
+    """Check the arguments of :func:`koenig_check.dynamics` before the model is loaded.
+
+    Parameters
+    ----------
+    n_poses, seed, formulas, m_rtol, q_rtol, velocity_scale : Any
+        As given to :func:`koenig_check.dynamics`.
+
+    Raises
+    ------
+    ArgumentTypeError, ArgumentValueError
+    """
+    check_count(n_poses, "n_poses")
+    check_count(seed, "seed", minimum=0)
+    check_formulas(formulas)
+    check_tolerance(m_rtol, "m_rtol")
+    check_tolerance(q_rtol, "q_rtol")
+    check_positive(velocity_scale, "velocity_scale")

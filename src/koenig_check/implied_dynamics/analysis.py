@@ -286,10 +286,13 @@ def dynamics(
         ``result.routes[(formula, route)].M`` / ``.Q``, ``result.engine_mass`` / ``engine_forces``,
         ``result.errors`` (arrays of per-pose relative errors), ``result.ok``, ``result.reason()``.
     """
-    options = LoadOptions.pop_from(load_options)
-    if load_options:
-        raise TypeError(f"dynamics() got unexpected keyword arguments {sorted(load_options)}")
+    from koenig_check.arguments import check_dynamics_arguments, check_keywords
     from koenig_check.tiebreak import check_engines
+
+    options = LoadOptions.pop_from(load_options)
+    accepted = ["n_poses", "seed", "formulas", "m_rtol", "q_rtol", "velocity_scale", *LoadOptions.names()]
+    check_keywords(load_options, accepted, "dynamics")
+    check_dynamics_arguments(n_poses, seed, formulas, m_rtol, q_rtol, velocity_scale)
 
     check_engines(options.engines)
     pair = load(model, options)
