@@ -105,8 +105,32 @@ def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
         ("<mujoco><worldbody><body name='a'>", ["not well-formed XML"]),
         ("<sdf version='1.6'/>", ["neither <mujoco> (MJCF) nor <robot> (URDF)"]),
         ('<!DOCTYPE r [<!ENTITY a "aaaa">]><robot name="&a;"/>', ["DOCTYPE/ENTITY"]),
+        (
+            '<mujoco><worldbody><body name="link"><joint type="hinge"/>'
+            '<geom name="rod" type="sphere" size="0.1" mass="nan"/></body></worldbody></mujoco>',
+            ['<geom name="rod"> mass="nan"', "NaN"],
+        ),
+        (
+            '<robot name="r"><link name="base"/><link name="arm"><inertial><mass value="1"/>'
+            '<inertia ixx="0.1" iyy="NaN" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
+            ['<inertia> iyy="NaN"', "NaN"],
+        ),
+        (
+            '<mujoco><worldbody><body name="link" pos="0 nan 1"><joint type="hinge"/>'
+            '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>',
+            ['<body name="link"> pos="0 nan 1"'],
+        ),
     ],
-    ids=["empty", "not-xml", "truncated", "not-mjcf-or-urdf", "entities"],
+    ids=[
+        "empty",
+        "not-xml",
+        "truncated",
+        "not-mjcf-or-urdf",
+        "entities",
+        "nan-geom-mass",
+        "nan-urdf-inertia",
+        "nan-pos",
+    ],
 )
 def test_unreadable_model_files_fail_before_the_engines(tmp_path: Path, content: str, needles: list[str]) -> None:
     path = tmp_path / "model.xml"
@@ -114,6 +138,15 @@ def test_unreadable_model_files_fail_before_the_engines(tmp_path: Path, content:
     with pytest.raises(ValueError) as info:
         load_model(path)
     _one_line_naming(info.value, str(path), *needles)
+
+
+def test_a_body_called_nan_is_not_a_nan_number(tmp_path: Path) -> None:
+    path = tmp_path / "named.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="nan"><joint name="NaN" type="hinge"/>'
+        '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>'
+    )
+    assert load_model(path).mujoco.model.nbody == 2
 
 
 def test_missing_file_is_named(tmp_path: Path) -> None:

@@ -68,6 +68,24 @@ def preflight(path: str | Path) -> str:
     return _root_format(path, data)
 
 
+#: Attributes that hold names or words, never numbers (a body may be called "nan").
+_WORD_ATTRIBUTES = frozenset(
+    "name class childclass type joint joint1 joint2 body body1 body2 site site1 site2 geom geom1 geom2 tendon "
+    "actuator link parent child material texture mesh hfield file filename model prefix target objname refname "
+    "mode".split()
+)
+
+
+def _refuse_nan(path: Path, elem: ET.Element) -> None:
+    """Refuse a number written as NaN: MuJoCo only warns, then uses a default (a geom's mass from its density)."""
+    for key, value in elem.attrib.items():
+        if key in _WORD_ATTRIBUTES or "nan" not in value.lower():
+            continue
+        if any(token.lower().lstrip("+-") == "nan" for token in value.split()):
+            label = f' name="{elem.attrib["name"]}"' if "name" in elem.attrib else ""
+            raise ModelFileError(f'{path}: <{elem.tag}{label}> {key}="{value}": NaN is not a number a model can use')
+
+
 def _root_format(path: Path, data: bytes) -> str:
     parser = ET.XMLPullParser(events=("start", "end"))
     depth = 0
@@ -83,6 +101,7 @@ def _root_format(path: Path, data: bytes) -> str:
                         root_tag = elem.tag
                     if depth > MAX_DEPTH:
                         raise ModelFileError(f"{path}: element <{elem.tag}> nested deeper than {MAX_DEPTH} levels")
+                    _refuse_nan(path, elem)
                 else:
                     depth -= 1
                     elem.clear()
