@@ -14,6 +14,14 @@ def test_message_names_engine_element_summary_values_and_hint() -> None:
     assert f.message() == "pinocchio: geom pole: mass from class not applied (mujoco 0.1); do X"
 
 
+def test_round_off_values_print_as_zero_and_stay_whole_in_json() -> None:
+    import numpy as np
+
+    f = Finding(Kind.MASS, "both", "body arm", "gap", {"rel": -3.3e-17, "np": np.float64(2e-13), "kg": 1.5e-12})
+    assert f.message() == "both: body arm: gap (rel 0, np 0, kg 1.5e-12)"
+    assert f.as_dict()["values"]["rel"] == -3.3e-17
+
+
 def test_long_sequences_are_shown_by_their_first_items_and_a_count_but_kept_whole() -> None:
     f = Finding(Kind.MASS, "pinocchio", "geom g0", "meshes", {"geoms": GEOMS, "mujoco": 1552.71})
     assert f.message() == "pinocchio: geom g0: meshes (geoms ('g0', 'g1', 'g2', 'g3', +81 more), mujoco 1552.71)"

@@ -19,6 +19,8 @@ from enum import Enum
 from types import MappingProxyType
 from typing import Any
 
+from koenig_check.roundoff import fmt
+
 #: The engines a finding can concern.  ``both`` is a finding about the pair (a joint mapping, a
 #: coupling both engines ignore); ``all`` is a three-engine verdict where every engine differs; ``file`` is a
 #: construct of the file itself.
@@ -179,8 +181,8 @@ SHOWN_ITEMS = 6
 
 
 def _fmt(value: Any) -> str:
-    if isinstance(value, float):
-        return f"{value:.6g}"
+    if isinstance(value, float):  # round-off printed as 0, as everywhere else (as_dict keeps the value)
+        return fmt(value, ".6g")
     if isinstance(value, (tuple, list)) and len(value) > SHOWN_ITEMS:
         head = ", ".join(repr(v) if isinstance(v, str) else _fmt(v) for v in value[: SHOWN_ITEMS - 2])
         return f"({head}, +{len(value) - SHOWN_ITEMS + 2} more)"
