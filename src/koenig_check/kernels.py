@@ -6,6 +6,7 @@ millions of 3-vectors; these do the same arithmetic with elementwise operations 
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import numpy as np
@@ -240,7 +241,7 @@ def fold(planes: np.ndarray) -> tuple[np.ndarray, int]:
     k : int
     """
     B = planes.shape[-1]
-    M = int(np.prod(planes.shape[1:-1], dtype=np.int64))
+    M = math.prod(planes.shape[1:-1])
     k = _tile_factor(M, B)
     return planes.reshape(planes.shape[0], M // k, k * B), k
 
@@ -257,7 +258,9 @@ def tile(constants: np.ndarray, k: int) -> np.ndarray:
     -------
     ndarray, shape (..., k B)
     """
-    return np.tile(constants, k) if k > 1 else np.ascontiguousarray(constants, dtype=float)
+    out = np.empty((*constants.shape[:-1], k, constants.shape[-1]))
+    out[...] = constants[..., None, :]
+    return out.reshape(*constants.shape[:-1], -1)
 
 
 def inertia_world_components(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
@@ -342,10 +345,16 @@ def scale(planes: np.ndarray, constants: np.ndarray, out: np.ndarray | None = No
     -------
     ndarray, shape of ``planes``
     """
+    shape = planes.shape
     if out is None:
-        out = np.empty(planes.shape)
-    if planes.ndim < 2 or not (planes.flags.c_contiguous and out.flags.c_contiguous):
+        out = np.empty(shape)
+    if len(shape) < 2 or not (planes.flags.c_contiguous and out.flags.c_contiguous):
         return np.multiply(planes, constants, out=out)
-    folded, k = fold(planes[None])
-    np.multiply(folded[0], tile(constants, k), out=out.reshape(folded.shape[1:]))
+    B = shape[-1]
+    M = planes.size // B
+    k = _tile_factor(M, B)
+    if k == 1:
+        return np.multiply(planes, constants, out=out)
+    rows = (M // k, k * B)
+    np.multiply(planes.reshape(rows), tile(constants, k), out=out.reshape(rows))
     return out
