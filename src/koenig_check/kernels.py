@@ -319,7 +319,16 @@ def times_transpose_components(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
     return out
 
 
-def _dot3(a0, a1, a2, b0, b1, b2, out: np.ndarray, tmp: np.ndarray) -> np.ndarray:
+def _dot3(
+    a0: np.ndarray,
+    a1: np.ndarray,
+    a2: np.ndarray,
+    b0: np.ndarray,
+    b1: np.ndarray,
+    b2: np.ndarray,
+    out: np.ndarray,
+    tmp: np.ndarray,
+) -> np.ndarray:
     """``out = a0 b0 + a1 b1 + a2 b2``, summed left to right, through one scratch buffer."""
     np.multiply(a0, b0, out=out)
     np.multiply(a1, b1, out=tmp)
