@@ -101,19 +101,20 @@ def _layouts(a: np.ndarray) -> list[np.ndarray]:
     return [a, segment_major, plane_backed]
 
 
-def test_component_planes_from_every_layout(rng: np.random.Generator) -> None:
-    R = random_rotations(rng, (12, 5))
-    v = rng.normal(size=(12, 5, 3))
-    homogeneous = np.zeros((5, 12, 4, 4))
+@pytest.mark.parametrize(("P", "B"), [(12, 5), (700, 3)])  # one block of the copy, several blocks
+def test_component_planes_from_every_layout(rng: np.random.Generator, P: int, B: int) -> None:
+    R = random_rotations(rng, (P, B))
+    v = rng.normal(size=(P, B, 3))
+    homogeneous = np.zeros((B, P, 4, 4))
     homogeneous[..., :3, :3] = np.swapaxes(R, 0, 1)
     expected_R = np.stack([R[..., i, j] for i in range(3) for j in range(3)])  # row-major entries, by hand
     for layout in [*_layouts(R), np.swapaxes(homogeneous, 0, 1)[..., :3, :3]]:
         got = matrix_components(layout)
-        assert got.shape == (9, 12, 5) and got.flags.c_contiguous
+        assert got.shape == (9, P, B) and got.flags.c_contiguous
         np.testing.assert_array_equal(got, expected_R)
     for layout in _layouts(v):
         got = components(layout)
-        assert got.shape == (3, 12, 5) and got.flags.c_contiguous
+        assert got.shape == (3, P, B) and got.flags.c_contiguous
         np.testing.assert_array_equal(got, np.stack([v[..., 0], v[..., 1], v[..., 2]]))
     # Arrays that already are views of contiguous planes are not copied.
     R_planes, v_planes = _layouts(R)[2], _layouts(v)[2]
