@@ -368,7 +368,7 @@ def scale(planes: np.ndarray, constants: np.ndarray, out: np.ndarray | None = No
     shape = planes.shape
     if out is None:
         out = np.empty(shape)
-    if len(shape) < 2 or not (planes.flags.c_contiguous and out.flags.c_contiguous):
+    if len(shape) < 2 or planes.size == 0 or not (planes.flags.c_contiguous and out.flags.c_contiguous):
         return np.multiply(planes, constants, out=out)
     B = shape[-1]
     M = planes.size // B
