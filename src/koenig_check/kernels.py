@@ -13,7 +13,7 @@ import numpy as np
 
 #: Target length of a row of folded component planes (see :func:`fold`).
 _ROW = 2048
-#: Elements per plane in one block of a transposing copy (see :func:`components`).
+#: Elements per plane in one block of a transposing copy (see :func:`matrix_components`).
 _BLOCK = 1024
 
 
@@ -225,6 +225,7 @@ def _copy_planes(moved: np.ndarray, n_components: int = 1) -> np.ndarray:
 
 @lru_cache(maxsize=256)
 def _tile_factor(n_batch: int, n_segments: int) -> int:
+    """The largest divisor ``k`` of ``n_batch`` with ``k * n_segments <= _ROW`` (at least 1)."""
     limit = max(1, _ROW // max(n_segments, 1))
     for k in range(min(limit, n_batch), 0, -1):
         if n_batch % k == 0:
