@@ -42,6 +42,27 @@ def test_euler_xyz_is_extrinsic_x_then_y_then_z() -> None:
     np.testing.assert_allclose(euler_xyz_angles(states)[0, 0], [a, b, c], atol=1e-12)
 
 
+def _extrinsic_xyz(a: float, b: float, c: float) -> np.ndarray:
+    """``R_z(c) R_y(b) R_x(a)`` by hand."""
+    ca, sa, cb, sb, cc, sc = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(c), np.sin(c)
+    Rx = np.array([[1, 0, 0], [0, ca, -sa], [0, sa, ca]])
+    Ry = np.array([[cb, 0, sb], [0, 1, 0], [-sb, 0, cb]])
+    Rz = np.array([[cc, -sc, 0], [sc, cc, 0], [0, 0, 1]])
+    return Rz @ Ry @ Rx
+
+
+@pytest.mark.parametrize("b", [np.pi / 2, -np.pi / 2])
+def test_euler_xyz_at_gimbal_lock_sets_c_to_zero_among_ordinary_poses(b: float) -> None:
+    """At |b| = π/2 only a ∓ c is defined: c is 0 and a carries it; the other poses of the batch are unaffected."""
+    ordinary = (0.3, -0.4, 1.1)
+    R = np.stack([_extrinsic_xyz(*ordinary), _extrinsic_xyz(0.4, b, 0.7), _extrinsic_xyz(*ordinary)])
+    got = euler_xyz_angles(_single(R))[:, 0]
+    np.testing.assert_allclose(got[[0, 2]], [ordinary, ordinary], atol=1e-12)
+    assert got[1, 2] == 0.0
+    np.testing.assert_allclose(got[1, 1], b, atol=1e-7)
+    np.testing.assert_allclose(_extrinsic_xyz(*got[1]), R[1], atol=1e-12)
+
+
 def test_integrated_angles_follow_the_path_not_the_state() -> None:
     """Along motion (39) the integral of ω differs from the rotation vector of the end state."""
     t = np.linspace(0.0, 1.0, 2001)

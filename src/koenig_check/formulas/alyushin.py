@@ -18,7 +18,7 @@ from koenig_check.formulas import terms
 from koenig_check.formulas.angles import Convention, angle_components
 from koenig_check.formulas.cache import memo, memo_of
 from koenig_check.formulas.exact import translational
-from koenig_check.kernels import components
+from koenig_check.kernels import scale
 from koenig_check.segments import SegmentStates, second_moments
 
 Recipe = Literal["current", "paper"]
@@ -69,8 +69,23 @@ def rotational_energy_30_planes(
     -------
     ndarray, shape (...)
     """
-    axial_part = squares[0] * axial[0] + squares[1] * axial[1] + squares[2] * axial[2]
-    return 0.5 * axial_part - products[0] * centrifugal[0] - products[1] * centrifugal[1] - products[2] * centrifugal[2]
+    shape = np.broadcast_shapes(squares.shape[1:], axial.shape[1:], products.shape[1:], centrifugal.shape[1:])
+    out, tmp = np.empty(shape), np.empty(shape)
+    for i in range(3):  # ½ Σ θ_i² J^i, the sum left to right
+        _times(squares[i], axial[i], out=out if i == 0 else tmp)
+        if i:
+            out += tmp
+    out *= 0.5
+    for i in range(3):
+        out -= _times(products[i], centrifugal[i], out=tmp)
+    return out
+
+
+def _times(planes: np.ndarray, factor: np.ndarray, out: np.ndarray) -> np.ndarray:
+    """``planes * factor`` into ``out``: a per-segment factor (B,) through :func:`~koenig_check.kernels.scale`."""
+    if factor.ndim == 1 and planes.ndim > 1:
+        return scale(planes, factor, out=out)
+    return np.multiply(planes, factor, out=out)
 
 
 def centrifugal_of(S: np.ndarray) -> np.ndarray:
@@ -130,10 +145,15 @@ def centrifugal_update_33_planes(S_ref: np.ndarray, sin2: np.ndarray, cos2: np.n
     """
     ia, ib, ig = S_ref[:, 0, 0], S_ref[:, 1, 1], S_ref[:, 2, 2]
     iab, ibg, iag = S_ref[:, 0, 1], S_ref[:, 1, 2], S_ref[:, 0, 2]
-    i_xy = 0.5 * sin2[2] * (ia - ib) + cos2[2] * iab
-    i_yz = 0.5 * sin2[0] * (ib - ig) + cos2[0] * ibg
-    i_zx = 0.5 * sin2[1] * (ig - ia) + cos2[1] * iag
-    return np.stack([i_yz, i_zx, i_xy])
+    out = np.empty(np.broadcast_shapes(sin2.shape, cos2.shape))
+    tmp = np.empty(out.shape[1:])
+    # (I_yz, I_zx, I_xy) = ½ sin 2Δθ_i (difference of planar moments) + cos 2Δθ_i (product moment), i = x, y, z
+    for n, (diff, product) in enumerate(((ib - ig, ibg), (ig - ia, iag), (ia - ib, iab))):
+        o = out[n, ...]
+        np.multiply(0.5, sin2[n], out=o)
+        _times(o, diff, out=o)
+        o += _times(cos2[n], product, out=tmp)
+    return out
 
 
 def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -207,7 +227,7 @@ def alyushin_current(states: SegmentStates) -> np.ndarray:
     rot = rotational_energy_30_planes(
         terms.omega_squares(states), terms.omega_products(states), inertia[:3], centrifugal
     )
-    return translational(states) + rot
+    return np.add(translational(states), rot, out=rot)
 
 
 def alyushin_paper(
@@ -238,7 +258,7 @@ def alyushin_paper(
     )
     axial = np.diagonal(I_ref, axis1=-2, axis2=-1).T  # (3, B)
     rot = rotational_energy_30_planes(terms.omega_squares(states), terms.omega_products(states), axial, centrifugal)
-    return translational(states) + rot
+    return np.add(translational(states), rot, out=rot)
 
 
 def alyushin_pole(
@@ -269,11 +289,7 @@ def alyushin_pole(
     -------
     ndarray, shape (P, B)
     """
-    trans = memo(
-        states,
-        "translational_pole",
-        lambda: 0.5 * states.mass[None, :] * terms.squared_norm(components(states.v_pole)),
-    )
+    trans = memo(states, "translational_pole", lambda: terms.half_mass_times_squared_speed(states.mass, states.v_pole))
     if recipe == "current":
         axial, centrifugal = memo(states, "pole_moments", lambda: _pole_moments(states))
     elif recipe == "paper":
@@ -289,9 +305,8 @@ def alyushin_pole(
         axial = np.diagonal(I_P_ref, axis1=-2, axis2=-1).T  # (3, B)
     else:
         raise ValueError(f"unknown recipe {recipe!r}; choose one of {RECIPES}")
-    return trans + rotational_energy_30_planes(
-        terms.omega_squares(states), terms.omega_products(states), axial, centrifugal
-    )
+    rot = rotational_energy_30_planes(terms.omega_squares(states), terms.omega_products(states), axial, centrifugal)
+    return np.add(trans, rot, out=rot)
 
 
 def _pole_moments(states: SegmentStates) -> tuple[np.ndarray, np.ndarray]:
@@ -301,11 +316,21 @@ def _pole_moments(states: SegmentStates) -> tuple[np.ndarray, np.ndarray]:
     ``J_P^i = I_ii + m(|d|² − d_i²)``, ``I_ij(P) = −(I_ij + m(−d_i d_j))`` with ``d = C − P``.
     """
     inertia = terms.inertia_world6(states)
-    d = components(states.com - states.pole)
-    m = states.mass
+    com, pole, m = states.com, states.pole, states.mass
+    d = np.empty((3, *com.shape[:-1]))
+    for i in range(3):
+        np.subtract(com[..., i], pole[..., i], out=d[i])
     d2 = terms.squared_norm(d)
-    axial = np.stack([inertia[i] + m * (d2 - d[i] * d[i]) for i in range(3)])
-    centrifugal = np.stack(
-        [-(inertia[3 + n] + m * -(d[i] * d[j])) for n, (i, j) in enumerate(((1, 2), (0, 2), (0, 1)))]
-    )
+    axial, centrifugal = np.empty(d.shape), np.empty(d.shape)
+    for i in range(3):  # I_ii + m (|d|² − d_i²)
+        a = np.multiply(d[i], d[i], out=axial[i])
+        np.subtract(d2, a, out=a)
+        scale(a, m, out=a)
+        a += inertia[i]
+    for n, (i, j) in enumerate(((1, 2), (0, 2), (0, 1))):  # −(I_ij + m (−d_i d_j))
+        c = np.multiply(d[i], d[j], out=centrifugal[n])
+        np.negative(c, out=c)
+        scale(c, m, out=c)
+        c += inertia[3 + n]
+        np.negative(c, out=c)
     return axial, centrifugal

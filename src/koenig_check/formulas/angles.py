@@ -110,15 +110,31 @@ def rotvec_components(r: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (3, ...)
     """
-    skew = np.stack([r[7] - r[5], r[2] - r[6], r[3] - r[1]])  # 2 sin θ u
-    two_sin = np.sqrt(skew[0] * skew[0] + skew[1] * skew[1] + skew[2] * skew[2])
-    cos = 0.5 * (r[0] + r[4] + r[8] - 1.0)
-    angle = np.arctan2(0.5 * two_sin, cos)
-    small = angle <= 1e-3
-    a2 = angle**2
+    if r.ndim == 1:  # one matrix: as a batch of one (the in-place arithmetic below needs arrays, not scalars)
+        return rotvec_components(r[:, None])[:, 0]
+    out = np.empty((3, *r.shape[1:]))  # 2 sin θ u, scaled in place below
+    np.subtract(r[7], r[5], out=out[0])
+    np.subtract(r[2], r[6], out=out[1])
+    np.subtract(r[3], r[1], out=out[2])
+    two_sin = out[0] * out[0]
+    tmp = out[1] * out[1]
+    two_sin += tmp
+    np.multiply(out[2], out[2], out=tmp)
+    two_sin += tmp
+    np.sqrt(two_sin, out=two_sin)
+    cos = r[0] + r[4]
+    cos += r[8]
+    cos -= 1.0
+    cos *= 0.5
+    np.multiply(0.5, two_sin, out=tmp)
+    angle = np.arctan2(tmp, cos)
     with np.errstate(divide="ignore", invalid="ignore"):
-        scale = np.where(small, 0.5 + a2 / 12.0 + 7.0 * a2**2 / 720.0, angle / two_sin)  # θ / (2 sin θ)
-    out = skew * scale
+        scale = np.divide(angle, two_sin, out=tmp)  # θ / (2 sin θ)
+    small = angle <= 1e-3
+    if small.any():  # its series where sin θ is small (the quotient loses digits or divides by zero)
+        a2 = angle[small] ** 2
+        scale[small] = 0.5 + a2 / 12.0 + 7.0 * a2**2 / 720.0
+    out *= scale
     hard = (two_sin < 0.2) & (cos < 0)  # θ within ~6° of π
     if hard.any():
         q = quaternion_of(np.moveaxis(r[:, hard], 0, -1).reshape(-1, 3, 3))
@@ -156,15 +172,19 @@ def euler_xyz_components(r: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (3, ...)
     """
+    if r.ndim == 1:  # one matrix: as a batch of one (the in-place arithmetic below needs arrays, not scalars)
+        return euler_xyz_components(r[:, None])[:, 0]
+    out = np.empty((3, *r.shape[1:]))
+    a, b, c = out
     h = np.hypot(r[0], r[3])
-    b = np.arctan2(-r[6], h)
-    a = np.arctan2(r[7], r[8])
-    c = np.arctan2(r[3], r[0])
+    np.arctan2(np.negative(r[6], out=b), h, out=b)
+    np.arctan2(r[7], r[8], out=a)
+    np.arctan2(r[3], r[0], out=c)
     lock = h < 1e-12
     if np.any(lock):  # only a - c (b > 0) or a + c (b < 0) is defined: keep c = 0
-        a = np.where(lock, np.arctan2(-r[5], r[4]), a)
-        c = np.where(lock, 0.0, c)
-    return np.stack([a, b, c])
+        a[lock] = np.arctan2(-r[5][lock], r[4][lock])
+        c[lock] = 0.0
+    return out
 
 
 def rotvec_angles(states: States) -> np.ndarray:

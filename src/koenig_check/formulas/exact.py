@@ -57,5 +57,7 @@ def exact(states: SegmentStates) -> np.ndarray:
         Per-segment energy; the total is the sum over the last axis.
     """
     inertia, prod = terms.inertia_world6(states), terms.omega_products(states)
-    rot = 0.5 * terms.axial_part_world(states) + (prod[0] * inertia[3] + prod[1] * inertia[4] + prod[2] * inertia[5])
-    return translational(states) + rot
+    products = terms.dot3(prod[0], prod[1], prod[2], inertia[3], inertia[4], inertia[5])
+    rot = np.multiply(0.5, terms.axial_part_world(states))
+    rot += products
+    return np.add(translational(states), rot, out=rot)

@@ -6,6 +6,7 @@ import numpy as np
 
 from koenig_check.formulas import terms
 from koenig_check.formulas.exact import translational
+from koenig_check.kernels import scale
 from koenig_check.segments import SegmentStates
 
 
@@ -63,9 +64,16 @@ def koenig_principal(states: SegmentStates) -> np.ndarray:
     """
     moments, axes = principal_axes(states.inertia_body)
     R, w = terms.rotation_components(states), terms.omega_components(states)
-    w_body = [R[i] * w[0] + R[3 + i] * w[1] + R[6 + i] * w[2] for i in range(3)]  # Rᵀ ω
-    rot = 0.0
-    for k in range(3):
-        w_k = axes[:, 0, k] * w_body[0] + axes[:, 1, k] * w_body[1] + axes[:, 2, k] * w_body[2]
-        rot = rot + w_k * w_k * moments[:, k]
-    return translational(states) + 0.5 * rot
+    w_body = np.empty((3, *w.shape[1:]))
+    for i in range(3):  # Rᵀ ω
+        terms.dot3(R[i], R[3 + i], R[6 + i], w[0], w[1], w[2], out=w_body[i])
+    rot = np.zeros(w.shape[1:])
+    w_k, tmp = np.empty(rot.shape), np.empty(rot.shape)
+    for k in range(3):  # ω along the principal axis k, then ω_k² J_k
+        scale(w_body[0], axes[:, 0, k], out=w_k)
+        w_k += scale(w_body[1], axes[:, 1, k], out=tmp)
+        w_k += scale(w_body[2], axes[:, 2, k], out=tmp)
+        np.multiply(w_k, w_k, out=w_k)
+        rot += scale(w_k, moments[:, k], out=w_k)
+    rot *= 0.5
+    return np.add(translational(states), rot, out=rot)

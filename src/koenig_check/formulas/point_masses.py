@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from koenig_check.formulas.terms import dot3
+from koenig_check.kernels import scale
 from koenig_check.segments import SegmentStates, second_moments
 
 #: Points per segment in the equimomental set built by :func:`equimomental_points`.
@@ -114,8 +116,11 @@ def point_masses(states: SegmentStates, point_velocities: np.ndarray | None = No
         if v.shape != expected:
             raise ValueError(f"point_velocities: shape {v.shape}, expected {expected}")
     planes = np.moveaxis(v, (2, 3), (0, 1))  # (K, 3, P, B): contiguous for the engines' point velocities
-    total = 0.0
-    for k in range(planes.shape[0]):
+    total = np.zeros(planes.shape[2:])
+    sq = np.empty(total.shape)
+    for k in range(planes.shape[0]):  # Σ_k m_k |v_k|², in point order
         vk = planes[k]
-        total = total + masses[:, k] * (vk[0] * vk[0] + vk[1] * vk[1] + vk[2] * vk[2])
-    return 0.5 * total
+        dot3(vk[0], vk[1], vk[2], vk[0], vk[1], vk[2], out=sq)
+        total += scale(sq, masses[:, k], out=sq)
+    total *= 0.5
+    return total

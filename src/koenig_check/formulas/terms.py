@@ -13,7 +13,13 @@ from __future__ import annotations
 import numpy as np
 
 from koenig_check.formulas.cache import memo
-from koenig_check.kernels import components, inertia_world_components, times_transpose_components
+from koenig_check.kernels import (
+    components,
+    inertia_world_components,
+    matrix_components,
+    scale,
+    times_transpose_components,
+)
 from koenig_check.segments import SegmentStates
 
 #: Order of the six unique entries of a symmetric 3 × 3 matrix: the diagonal, then (yz, xz, xy).
@@ -40,15 +46,18 @@ def omega_products(states: SegmentStates) -> np.ndarray:
 
     def compute() -> np.ndarray:
         wx, wy, wz = omega_components(states)
-        return np.stack([wy * wz, wx * wz, wy * wx])
+        out = np.empty((3, *wx.shape))
+        np.multiply(wy, wz, out=out[0])
+        np.multiply(wx, wz, out=out[1])
+        np.multiply(wy, wx, out=out[2])
+        return out
 
     return memo(states, "omega_prod", compute)
 
 
 def rotation_components(states: SegmentStates) -> np.ndarray:
     """Rotation matrices ``R`` (world ← segment) as (9, P, B), row-major entries."""
-    R = states.rotation
-    return memo(states, "rotation_c", lambda: components(R.reshape(*R.shape[:-2], 9)))
+    return memo(states, "rotation_c", lambda: matrix_components(states.rotation))
 
 
 def inertia_world6(states: SegmentStates) -> np.ndarray:
@@ -60,12 +69,52 @@ def inertia_world6(states: SegmentStates) -> np.ndarray:
 
 def squared_norm(v: np.ndarray) -> np.ndarray:
     """``|v|²`` of component planes (3, ...)."""
-    return v[0] * v[0] + v[1] * v[1] + v[2] * v[2]
+    return dot3(v[0], v[1], v[2], v[0], v[1], v[2])
+
+
+def dot3(
+    a0: np.ndarray,
+    a1: np.ndarray,
+    a2: np.ndarray,
+    b0: np.ndarray,
+    b1: np.ndarray,
+    b2: np.ndarray,
+    out: np.ndarray | None = None,
+) -> np.ndarray:
+    """``a0 b0 + a1 b1 + a2 b2`` of planes, summed left to right (broadcasting), into ``out`` if given.
+
+    The order of the plain expression ``a0 * b0 + a1 * b1 + a2 * b2``, hence its numbers, with one
+    scratch plane instead of a temporary per term.
+
+    Parameters
+    ----------
+    a0, a1, a2, b0, b1, b2 : ndarray
+        Planes (or per-segment constants) broadcasting to the result's shape.
+    out : ndarray, optional
+        Where to write the result (not one of the inputs).
+
+    Returns
+    -------
+    ndarray
+    """
+    first = np.multiply(a0, b0, out=out)
+    tmp = np.multiply(a1, b1)
+    first += tmp
+    np.multiply(a2, b2, out=tmp)
+    first += tmp
+    return first
+
+
+def half_mass_times_squared_speed(mass: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``½ m |v|²`` (P, B) from velocities (P, B, 3), read in place (no component copy)."""
+    v0, v1, v2 = v[..., 0], v[..., 1], v[..., 2]
+    sq = dot3(v0, v1, v2, v0, v1, v2, out=np.empty(v.shape[:-1]))
+    return scale(sq, 0.5 * mass, out=sq)
 
 
 def translational(states: SegmentStates) -> np.ndarray:
     """``½ m v_C²``, (P, B)."""
-    return memo(states, "translational", lambda: 0.5 * states.mass[None, :] * squared_norm(components(states.v_com)))
+    return memo(states, "translational", lambda: half_mass_times_squared_speed(states.mass, states.v_com))
 
 
 def axial_part_world(states: SegmentStates) -> np.ndarray:
@@ -73,7 +122,7 @@ def axial_part_world(states: SegmentStates) -> np.ndarray:
 
     def compute() -> np.ndarray:
         sq, inertia = omega_squares(states), inertia_world6(states)
-        return sq[0] * inertia[0] + sq[1] * inertia[1] + sq[2] * inertia[2]
+        return dot3(sq[0], sq[1], sq[2], inertia[0], inertia[1], inertia[2])
 
     return memo(states, "axial_part_world", compute)
 
