@@ -111,7 +111,7 @@ class PinocchioEngine:
     def _sweep_world(
         self, q: np.ndarray, v: np.ndarray, energies: bool = False
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-        """Run ``computeJointJacobians`` once per pose: rotations (P, B, 3, 3), origins (P, B, 3), world twists (P, B, 6).
+        """Run ``computeJointJacobians`` once per pose: rotations, origins and world twists of the segments.
 
         The twist of joint ``i`` is ``J_world[:, support(i)] v``: ``(v_O, ω)`` with ``v_O`` the
         velocity of the segment point at the world origin, so a point ``p`` moves with
