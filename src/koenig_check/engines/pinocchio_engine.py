@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from koenig_check.engines.base import as_batches, check_points, symmetrize
+from koenig_check.engines.base import as_batches, check_points, rows, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import StateMap
 from koenig_check.findings import Finding, Kind
@@ -149,7 +149,7 @@ class PinocchioEngine:
                 Jp[p] = J_live
                 raw[p] = view if view is not None else [M.homogeneous for M in placements.tolist()]
         twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
-        R, origin = _rotations_origins(raw[:, self._joints], view is not None)
+        R, origin = _rotations_origins(raw[:, rows(self._joints)], view is not None)
         return R, origin, twists, rigid
 
     def _states(self, R: np.ndarray, origin: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
