@@ -315,24 +315,55 @@ def _chunk_table(
         return STORED_SCHEMA.empty_table()
     values = np.concatenate([b[4].reshape(P, -1) for b in blocks], axis=1)
     refs = np.concatenate([b[5].reshape(P, -1) for b in blocks], axis=1)
+    model, pose, f, s, r, sc = _record_codes(P, blocks)
+    arrays = [
+        categorical(model, [label], "model"),
+        categorical(pose, list(ids), "pose"),
+        categorical(f, formulas, "formula"),
+        categorical(s, sources, "source"),
+        categorical(r, references, "reference"),
+        categorical(sc, scopes, "scope"),
+        pa.array(values.ravel()),
+        pa.array(refs.ravel()),
+    ]
+    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+
+
+#: The code columns of the last chunk layouts (every chunk of a model but its last has the same).
+_CODES: dict[tuple, tuple[np.ndarray, ...]] = {}
+
+
+def _record_codes(P: int, blocks: list) -> tuple[np.ndarray, ...]:
+    """The model, pose, formula, source, reference and scope codes of a chunk's P × K records.
+
+    They depend only on the number of poses and the layout of the blocks, so they are built once
+    per layout and reused (read-only) by every chunk of that layout.
+    """
+    key = (P, tuple((b[0], b[1], b[2], None if b[3] is None else b[3].tobytes()) for b in blocks))
+    codes = _CODES.get(key)
+    if codes is not None:
+        return codes
     widths = [1 if b[3] is None else len(b[3]) for b in blocks]
     # Codes built in their stored widths (the columns' index types), so that no column is converted.
     f = np.repeat(np.array([b[0] for b in blocks], dtype=np.int8), widths)
     s = np.repeat(np.array([b[1] for b in blocks], dtype=np.int8), widths)
     r = np.repeat(np.array([b[2] for b in blocks], dtype=np.int8), widths)
     sc = np.concatenate([np.zeros(1, dtype=np.int16) if b[3] is None else b[3].astype(np.int16) for b in blocks])
-    K = values.shape[1]
-    arrays = [
-        categorical(np.zeros(P * K, dtype=np.int16), [label], "model"),
-        categorical(np.repeat(np.arange(P, dtype=np.int32), K), list(ids), "pose"),
-        categorical(np.tile(f, P), formulas, "formula"),
-        categorical(np.tile(s, P), sources, "source"),
-        categorical(np.tile(r, P), references, "reference"),
-        categorical(np.tile(sc, P), scopes, "scope"),
-        pa.array(values.ravel()),
-        pa.array(refs.ravel()),
-    ]
-    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+    K = len(sc)
+    codes = (
+        np.zeros(P * K, dtype=np.int16),
+        np.repeat(np.arange(P, dtype=np.int32), K),
+        np.tile(f, P),
+        np.tile(s, P),
+        np.tile(r, P),
+        np.tile(sc, P),
+    )
+    for c in codes:
+        c.setflags(write=False)
+    if len(_CODES) >= 4:  # a model's full chunks and its last one; a new model starts afresh
+        _CODES.clear()
+    _CODES[key] = codes
+    return codes
 
 
 def compare_runs(
