@@ -148,12 +148,29 @@ def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
     return EngineRun(engine.engine, states, np.asarray(energy.rigid), np.asarray(energy.armature), pv)
 
 
+#: Equimomental points of the last models' segments, keyed by their mass properties (see :func:`_points_for`).
+_POINTS: dict[tuple, np.ndarray | None] = {}
+
+
 def _points_for(engine: Any) -> np.ndarray | None:
-    """The equimomental points of an engine's segments (mass properties are constant), or None."""
+    """The equimomental points of an engine's segments, or None; computed once per set of mass properties.
+
+    The mass properties are constant over the poses, so every chunk of a model asks for the same
+    points: they are kept, keyed by the masses, inertias and names they come from.
+    """
+    mass, inertia = np.asarray(engine._mass, dtype=float), np.asarray(engine._inertia, dtype=float)
+    key = (mass.tobytes(), inertia.tobytes(), tuple(engine.segment_names))
+    if key in _POINTS:
+        return _POINTS[key]
     try:
-        offsets, _ = equimomental_points(engine._mass, engine._inertia, engine.segment_names)
+        offsets, _ = equimomental_points(mass, inertia, engine.segment_names)
     except ValueError:  # a non-physical inertia: point_masses will refuse, with the reason
-        return None
+        offsets = None
+    else:
+        offsets.setflags(write=False)
+    if len(_POINTS) >= 8:  # a few engines of a few models; a long run over many models starts afresh
+        _POINTS.clear()
+    _POINTS[key] = offsets
     return offsets
 
 
