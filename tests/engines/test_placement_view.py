@@ -60,3 +60,21 @@ def test_sweep_without_the_view_gives_the_same_states(model) -> None:
         np.testing.assert_array_equal(getattr(fast[0], name), getattr(slow[0], name), err_msg=name)
         np.testing.assert_array_equal(getattr(fast_public, name), getattr(slow_public, name), err_msg=name)
     np.testing.assert_array_equal(fast[2], slow[2])
+
+
+@pytest.mark.parametrize("how", ["pickle", "deepcopy"])
+def test_a_copied_engine_reads_its_own_placements(how: str) -> None:
+    import copy
+    import pickle
+
+    pair = load_model(FREE_BALL_HINGE)
+    eng = pair.pinocchio
+    clone = pickle.loads(pickle.dumps(eng)) if how == "pickle" else copy.deepcopy(eng)
+    poses = random_poses(pair.mujoco.model, 20, seed=8)
+    q, _ = pair.state_map.to_pinocchio(poses.qpos, poses.qvel)
+    H, _ = eng._sweep(q, None)  # forwardKinematics, then each joint's homogeneous placement
+    for engine in (clone, eng):
+        states, _, _, _ = engine.sweep(poses.qpos, poses.qvel)
+        np.testing.assert_array_equal(states.rotation, H[..., :3, :3])
+        np.testing.assert_array_equal(states.pole, H[..., :3, 3])
+        np.testing.assert_array_equal(engine.segment_states(poses.qpos, poses.qvel).rotation, H[..., :3, :3])

@@ -86,9 +86,23 @@ class PinocchioEngine:
                 if j > 0:
                     start = model.idx_vs[j]
                     self._support[start : start + model.nvs[j], b] = 1.0
-        self._placement_views = (placement_view(self._m_rigid, self._d_rigid), placement_view(model, self._data))
+        self._placement_views = self._views()
         H, _ = self._sweep(pin.neutral(model)[None], None)
         self._ref = H[0]
+
+    def _views(self) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """The :func:`placement_view` of the armature-free copy's data and of the model's data."""
+        return placement_view(self._m_rigid, self._d_rigid), placement_view(self.model, self._data)
+
+    def __getstate__(self) -> dict:
+        # A placement view reads the memory of this engine's own data: a copy (pickle, deepcopy) builds its own.
+        state = self.__dict__.copy()
+        del state["_placement_views"]
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self._placement_views = self._views()
 
     def _sweep(self, q: np.ndarray, v: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
         """Run forward kinematics once per pose; return oMi (P, B, 4, 4) and data.v (P, B, 6).
