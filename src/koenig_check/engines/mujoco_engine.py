@@ -193,7 +193,8 @@ class MujocoEngine:
         }
         out["anchor"] = out["xpos"] + rotate(out["xmat"], self._anchor_local)
         if energies:
-            out["rigid"] = rigid - 0.5 * (qvel**2) @ m.dof_armature
+            out["armature"] = 0.5 * (qvel**2) @ m.dof_armature
+            out["rigid"] = rigid - out["armature"]
         return out
 
     def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
@@ -251,7 +252,7 @@ class MujocoEngine:
         if points is not None:
             pts = check_points(points, len(self.segment_names))
             pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
-        return states, pv, s["rigid"], 0.5 * (qvel**2) @ self.model.dof_armature
+        return states, pv, s["rigid"], s["armature"]
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return MuJoCo's segment states for a batch of canonical states.
