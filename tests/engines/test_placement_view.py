@@ -14,7 +14,7 @@ from koenig_check.poses import random_poses
 
 FREE_BALL_HINGE = Path(__file__).resolve().parents[1] / "data" / "free_ball_hinge.xml"
 MODELS = Path(__file__).resolve().parents[2] / "models"
-CASES = [FREE_BALL_HINGE, MODELS / "serial7.urdf", MODELS / "armature_chain.xml", "ur5"]
+CASES = [FREE_BALL_HINGE, MODELS / "serial7.urdf", MODELS / "armature_chain.xml", "ur5", "a1"]  # a1: joints reordered
 
 
 @pytest.mark.parametrize("model", CASES, ids=lambda m: Path(str(m)).name)

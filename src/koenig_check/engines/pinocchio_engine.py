@@ -163,7 +163,7 @@ class PinocchioEngine:
                 Jp[p] = J_live
                 raw[p] = view if view is not None else [M.homogeneous for M in placements.tolist()]
         twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
-        R, origin = _rotations_origins(raw[:, rows(self._joints)], view is not None)
+        R, origin = _rotations_origins(raw, view is not None, rows(self._joints))
         return R, origin, twists, rigid
 
     def _states(self, R: np.ndarray, origin: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
@@ -416,16 +416,28 @@ def placement_view(model: pin.Model, data: pin.Data) -> np.ndarray | None:
     moved = pin.integrate(model, pin.neutral(model), np.random.default_rng(0).uniform(-1.0, 1.0, model.nv))
     pin.forwardKinematics(model, data, moved)
     expected = np.array([M.homogeneous for M in placements.tolist()])
-    R, origin = _rotations_origins(view[None], True)
+    R, origin = _rotations_origins(view[None], True, slice(None))
     if not (np.array_equal(R[0], expected[:, :3, :3]) and np.array_equal(origin[0], expected[:, :3, 3])):
         return None
     return view
 
 
-def _rotations_origins(raw: np.ndarray, from_view: bool) -> tuple[np.ndarray, np.ndarray]:
-    """Rotations (..., 3, 3) and origins (..., 3) from rows of :func:`placement_view` or homogeneous matrices."""
+def _rotations_origins(raw: np.ndarray, from_view: bool, joints: slice | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rotations (P, B, 3, 3) and origins (P, B, 3) of some joints from :func:`placement_view` rows or 4 × 4 matrices.
+
+    ``raw`` is (P, njoints, 12) or (P, njoints, 4, 4); ``joints`` selects along its joint axis.  From
+    view rows, an index array is gathered and transposed in the same pass (``np.take`` into ``R``); the
+    origins come contiguous (the state kernels read them faster than a strided view).
+    """
     if not from_view:
-        return raw[..., :3, :3], raw[..., :3, 3]
-    R = np.empty((*raw.shape[:-1], 3, 3))
-    R[...] = np.swapaxes(raw[..., :9].reshape(*raw.shape[:-1], 3, 3), -1, -2)  # stored column by column
-    return R, raw[..., 9:]
+        H = raw[:, joints]
+        return H[..., :3, :3], H[..., :3, 3]
+    P = raw.shape[0]
+    by_column = np.swapaxes(raw[..., :9].reshape(P, raw.shape[1], 3, 3), -1, -2)  # stored column by column
+    if isinstance(joints, slice):
+        R = np.empty(by_column[:, joints].shape)
+        R[...] = by_column[:, joints]
+        return R, np.ascontiguousarray(raw[:, joints, 9:])
+    R = np.empty((P, len(joints), 3, 3))
+    np.take(by_column, joints, axis=1, out=R)
+    return R, np.take(raw[..., 9:], joints, axis=1)
