@@ -148,12 +148,29 @@ def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
     return EngineRun(engine.engine, states, np.asarray(energy.rigid), np.asarray(energy.armature), pv)
 
 
+#: Equimomental points of the last models' segments, keyed by their mass properties (see :func:`_points_for`).
+_POINTS: dict[tuple, np.ndarray | None] = {}
+
+
 def _points_for(engine: Any) -> np.ndarray | None:
-    """The equimomental points of an engine's segments (mass properties are constant), or None."""
+    """The equimomental points of an engine's segments, or None; computed once per set of mass properties.
+
+    The mass properties are constant over the poses, so every chunk of a model asks for the same
+    points: they are kept, keyed by the masses, inertias and names they come from.
+    """
+    mass, inertia = np.asarray(engine._mass, dtype=float), np.asarray(engine._inertia, dtype=float)
+    key = (mass.tobytes(), inertia.tobytes(), tuple(engine.segment_names))
+    if key in _POINTS:
+        return _POINTS[key]
     try:
-        offsets, _ = equimomental_points(engine._mass, engine._inertia, engine.segment_names)
+        offsets, _ = equimomental_points(mass, inertia, engine.segment_names)
     except ValueError:  # a non-physical inertia: point_masses will refuse, with the reason
-        return None
+        offsets = None
+    else:
+        offsets.setflags(write=False)
+    if len(_POINTS) >= 8:  # a few engines of a few models; a long run over many models starts afresh
+        _POINTS.clear()
+    _POINTS[key] = offsets
     return offsets
 
 
@@ -315,24 +332,55 @@ def _chunk_table(
         return STORED_SCHEMA.empty_table()
     values = np.concatenate([b[4].reshape(P, -1) for b in blocks], axis=1)
     refs = np.concatenate([b[5].reshape(P, -1) for b in blocks], axis=1)
+    model, pose, f, s, r, sc = _record_codes(P, blocks)
+    arrays = [
+        categorical(model, [label], "model"),
+        categorical(pose, list(ids), "pose"),
+        categorical(f, formulas, "formula"),
+        categorical(s, sources, "source"),
+        categorical(r, references, "reference"),
+        categorical(sc, scopes, "scope"),
+        pa.array(values.ravel()),
+        pa.array(refs.ravel()),
+    ]
+    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+
+
+#: The code columns of the last chunk layouts (every chunk of a model but its last has the same).
+_CODES: dict[tuple, tuple[np.ndarray, ...]] = {}
+
+
+def _record_codes(P: int, blocks: list) -> tuple[np.ndarray, ...]:
+    """The model, pose, formula, source, reference and scope codes of a chunk's P × K records.
+
+    They depend only on the number of poses and the layout of the blocks, so they are built once
+    per layout and reused (read-only) by every chunk of that layout.
+    """
+    key = (P, tuple((b[0], b[1], b[2], None if b[3] is None else b[3].tobytes()) for b in blocks))
+    codes = _CODES.get(key)
+    if codes is not None:
+        return codes
     widths = [1 if b[3] is None else len(b[3]) for b in blocks]
     # Codes built in their stored widths (the columns' index types), so that no column is converted.
     f = np.repeat(np.array([b[0] for b in blocks], dtype=np.int8), widths)
     s = np.repeat(np.array([b[1] for b in blocks], dtype=np.int8), widths)
     r = np.repeat(np.array([b[2] for b in blocks], dtype=np.int8), widths)
     sc = np.concatenate([np.zeros(1, dtype=np.int16) if b[3] is None else b[3].astype(np.int16) for b in blocks])
-    K = values.shape[1]
-    arrays = [
-        categorical(np.zeros(P * K, dtype=np.int16), [label], "model"),
-        categorical(np.repeat(np.arange(P, dtype=np.int32), K), list(ids), "pose"),
-        categorical(np.tile(f, P), formulas, "formula"),
-        categorical(np.tile(s, P), sources, "source"),
-        categorical(np.tile(r, P), references, "reference"),
-        categorical(np.tile(sc, P), scopes, "scope"),
-        pa.array(values.ravel()),
-        pa.array(refs.ravel()),
-    ]
-    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+    K = len(sc)
+    codes = (
+        np.zeros(P * K, dtype=np.int16),
+        np.repeat(np.arange(P, dtype=np.int32), K),
+        np.tile(f, P),
+        np.tile(s, P),
+        np.tile(r, P),
+        np.tile(sc, P),
+    )
+    for c in codes:
+        c.setflags(write=False)
+    if len(_CODES) >= 4:  # a model's full chunks and its last one; a new model starts afresh
+        _CODES.clear()
+    _CODES[key] = codes
+    return codes
 
 
 def compare_runs(

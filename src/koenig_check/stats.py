@@ -43,6 +43,33 @@ def relative_error(value: np.ndarray, reference: np.ndarray) -> np.ndarray:
     return np.where(ref > 0, rel, np.where(diff == 0, 0.0, np.copysign(np.inf, diff)))
 
 
+def absolute_relative_error(difference: np.ndarray, magnitude: np.ndarray) -> np.ndarray:
+    """``|relative_error|`` from ``value − reference`` and ``|reference|`` already at hand, in fewer passes.
+
+    Equal to ``np.abs(relative_error(value, reference))`` element for element: ``|d| / |r|`` where
+    ``|r| > 0``; elsewhere (``r`` zero or NaN) 0 where ``d == 0`` and ``inf`` otherwise.
+
+    Parameters
+    ----------
+    difference : ndarray
+        ``value − reference``.
+    magnitude : ndarray
+        ``|reference|``.
+
+    Returns
+    -------
+    ndarray
+        A new array.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = np.divide(difference, magnitude)
+    np.abs(rel, out=rel)
+    undefined = ~(magnitude > 0)
+    if undefined.any():
+        rel[undefined] = np.where(difference[undefined] == 0, 0.0, np.inf)
+    return rel
+
+
 class QuantileSketch:
     """Quantiles of non-negative values (relative errors), exact while small, binned beyond.
 
@@ -77,22 +104,24 @@ class QuantileSketch:
     def _count_into(cls, counts: np.ndarray, values: np.ndarray) -> None:
         np.add.at(counts, cls._bins(values), 1)  # unbuffered: repeated bins all count
 
-    def add(self, values: np.ndarray) -> None:
+    def add(self, values: np.ndarray, copy: bool = True) -> None:
         """Add values.
 
         Parameters
         ----------
         values : ndarray
             Non-negative numbers (``inf`` allowed; NaN counted apart and makes every quantile NaN).
+        copy : bool
+            Keep a copy of ``values`` (False: the caller hands them over and will not change them).
         """
         values = np.asarray(values, dtype=float).ravel()
         bad = np.isnan(values)
         if bad.any():
             self.nan += int(bad.sum())
-            values = values[~bad]
+            values, copy = values[~bad], False
         self.n += values.size
         if self._values is not None:
-            self._values.append(values.copy())
+            self._values.append(values.copy() if copy else values)
             if self.n > EXACT_LIMIT:
                 self._to_bins()
         else:
@@ -235,13 +264,14 @@ class GroupStats:
         pose_labels : sequence or callable
         """
         signed = value - reference
-        rel = np.abs(relative_error(value, reference))
-        scale = rtol * np.abs(reference)
+        magnitude = np.abs(reference)
+        rel = absolute_relative_error(signed, magnitude)
+        scale = rtol * magnitude
         self.n += value.size
         self.over += int(np.count_nonzero(signed > scale))
         self.under += int(np.count_nonzero(signed < -scale))
         self.worst.offer(rel, pose_labels)
-        self.sketch.add(rel)
+        self.sketch.add(rel, copy=False)
 
     def merge(self, other: GroupStats) -> None:
         """Merge a later chunk's statistics.

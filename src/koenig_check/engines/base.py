@@ -139,3 +139,24 @@ def symmetrize(inertia: np.ndarray) -> np.ndarray:
     ndarray, shape (..., 3, 3)
     """
     return 0.5 * (inertia + np.swapaxes(inertia, -1, -2))
+
+
+def rows(index: np.ndarray) -> slice | np.ndarray:
+    """An index along an axis as a slice where it can be one (a view instead of a copy), else itself.
+
+    Parameters
+    ----------
+    index : ndarray of int, shape (n,)
+
+    Returns
+    -------
+    slice or ndarray
+        ``slice(a, a + n)`` for consecutive indices ``a, a + 1, ...``; ``slice(a, a + 1)`` (one row,
+        broadcast along the axis) when every index is ``a``; otherwise ``index``.
+    """
+    index = np.asarray(index)
+    if index.size and np.array_equal(index, index[0] + np.arange(index.size)):
+        return slice(int(index[0]), int(index[0]) + index.size)
+    if index.size and (index == index[0]).all():
+        return slice(int(index[0]), int(index[0]) + 1)
+    return index

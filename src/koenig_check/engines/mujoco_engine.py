@@ -32,7 +32,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from koenig_check.engines.base import as_batches, check_points, symmetrize
+from koenig_check.engines.base import as_batches, check_points, rows, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import mujoco_joint_names
 from koenig_check.findings import Finding, Kind
@@ -184,16 +184,17 @@ class MujocoEngine:
                 make_m(m_energy, d)
                 energy_vel(m_energy, d)
                 rigid[p] = d_energy[1]
-        idx = self._seg_body
+        idx, root = rows(self._seg_body), rows(self._seg_root)
         out = {
             "xpos": xpos[:, idx],
-            "xmat": xmat[:, idx].reshape(P, len(idx), 3, 3),
+            "xmat": xmat[:, idx].reshape(P, len(self._seg_body), 3, 3),
             "cvel": cvel[:, idx],
-            "ref": sub[:, self._seg_root],
+            "ref": sub[:, root],  # (P, 1, 3) when every segment hangs from one root body
         }
         out["anchor"] = out["xpos"] + rotate(out["xmat"], self._anchor_local)
         if energies:
-            out["rigid"] = rigid - 0.5 * (qvel**2) @ m.dof_armature
+            out["armature"] = 0.5 * (qvel**2) @ m.dof_armature
+            out["rigid"] = rigid - out["armature"]
         return out
 
     def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
@@ -251,7 +252,7 @@ class MujocoEngine:
         if points is not None:
             pts = check_points(points, len(self.segment_names))
             pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
-        return states, pv, s["rigid"], 0.5 * (qvel**2) @ self.model.dof_armature
+        return states, pv, s["rigid"], s["armature"]
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return MuJoCo's segment states for a batch of canonical states.

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from koenig_check.engines.base import as_batches, check_points, symmetrize
+from koenig_check.engines.base import as_batches, check_points, rows, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.state_map import StateMap
 from koenig_check.findings import Finding, Kind
@@ -86,8 +86,23 @@ class PinocchioEngine:
                 if j > 0:
                     start = model.idx_vs[j]
                     self._support[start : start + model.nvs[j], b] = 1.0
+        self._placement_views = self._views()
         H, _ = self._sweep(pin.neutral(model)[None], None)
         self._ref = H[0]
+
+    def _views(self) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """The :func:`placement_view` of the armature-free copy's data and of the model's data."""
+        return placement_view(self._m_rigid, self._d_rigid), placement_view(self.model, self._data)
+
+    def __getstate__(self) -> dict:
+        # A placement view reads the memory of this engine's own data: a copy (pickle, deepcopy) builds its own.
+        state = self.__dict__.copy()
+        del state["_placement_views"]
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self._placement_views = self._views()
 
     def _sweep(self, q: np.ndarray, v: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
         """Run forward kinematics once per pose; return oMi (P, B, 4, 4) and data.v (P, B, 6).
@@ -109,46 +124,49 @@ class PinocchioEngine:
 
     def _sweep_world(
         self, q: np.ndarray, v: np.ndarray, energies: bool = False
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-        """Run ``computeJointJacobians`` once per pose; return oMi (P, B, 4, 4) and world twists (P, B, 6).
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+        """Run ``computeJointJacobians`` once per pose: rotations, origins and world twists of the segments.
 
         The twist of joint ``i`` is ``J_world[:, support(i)] v``: ``(v_O, ω)`` with ``v_O`` the
         velocity of the segment point at the world origin, so a point ``p`` moves with
         ``v_O + ω × p``.  Per pose: one engine call, the world Jacobian ``data.J`` copied whole
-        and the placements; the sum over supports is vectorized.  With ``energies``, the same
-        pass evaluates ``computeKineticEnergy`` on the armature-free copy (``rigid`` of
-        :meth:`kinetic_energy`): ``forwardKinematics(q, v)`` once, then the energy and the
-        Jacobians from that pass (the copy has the model's kinematic tree).
+        and the placements ``data.oMi`` copied whole through :func:`placement_view` (per joint,
+        through the bindings, where that view is not available); the sum over supports is
+        vectorized.  With ``energies``, the same pass evaluates ``computeKineticEnergy`` on the
+        armature-free copy (``rigid`` of :meth:`kinetic_energy`): ``forwardKinematics(q, v)`` once,
+        then the energy and the Jacobians from that pass (the copy has the model's kinematic tree).
         """
-        m, d, idx = self.model, self._data, self._joints
+        m = self.model
         P = q.shape[0]
-        H = np.empty((P, m.njoints, 4, 4))
         J = np.empty((P, 6, m.nv))
         rigid = np.empty(P) if energies else None
         jacobians, kinetic, kinematics = pin.computeJointJacobians, pin.computeKineticEnergy, pin.forwardKinematics
-        m_rigid, d_rigid = self._m_rigid, self._d_rigid
+        m_rigid, d_rigid, d = self._m_rigid, self._d_rigid, self._data
         Jp = J if m.nv > 1 else J[..., 0]  # the bindings hand a 6 x 1 Jacobian out as a vector
+        # data.J, data.oMi and the placement view follow every pose: taken once, outside the loop.
+        data = d_rigid if energies else d
+        J_live, placements = data.J, data.oMi
+        view = self._placement_views[0 if energies else 1]
+        raw = np.empty((P, m.njoints, 12)) if view is not None else np.empty((P, m.njoints, 4, 4))
         if energies:
             # One kinematic pass on the armature-free copy (the same tree, so the same placements and
             # Jacobian, bit for bit): forwardKinematics with v, then the energy and the Jacobians from it.
-            # data.J and data.oMi are handed out by reference: taken once, they follow every pose.
-            J_live, placements = d_rigid.J, d_rigid.oMi
             for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
                 kinematics(m_rigid, d_rigid, q_p, v_p)
                 rigid[p] = kinetic(m_rigid, d_rigid)
                 jacobians(m_rigid, d_rigid)
                 Jp[p] = J_live
-                H[p] = [M.homogeneous for M in placements.tolist()]
+                raw[p] = view if view is not None else [M.homogeneous for M in placements.tolist()]
         else:
-            for p in range(P):
-                jacobians(m, d, q[p])
-                Jp[p] = d.J
-                H[p] = [M.homogeneous for M in d.oMi.tolist()]
+            for p, q_p in enumerate(q):
+                jacobians(m, d, q_p)
+                Jp[p] = J_live
+                raw[p] = view if view is not None else [M.homogeneous for M in placements.tolist()]
         twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
-        return H[:, idx], twists, rigid
+        R, origin = _rotations_origins(raw, view is not None, rows(self._joints))
+        return R, origin, twists, rigid
 
-    def _states(self, H: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
-        R, origin = H[..., :3, :3], H[..., :3, 3]
+    def _states(self, R: np.ndarray, origin: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
         v_origin, omega = T[..., :3], T[..., 3:]
         com = origin + rotate(R, self._lever)
         R0 = self._ref[..., :3, :3]
@@ -191,8 +209,8 @@ class PinocchioEngine:
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
-        H, T, rigid = self._sweep_world(q, v, energies=True)
-        states = self._states(H, T, trusted=True)
+        R, origin, T, rigid = self._sweep_world(q, v, energies=True)
+        states = self._states(R, origin, T, trusted=True)
         pv = None
         if points is not None:
             pts = check_points(points, len(self.segment_names))
@@ -214,8 +232,8 @@ class PinocchioEngine:
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
-        H, T, _ = self._sweep_world(q, v)
-        return self._states(H, T)
+        R, origin, T, _ = self._sweep_world(q, v)
+        return self._states(R, origin, T)
 
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
         """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``.
@@ -351,3 +369,75 @@ class PinocchioEngine:
             key = leaf.shortname() + (" in composite" if p.pin_sub >= 0 else "")
             groups.setdefault(key, []).extend(range(p.vadr, p.vadr + width.get(p.kind, 1)))
         return {k: np.array(v, dtype=int) for k, v in groups.items()}
+
+
+def placement_view(model: pin.Model, data: pin.Data) -> np.ndarray | None:
+    """``data.oMi`` as one (njoints, 12) array over Pinocchio's own storage, or None.
+
+    Pinocchio 4.1 hands the placements out one joint at a time (each accessor costs about 0.3 µs
+    per joint); its ``SE3`` objects lie in one contiguous vector inside ``data``, and the bindings'
+    ``rotation`` and ``translation`` are views of that memory.  Row ``i`` of the returned array is
+    joint ``i``'s rotation in Eigen's column-major order then its translation, read from that
+    vector, so that one copy per pose takes every placement.  The layout is verified, not assumed:
+    every joint's ``rotation`` and ``translation`` must sit at the addresses and strides the view
+    reads, and after a forward-kinematics pass at a random configuration the view must equal every
+    joint's ``homogeneous`` placement exactly; otherwise None (callers read the joints one by one).
+
+    The view does not keep ``data`` alive and follows it: the caller holds ``data`` for as long as
+    it uses the view, and copies it after each kinematic pass.
+
+    Parameters
+    ----------
+    model : pinocchio.Model
+    data : pinocchio.Data
+        Created from ``model``.
+
+    Returns
+    -------
+    ndarray, shape (njoints, 12), read-only, or None
+    """
+    placements = data.oMi
+    n = len(placements)
+    rotations = [placements[i].rotation for i in range(n)]
+    translations = [placements[i].translation for i in range(n)]
+    address = np.array([r.__array_interface__["data"][0] for r in rotations], dtype=np.int64)
+    stride = int(address[1] - address[0]) if n > 1 else 96
+    layout_ok = (
+        n >= 1
+        and stride >= 96
+        and all(r.shape == (3, 3) and r.strides == (8, 24) and r.dtype == np.float64 for r in rotations)
+        and all(t.shape == (3,) and t.strides == (8,) and t.dtype == np.float64 for t in translations)
+        and np.array_equal(address, address[0] + stride * np.arange(n))
+        and all(t.__array_interface__["data"][0] == a + 72 for t, a in zip(translations, address, strict=True))
+    )
+    if not layout_ok:
+        return None
+    view = np.lib.stride_tricks.as_strided(rotations[0], shape=(n, 12), strides=(stride, 8), writeable=False)
+    moved = pin.integrate(model, pin.neutral(model), np.random.default_rng(0).uniform(-1.0, 1.0, model.nv))
+    pin.forwardKinematics(model, data, moved)
+    expected = np.array([M.homogeneous for M in placements.tolist()])
+    R, origin = _rotations_origins(view[None], True, slice(None))
+    if not (np.array_equal(R[0], expected[:, :3, :3]) and np.array_equal(origin[0], expected[:, :3, 3])):
+        return None
+    return view
+
+
+def _rotations_origins(raw: np.ndarray, from_view: bool, joints: slice | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rotations (P, B, 3, 3) and origins (P, B, 3) of some joints from :func:`placement_view` rows or 4 × 4 matrices.
+
+    ``raw`` is (P, njoints, 12) or (P, njoints, 4, 4); ``joints`` selects along its joint axis.  From
+    view rows, an index array is gathered and transposed in the same pass (``np.take`` into ``R``); the
+    origins come contiguous (the state kernels read them faster than a strided view).
+    """
+    if not from_view:
+        H = raw[:, joints]
+        return H[..., :3, :3], H[..., :3, 3]
+    P = raw.shape[0]
+    by_column = np.swapaxes(raw[..., :9].reshape(P, raw.shape[1], 3, 3), -1, -2)  # stored column by column
+    if isinstance(joints, slice):
+        R = np.empty(by_column[:, joints].shape)
+        R[...] = by_column[:, joints]
+        return R, np.ascontiguousarray(raw[:, joints, 9:])
+    R = np.empty((P, len(joints), 3, 3))
+    np.take(by_column, joints, axis=1, out=R)
+    return R, np.take(raw[..., 9:], joints, axis=1)
