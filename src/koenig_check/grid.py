@@ -275,7 +275,8 @@ def evaluate_chunk(
         for f_code, name in enumerate(names):
             try:
                 normal = (planar_normals or {}).get(source)
-                per_segment = _evaluate(name, run, shared, angles, normal, ids)
+                # exact is the segments' reference: evaluated once above, not again as a formula
+                per_segment = exact_seg if name == "exact" else _evaluate(name, run, shared, angles, normal, ids)
             except NotPlaneParallelError as err:
                 stats.refusals[(name, source)] = str(err)
                 continue
