@@ -34,7 +34,12 @@ def figures(text: str) -> list[str]:
 
 def test_readme_findings_are_marked() -> None:
     sources = {src for _, _, src in marked_lines()}
-    assert {"comparisons/paper_claims.md", "comparisons/engine_parity.md", "comparisons/inertia_forces.md"} <= sources
+    assert {
+        "comparisons/paper_claims.md",
+        "comparisons/engine_parity.md",
+        "comparisons/inertia_forces.md",
+        "comparisons/benchmark.md",
+    } <= sources
     assert sum(len(figures(t)) for _, t, _ in marked_lines()) >= 20
 
 
