@@ -108,3 +108,17 @@ def test_boxes_span_the_quartiles_and_whiskers_reach_min_and_max(two_models, dra
     xs = np.concatenate([s[:, 0] for s in at_row])
     np.testing.assert_allclose([xs.min(), xs.max()], [lo, hi], atol=1e-9)
     assert any(np.allclose(s[:, 0], med, atol=1e-9) for s in at_row)  # the median line
+
+
+def test_report_pooled_figure_names_each_model_once(
+    two_models, monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from koenig_check.report import write_report
+
+    drawn: list[Figure] = []
+    save = Figure.savefig
+    monkeypatch.setattr(Figure, "savefig", lambda self, *a, **k: (drawn.append(self), save(self, *a, **k))[1])
+    write_report(tmp_path / "r", two_models)
+    pooled = [fig for fig in drawn if "Pooled over" in _title(fig)]
+    assert len(pooled) == 1
+    assert _title(pooled[0]).count("serial7.urdf") == 1 and "own figure" in _title(pooled[0])

@@ -440,7 +440,10 @@ def write_report(
     if len(with_stats) > 1:
         names = ", ".join(c.model for c in with_stats)
         caption = f"pooled over {len(with_stats)} models ({names}); each model's own figure is in its section"
-        path = error_distribution_figure(with_stats, out / "error_distribution.png", check.rtol, caption)
+        # The figure's own title names the pooled models; its caption only points to the per-model figures.
+        path = error_distribution_figure(
+            with_stats, out / "error_distribution.png", check.rtol, "each model's own figure is in its section"
+        )
         figures.setdefault(None, []).append((path, f"Relative error of each formula, {caption}."))
     if grid_comparison is not None:
         caption = run_conditions(grid_comparison, check.settings.get(grid_comparison.model))
