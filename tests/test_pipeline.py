@@ -198,3 +198,32 @@ def test_scheduler_flag_runs_the_chunks_on_a_dask_cluster(tmp_path: Path) -> Non
     a = json.loads((tmp_path / "dask" / "records.json").read_text())
     b = json.loads((tmp_path / "one" / "records.json").read_text())
     assert a["summaries"] == b["summaries"] and a["records"] == b["records"] and a["parity"] == b["parity"]
+
+
+def test_no_writing_thread_is_alive_when_jobs_fork_their_workers(tmp_path: Path, monkeypatch) -> None:
+    """A thread holding Arrow's locks at fork time can deadlock the forked workers: writes are finished first."""
+    import threading
+    import time
+
+    from koenig_check import pipeline
+    from koenig_check.cli import main
+    from koenig_check.report import RecordFiles
+
+    monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 8)
+    write = RecordFiles._write_now
+
+    def slow(self, table):  # a slow disk: without the flush the write is still running at the next fork
+        time.sleep(0.3)
+        write(self, table)
+
+    monkeypatch.setattr(RecordFiles, "_write_now", slow)
+    alive_at_fork: list[list[str]] = []
+    pool = pipeline._pool
+
+    def watched(jobs):
+        alive_at_fork.append([t.name for t in threading.enumerate() if t.name == "records-parquet"])
+        return pool(jobs)
+
+    monkeypatch.setattr(pipeline, "_pool", watched)
+    code = main(["compare", "gimbal.xml", "serial7.urdf", "--poses", "24", "--jobs", "2", "--out", str(tmp_path / "r")])
+    assert code == 0 and len(alive_at_fork) == 2 and alive_at_fork == [[], []]

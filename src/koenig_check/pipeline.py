@@ -422,6 +422,8 @@ def run_model(
     )
     keep = sink is None if keep_records is None else keep_records
     stats, kept = None, []
+    if jobs > 1 and client is None and sink is not None and hasattr(sink, "flush"):
+        sink.flush()  # no writing thread alive when the workers are forked
     for result in run_tasks(tasks, jobs=jobs, client=client):
         if stats is None:
             stats = result.stats

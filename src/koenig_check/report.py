@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import json
 import re
+import threading
 from collections.abc import Sequence
-from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
@@ -188,6 +188,10 @@ class RecordSink(Protocol):
         """Take one chunk's records."""
         ...
 
+    def flush(self) -> None:
+        """Finish every write taken (called before worker processes are forked)."""
+        ...
+
 
 class RecordFiles:
     """The record files of a report directory, written as the records stream in.
@@ -225,9 +229,10 @@ class RecordFiles:
             self.parquet, STORED_SCHEMA, use_dictionary=list(TEXT_FIELDS), write_statistics=False
         )
         # One chunk is written in a thread while the next is computed (Arrow's writer releases the GIL);
-        # at most one write is pending, so at most two chunks of records are held.
-        self._thread = ThreadPoolExecutor(max_workers=1, thread_name_prefix="records-parquet")
-        self._pending: Future[None] | None = None
+        # at most one write is pending, so at most two chunks of records are held.  The thread lives for
+        # one write only: after flush() no thread of ours is left when --jobs forks its workers.
+        self._pending: threading.Thread | None = None
+        self._error: BaseException | None = None
         self.written: list[Path] = []
 
     def write(self, table: pa.Table) -> None:
@@ -240,19 +245,29 @@ class RecordFiles:
         """
         if not table.num_rows:
             return
-        self._wait()
-        self._pending = self._thread.submit(self._writer.write_table, table)
+        self.flush()
+        self._pending = threading.Thread(target=self._write_now, args=(table,), name="records-parquet")
+        self._pending.start()
         self.rows += table.num_rows
         if self._small is not None:
             self._small.append(table)
             if self.rows > self.csv_rows:
                 self._small = None
 
-    def _wait(self) -> None:
-        """Finish the pending write (raising its error, if any)."""
+    def _write_now(self, table: pa.Table) -> None:
+        try:
+            self._writer.write_table(table)
+        except BaseException as err:  # raised in the caller's thread by flush()
+            self._error = err
+
+    def flush(self) -> None:
+        """Finish the pending write, raising its error if it failed."""
         pending, self._pending = self._pending, None
         if pending is not None:
-            pending.result()
+            pending.join()
+        error, self._error = self._error, None
+        if error is not None:
+            raise error
 
     @property
     def small(self) -> RecordTable | None:
@@ -270,9 +285,8 @@ class RecordFiles:
         """
         if self._writer is not None:
             try:
-                self._wait()
+                self.flush()
             finally:
-                self._thread.shutdown()
                 self._writer.close()
                 self._writer = None
             self.written = [self.parquet]
