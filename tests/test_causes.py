@@ -197,3 +197,32 @@ def test_include_of_a_welded_part_is_named_and_changes_the_energy() -> None:
     assert cause.values["bodies"] == ("tool",) and cause.values["joints"] == ()
     check = _compare("include_welded_in_body.xml")
     assert not check.ok and cause.message() in check.reason()
+
+
+def test_bodies_inside_a_frame_are_named_when_joints_do_not_pair() -> None:
+    err = _load_error("frame_body.xml")
+    assert "only in MuJoCo: ['j2']" in str(err)  # the pairing error stays whole
+    cause = _only(err.causes, Kind.IGNORED_CONSTRUCT)
+    assert (cause.engine, cause.element, cause.affects_energy) == ("pinocchio", "frame #1 in body base", True)
+    assert cause.values["bodies"] == ("arm",) and cause.values["joints"] == ("j2",)
+    assert cause.message() in str(err) and "\n" not in str(err)
+
+
+def test_a_root_body_inside_a_frame_is_named_when_pinocchio_fails() -> None:
+    err = _load_error("frame_root.xml")
+    assert "No such node (body)" in str(err)
+    cause = _only(err.causes, Kind.IGNORED_CONSTRUCT)
+    assert cause.element == "frame #1 in worldbody" and cause.values["bodies"] == ("base",)
+
+
+def test_geoms_inside_a_frame_are_named_with_the_segment_they_weigh_on() -> None:
+    pair = load_model(CAUSES / "frame_geom.xml")
+    assert engines_agree(pair) is False  # independent: the engines' own mass matrices differ
+    causes = [c for c in import_parity(pair).causes if c.kind is Kind.IGNORED_CONSTRUCT]
+    assert len(causes) == 1, [c.message() for c in causes]
+    cause = causes[0]
+    assert (cause.engine, cause.element, cause.segments) == ("pinocchio", "frame #1 in body base", ("j1",))
+    assert cause.values["geoms"] == 1 and cause.affects_energy
+    # MuJoCo's segment carries the frame's 2 kg sphere, Pinocchio's does not.
+    masses = {e.engine: e.segment_states(pair.mujoco.model.qpos0[None], np.zeros((1, 1))).mass[0] for e in pair.engines}
+    assert masses == pytest.approx({"mujoco": 3.0, "pinocchio": 1.0})

@@ -184,3 +184,13 @@ def test_all_three_differ_each_construct_named() -> None:
     replaced = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.INERTIA]
     assert [f.element for f in replaced] == ["link arm"] and replaced[0].segments == ("swing",)
     assert replaced[0].values["moments in the file"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)
+
+
+@needs_drake
+def test_a_construct_both_other_engines_skip_is_named_not_blamed_on_mujoco() -> None:
+    """Pinocchio and Drake both skip the <frame>'s geom and agree: MuJoCo is the odd one out, but reads the file."""
+    check = koenig_check.compare(HERE / "models" / "causes" / "frame_geom.xml", n_poses=3, formulas=["exact"])
+    verdict = {f.element: f for f in _verdicts(check)}["rigid-body energy"]
+    assert verdict.engine == "mujoco"
+    assert "Pinocchio and Drake both skip frame #1 in body base: MuJoCo reads the file as written" in verdict.summary
+    assert "<frame> not read" in verdict.hint and not check.ok

@@ -182,8 +182,91 @@ def _class_values(root: ET.Element) -> list[_ClassValue]:
 
 
 # ------------------------------------------------------------------------------------ file-level causes
+@dataclass(frozen=True)
+class _Framed:
+    """What one outermost ``<frame>`` of the main file holds."""
+
+    where: str  # "body <name>" or "worldbody"
+    label: str  # the frame's name, or its position among its parent's frames
+    bodies: tuple[str, ...]
+    joints: tuple[str, ...]
+    geoms: int  # geoms of the enclosing body inside the frame (not those of the bodies inside it)
+    enclosing: str | None  # the enclosing body's name
+
+
+def _frames(root: ET.Element) -> list[_Framed]:
+    """Every outermost ``<frame>`` under ``<worldbody>``, with the bodies, joints and geoms inside it."""
+    out: list[_Framed] = []
+
+    def own_geoms(frame: ET.Element) -> int:  # geoms in the frame and its nested frames, not in bodies
+        return sum(1 if c.tag == "geom" else own_geoms(c) if c.tag == "frame" else 0 for c in frame)
+
+    def walk(element: ET.Element, where: str, enclosing: str | None) -> None:
+        count = 0
+        for child in element:
+            if child.tag == "frame":
+                count += 1
+                bodies = tuple(b.get("name", "?") for b in child.iter("body"))
+                label = child.get("name") or f"#{count}"
+                out.append(_Framed(where, label, bodies, tuple(_joint_names(child)), own_geoms(child), enclosing))
+            elif child.tag == "body":
+                name = child.get("name", "?")
+                walk(child, f"body {name}", name)
+
+    for world in root.findall("worldbody"):
+        walk(world, "worldbody", None)
+    return out
+
+
+def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocchio") -> list[Finding]:
+    """The ``<frame>`` elements an engine's MJCF parser does not read, with what they hold.
+
+    MuJoCo resolves a ``<frame>`` at compile time (its pose moves every child); Pinocchio 4.1's and
+    Drake's MJCF parsers skip the element and everything inside it: its bodies (with their joints) and
+    the geoms it adds to the enclosing body, whose mass and inertia the segment then lacks.
+
+    Parameters
+    ----------
+    root : xml.etree.ElementTree.Element
+        The MJCF document.
+    seg_of : dict of str to str
+        Body name to the segment (joint) that moves it, from MuJoCo's compiled model.
+    engine : str
+        The engine whose parser skips ``<frame>``.
+
+    Returns
+    -------
+    list of Finding
+        One ``IGNORED_CONSTRUCT`` root cause per outermost frame that holds a body or a geom.
+    """
+    parser = {"pinocchio": "Pinocchio's", "drake": "Drake's"}.get(engine, engine)
+    out = []
+    for fr in _frames(root):
+        if not fr.bodies and not fr.geoms:
+            continue
+        held = [f"{len(fr.bodies)} bodies", f"{len(fr.joints)} joints"] if fr.bodies else []
+        if fr.geoms:
+            held.append(f"{fr.geoms} geoms of body {fr.enclosing}" if fr.enclosing else f"{fr.geoms} world geoms")
+        moved = tuple(dict.fromkeys(seg_of[b] for b in (*fr.bodies, fr.enclosing or "") if seg_of.get(b)))
+        out.append(
+            Finding(
+                Kind.IGNORED_CONSTRUCT,
+                engine,
+                f"frame {fr.label} in {fr.where}",
+                f"<frame> not read by {parser} MJCF parser: what it holds is missing ({', '.join(held)})",
+                values={"bodies": fr.bodies, "joints": fr.joints, "geoms": fr.geoms},
+                affects_energy=bool(fr.joints or moved),
+                root_cause=True,
+                segments=moved or fr.joints,
+                hint="give the bodies and geoms inside it the frame's pose and remove the <frame> "
+                "(MuJoCo resolves it at compile time)",
+            )
+        )
+    return out
+
+
 def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = None) -> list[Finding]:
-    """Root causes visible in the file alone: ignored ``<include>`` and the root bodies Pinocchio skips.
+    """Root causes visible in the file alone: ignored ``<include>`` and ``<frame>``, the root bodies Pinocchio skips.
 
     Used when Pinocchio cannot load the file or its joints cannot be paired with MuJoCo's, and for every
     model loaded in both engines.
@@ -239,6 +322,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 hint="load a file without <include> (e.g. the robot's own file)" if inc.bodies else "",
             )
         )
+    out += frame_causes(root, seg_of)
     for body in world_bodies[1:]:
         joints = tuple(_joint_names(body))
         out.append(

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -132,8 +133,18 @@ def consult_drake(pair: Any, engines: Sequence[str] | None, disagree: bool) -> C
         return Consultation(findings=[_not_used(" ".join(str(err).split()))])
     except ImportError as err:  # installed but not importable
         return Consultation(findings=[_not_used(f"pydrake cannot be imported: {' '.join(str(err).split())}")])
-    findings = list(engine.findings) + armature_findings(pair, engine)
+    findings = list(engine.findings) + armature_findings(pair, engine) + _drake_file_causes(pair)
     return Consultation(engine, findings)
+
+
+def _drake_file_causes(pair: Any) -> list[Finding]:
+    """The constructs of an MJCF file that Drake's parser skips too: ``<frame>`` (measured on 1.51)."""
+    from koenig_check.causes import _read_mjcf, _segment_of_body, frame_causes
+
+    if pair.source.format != "mjcf":
+        return []
+    root = _read_mjcf(Path(str(pair.source.path)))
+    return [] if root is None else frame_causes(root, _segment_of_body(pair.mujoco.model), engine="drake")
 
 
 def armature_findings(pair: Any, drake: Any) -> list[Finding]:
@@ -254,6 +265,14 @@ def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence
     return roots[0] if roots else None
 
 
+def _shared_cause(engines: Sequence[str], findings: Sequence[Finding], segments: Sequence[str]) -> Finding | None:
+    """A construct every one of ``engines`` skips (the same element named as a cause of each), or None."""
+    causes = [departure_cause(findings, e, segments) for e in engines]
+    if any(c is None for c in causes) or len({c.element for c in causes}) != 1:
+        return None
+    return causes[0]
+
+
 def _construct(cause: Finding) -> str:
     """The construct a cause names: ``compiler settotalmass`` rather than the body it altered."""
     if cause.kind is Kind.COMPILER and cause.engine == "mujoco":
@@ -283,6 +302,11 @@ def _verdict(
     summary = f"{LABEL[odd]} departs ({others} agree)"
     if cause is not None:
         summary += f"; construct responsible: {_construct(cause)}"
+    else:  # the two that agree may skip the same construct: then the odd one reads the file as written
+        shared = _shared_cause([e for e in values if e != odd], findings, segments)
+        if shared is not None:
+            cause = shared
+            summary += f"; {others} both skip {_construct(shared)}: {LABEL[odd]} reads the file as written"
     return Finding(
         Kind.VERDICT,
         odd,
