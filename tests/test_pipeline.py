@@ -227,3 +227,27 @@ def test_no_writing_thread_is_alive_when_jobs_fork_their_workers(tmp_path: Path,
     monkeypatch.setattr(pipeline, "_pool", watched)
     code = main(["compare", "gimbal.xml", "serial7.urdf", "--poses", "24", "--jobs", "2", "--out", str(tmp_path / "r")])
     assert code == 0 and len(alive_at_fork) == 2 and alive_at_fork == [[], []]
+
+
+def test_a_failed_record_write_fails_its_own_model_not_the_next(tmp_path: Path, monkeypatch) -> None:
+    """Records are written in a thread: the error of a model's last write belongs to that model."""
+    import pyarrow.parquet as pq
+
+    from koenig_check.report import RecordFiles
+
+    write = pq.ParquetWriter.write_table
+    calls: list[int] = []
+
+    def first_write_fails(self, table, *args, **kwargs):
+        calls.append(table.num_rows)
+        if len(calls) == 1:
+            raise OSError("records.parquet: No space left on device")
+        write(self, table, *args, **kwargs)
+
+    monkeypatch.setattr(pq.ParquetWriter, "write_table", first_write_fails)
+    sink = RecordFiles(tmp_path)
+    check = koenig_check.compare(["gimbal.xml", "double_pendulum.xml"], n_poses=20, sink=sink)
+    sink.close()
+    assert [c.model for c in check.comparisons] == ["double_pendulum.xml"]
+    assert len(check.failures) == 1
+    assert check.failures[0][0] == "gimbal.xml" and "No space left" in check.failures[0][1]

@@ -434,6 +434,8 @@ def run_model(
                 sink.write(result.records)
             if keep:
                 kept.append(result.records)
+    if sink is not None and hasattr(sink, "flush"):
+        sink.flush()  # a failed write of this model's last chunk is this model's failure, not the next one's
     stats.compact()
     kept_records = RecordTable.concat(RecordTable(t) for t in kept)
     for formula, engine in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks
