@@ -251,3 +251,26 @@ def test_a_failed_record_write_fails_its_own_model_not_the_next(tmp_path: Path, 
     assert [c.model for c in check.comparisons] == ["double_pendulum.xml"]
     assert len(check.failures) == 1
     assert check.failures[0][0] == "gimbal.xml" and "No space left" in check.failures[0][1]
+
+
+def test_an_interrupted_run_leaves_no_partial_record_file_and_no_writing_thread(tmp_path: Path, monkeypatch) -> None:
+    import threading
+
+    from koenig_check import pipeline
+    from koenig_check.cli import main
+
+    run_chunk, started = pipeline.run_chunk, []
+
+    def interrupted_at_third_chunk(task):
+        started.append(task)
+        if len(started) == 3:
+            raise KeyboardInterrupt
+        return run_chunk(task)
+
+    monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 8)
+    monkeypatch.setattr(pipeline, "run_chunk", interrupted_at_third_chunk)
+    out = tmp_path / "r"
+    assert main(["compare", "gimbal.xml", "--poses", "64", "--out", str(out)]) == 130
+    assert len(started) == 3
+    assert not (out / "records.parquet").exists()
+    assert [t for t in threading.enumerate() if t.name == "records-parquet"] == []
