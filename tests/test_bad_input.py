@@ -149,6 +149,20 @@ def test_a_body_called_nan_is_not_a_nan_number(tmp_path: Path) -> None:
     assert load_model(path).mujoco.model.nbody == 2
 
 
+def test_elements_called_nan_referenced_by_name_are_not_nan_numbers(tmp_path: Path) -> None:
+    """A site called nan named by an actuator's refsite, a sensor's refname and a tendon's sidesite."""
+    path = tmp_path / "refs.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="b"><joint name="j" type="hinge" axis="0 0 1"/>'
+        '<geom name="g" type="sphere" size="0.1" mass="1"/><site name="nan" pos="0 0 0.1"/>'
+        '<site name="s2" pos="0 0.1 0"/><site name="s3" pos="0.1 0 0"/></body></worldbody>'
+        '<tendon><spatial name="t"><site site="s2"/><geom geom="g" sidesite="nan"/><site site="s3"/></spatial></tendon>'
+        '<actuator><general name="a" site="s2" refsite="nan" gear="1 0 0 0 0 0"/></actuator>'
+        '<sensor><framepos name="fp" objtype="site" objname="s2" reftype="site" refname="nan"/></sensor></mujoco>'
+    )
+    assert load_model(path).mujoco.model.nsite == 3
+
+
 def test_missing_file_is_named(tmp_path: Path) -> None:
     with pytest.raises(ValueError) as info:
         load_model(tmp_path / "nowhere.urdf")
