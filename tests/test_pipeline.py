@@ -274,3 +274,40 @@ def test_an_interrupted_run_leaves_no_partial_record_file_and_no_writing_thread(
     assert len(started) == 3
     assert not (out / "records.parquet").exists()
     assert [t for t in threading.enumerate() if t.name == "records-parquet"] == []
+
+
+def test_dask_threads_sharing_one_model_equal_serial_run(monkeypatch) -> None:
+    """A Dask worker runs chunks in several threads of one process, all on the model that process loaded once:
+    the engines' data (MuJoCo's MjData, Pinocchio's Data) must not be used by two chunks at a time (it gave
+    other numbers in about half of such runs)."""
+    import threading
+    import time
+
+    from koenig_check import pipeline
+
+    distributed = pytest.importorskip("distributed")
+    run_engine, lock, active, most = pipeline.run_engine, threading.Lock(), [0], [0]
+
+    def watched(engine, poses):  # counts the chunks inside an engine at once; the sleep widens the window
+        with lock:
+            active[0] += 1
+            most[0] = max(most[0], active[0])
+        try:
+            time.sleep(0.02)
+            return run_engine(engine, poses)
+        finally:
+            with lock:
+                active[0] -= 1
+
+    options = dict(n_poses=1000, seed=5, records="totals", chunk_poses=50, keep_records=True)
+    serial = compare_model("ur5", **options)
+    monkeypatch.setattr(pipeline, "run_engine", watched)
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        threaded = compare_model("ur5", client=client, **options)
+    assert most[0] == 1
+    for name in ("value", "reference_value"):
+        np.testing.assert_array_equal(threaded.records[name], serial.records[name], err_msg=name)
+    assert koenig_check.grid.summarize(threaded) == koenig_check.grid.summarize(serial)
