@@ -120,6 +120,11 @@ def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
             '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>',
             ['<body name="link"> pos="0 nan 1"'],
         ),
+        (
+            '<mujoco><worldbody><body name="link"><joint type="hinge" axis="0 -NaN 1"/>'
+            '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>',
+            ['<joint> axis="0 -NaN 1"'],
+        ),
     ],
     ids=[
         "empty",
@@ -130,6 +135,7 @@ def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
         "nan-geom-mass",
         "nan-urdf-inertia",
         "nan-pos",
+        "signed-nan-axis",
     ],
 )
 def test_unreadable_model_files_fail_before_the_engines(tmp_path: Path, content: str, needles: list[str]) -> None:
