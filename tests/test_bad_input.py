@@ -120,6 +120,11 @@ def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
             '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>',
             ['<body name="link"> pos="0 nan 1"'],
         ),
+        (
+            '<mujoco><worldbody><body name="link"><joint type="hinge" axis="0 -NaN 1"/>'
+            '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>',
+            ['<joint> axis="0 -NaN 1"'],
+        ),
     ],
     ids=[
         "empty",
@@ -130,6 +135,7 @@ def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
         "nan-geom-mass",
         "nan-urdf-inertia",
         "nan-pos",
+        "signed-nan-axis",
     ],
 )
 def test_unreadable_model_files_fail_before_the_engines(tmp_path: Path, content: str, needles: list[str]) -> None:
@@ -147,6 +153,20 @@ def test_a_body_called_nan_is_not_a_nan_number(tmp_path: Path) -> None:
         '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>'
     )
     assert load_model(path).mujoco.model.nbody == 2
+
+
+def test_elements_called_nan_referenced_by_name_are_not_nan_numbers(tmp_path: Path) -> None:
+    """A site called nan named by an actuator's refsite, a sensor's refname and a tendon's sidesite."""
+    path = tmp_path / "refs.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="b"><joint name="j" type="hinge" axis="0 0 1"/>'
+        '<geom name="g" type="sphere" size="0.1" mass="1"/><site name="nan" pos="0 0 0.1"/>'
+        '<site name="s2" pos="0 0.1 0"/><site name="s3" pos="0.1 0 0"/></body></worldbody>'
+        '<tendon><spatial name="t"><site site="s2"/><geom geom="g" sidesite="nan"/><site site="s3"/></spatial></tendon>'
+        '<actuator><general name="a" site="s2" refsite="nan" gear="1 0 0 0 0 0"/></actuator>'
+        '<sensor><framepos name="fp" objtype="site" objname="s2" reftype="site" refname="nan"/></sensor></mujoco>'
+    )
+    assert load_model(path).mujoco.model.nsite == 3
 
 
 def test_missing_file_is_named(tmp_path: Path) -> None:

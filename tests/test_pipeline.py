@@ -227,3 +227,87 @@ def test_no_writing_thread_is_alive_when_jobs_fork_their_workers(tmp_path: Path,
     monkeypatch.setattr(pipeline, "_pool", watched)
     code = main(["compare", "gimbal.xml", "serial7.urdf", "--poses", "24", "--jobs", "2", "--out", str(tmp_path / "r")])
     assert code == 0 and len(alive_at_fork) == 2 and alive_at_fork == [[], []]
+
+
+def test_a_failed_record_write_fails_its_own_model_not_the_next(tmp_path: Path, monkeypatch) -> None:
+    """Records are written in a thread: the error of a model's last write belongs to that model."""
+    import pyarrow.parquet as pq
+
+    from koenig_check.report import RecordFiles
+
+    write = pq.ParquetWriter.write_table
+    calls: list[int] = []
+
+    def first_write_fails(self, table, *args, **kwargs):
+        calls.append(table.num_rows)
+        if len(calls) == 1:
+            raise OSError("records.parquet: No space left on device")
+        write(self, table, *args, **kwargs)
+
+    monkeypatch.setattr(pq.ParquetWriter, "write_table", first_write_fails)
+    sink = RecordFiles(tmp_path)
+    check = koenig_check.compare(["gimbal.xml", "double_pendulum.xml"], n_poses=20, sink=sink)
+    sink.close()
+    assert [c.model for c in check.comparisons] == ["double_pendulum.xml"]
+    assert len(check.failures) == 1
+    assert check.failures[0][0] == "gimbal.xml" and "No space left" in check.failures[0][1]
+
+
+def test_an_interrupted_run_leaves_no_partial_record_file_and_no_writing_thread(tmp_path: Path, monkeypatch) -> None:
+    import threading
+
+    from koenig_check import pipeline
+    from koenig_check.cli import main
+
+    run_chunk, started = pipeline.run_chunk, []
+
+    def interrupted_at_third_chunk(task):
+        started.append(task)
+        if len(started) == 3:
+            raise KeyboardInterrupt
+        return run_chunk(task)
+
+    monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 8)
+    monkeypatch.setattr(pipeline, "run_chunk", interrupted_at_third_chunk)
+    out = tmp_path / "r"
+    assert main(["compare", "gimbal.xml", "--poses", "64", "--out", str(out)]) == 130
+    assert len(started) == 3
+    assert not (out / "records.parquet").exists()
+    assert [t for t in threading.enumerate() if t.name == "records-parquet"] == []
+
+
+def test_dask_threads_sharing_one_model_equal_serial_run(monkeypatch) -> None:
+    """A Dask worker runs chunks in several threads of one process, all on the model that process loaded once:
+    the engines' data (MuJoCo's MjData, Pinocchio's Data) must not be used by two chunks at a time (it gave
+    other numbers in about half of such runs)."""
+    import threading
+    import time
+
+    from koenig_check import pipeline
+
+    distributed = pytest.importorskip("distributed")
+    run_engine, lock, active, most = pipeline.run_engine, threading.Lock(), [0], [0]
+
+    def watched(engine, poses):  # counts the chunks inside an engine at once; the sleep widens the window
+        with lock:
+            active[0] += 1
+            most[0] = max(most[0], active[0])
+        try:
+            time.sleep(0.02)
+            return run_engine(engine, poses)
+        finally:
+            with lock:
+                active[0] -= 1
+
+    options = dict(n_poses=1000, seed=5, records="totals", chunk_poses=50, keep_records=True)
+    serial = compare_model("ur5", **options)
+    monkeypatch.setattr(pipeline, "run_engine", watched)
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        threaded = compare_model("ur5", client=client, **options)
+    assert most[0] == 1
+    for name in ("value", "reference_value"):
+        np.testing.assert_array_equal(threaded.records[name], serial.records[name], err_msg=name)
+    assert koenig_check.grid.summarize(threaded) == koenig_check.grid.summarize(serial)

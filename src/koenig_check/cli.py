@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 from koenig_check import __version__
 from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
@@ -356,7 +358,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
         clean_out_dir(args.out)
         sink = RecordFiles(Path(args.out))
     figures_need_records = args.pose_kind in ("grid", "trajectory")
-    with Progress(len(args.models), "models") as bar:
+    with Progress(len(args.models), "models") as bar, _aborted_on_error(sink):
         check = compare(
             args.models,
             rtol=args.rtol,
@@ -383,6 +385,17 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     if args.pose_kind in ("grid", "trajectory") and check.comparisons:
         figures[f"{args.pose_kind}_comparison"] = check.comparisons[0]
     return _finish(check, args.out, figures, records=sink)
+
+
+@contextmanager
+def _aborted_on_error(sink: Any) -> Iterator[None]:
+    """Abort the record files if the run stops with an exception (an interruption): no partial records file."""
+    try:
+        yield
+    except BaseException:
+        if sink is not None:
+            sink.abort()
+        raise
 
 
 def _cmd_demo(args: argparse.Namespace) -> int:

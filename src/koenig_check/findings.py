@@ -121,7 +121,8 @@ class Finding:
         """
         text = f"{self.engine}: {self.element}: {self.summary}"
         if self.values:
-            text += " (" + ", ".join(f"{k} {_fmt(v)}" for k, v in self.values.items()) + ")"
+            whole = self.kind in _WHOLE_VALUE_KINDS
+            text += " (" + ", ".join(f"{k} {_fmt(v, whole)}" for k, v in self.values.items()) + ")"
         if self.hint:
             text += f"; {self.hint}"
         return text
@@ -180,11 +181,16 @@ def of_kind(findings: Iterable[Finding], *kinds: Kind) -> list[Finding]:
 SHOWN_ITEMS = 6
 
 
-def _fmt(value: Any) -> str:
+#: Kinds whose values are physical quantities set on purpose below the round-off threshold, printed whole: a
+#: repair raises a mass to MuJoCo's bound 1e-15 (moments 1e-14), which "mass before 0, mass after 0" would hide.
+_WHOLE_VALUE_KINDS = frozenset({Kind.REPAIR})
+
+
+def _fmt(value: Any, whole: bool = False) -> str:
     if isinstance(value, float):  # round-off printed as 0, as everywhere else (as_dict keeps the value)
-        return fmt(value, ".6g")
+        return format(value, ".6g") if whole else fmt(value, ".6g")
     if isinstance(value, (tuple, list)) and len(value) > SHOWN_ITEMS:
-        head = ", ".join(repr(v) if isinstance(v, str) else _fmt(v) for v in value[: SHOWN_ITEMS - 2])
+        head = ", ".join(repr(v) if isinstance(v, str) else _fmt(v, whole) for v in value[: SHOWN_ITEMS - 2])
         return f"({head}, +{len(value) - SHOWN_ITEMS + 2} more)"
     return str(value)
 

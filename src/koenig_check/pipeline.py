@@ -11,6 +11,7 @@ results are merged in pose order, so every way gives the same summaries and reco
 from __future__ import annotations
 
 import multiprocessing
+import threading
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import Executor, ProcessPoolExecutor
@@ -189,6 +190,10 @@ def _check_finite(path: Any, runs: dict[str, EngineRun], poses: PoseSet) -> None
                 raise ValueError(f"{path}: {name} gives a non-finite {what} energy at pose {poses.ids[p]}")
 
 
+#: Held while a chunk uses the engines of this process's model (see :func:`run_chunk`).
+_ENGINES_LOCK = threading.Lock()
+
+
 def run_chunk(task: ChunkTask) -> ChunkResult:
     """Evaluate one chunk: both engines' states and energies, every formula, statistics and records.
 
@@ -200,16 +205,19 @@ def run_chunk(task: ChunkTask) -> ChunkResult:
     -------
     ChunkResult
     """
-    pair = loaded(task.source)
-    poses = task.poses
-    if isinstance(poses, RandomRange):
-        poses = random_pose_range(pair.mujoco.model, poses.start, poses.stop, poses.seed, poses.velocity_scale)
-    try:
-        runs = {"mujoco": run_engine(pair.mujoco, poses), "pinocchio": run_engine(pair.pinocchio, poses)}
-        for name in task.extra_engines:
-            runs[name] = run_engine(extra_engine(task.source, name), poses)
-    except ValueError as err:  # an engine produced an invalid state: name the file
-        raise ValueError(f"{pair.path}: {' '.join(str(err).split())}") from err
+    # The engines of a process's model are shared by its chunks, and their data (MuJoCo's MjData, Pinocchio's
+    # Data) is scratch memory: chunks run in threads (a Dask worker's) take turns with the engines.
+    with _ENGINES_LOCK:
+        pair = loaded(task.source)
+        poses = task.poses
+        if isinstance(poses, RandomRange):
+            poses = random_pose_range(pair.mujoco.model, poses.start, poses.stop, poses.seed, poses.velocity_scale)
+        try:
+            runs = {"mujoco": run_engine(pair.mujoco, poses), "pinocchio": run_engine(pair.pinocchio, poses)}
+            for name in task.extra_engines:
+                runs[name] = run_engine(extra_engine(task.source, name), poses)
+        except ValueError as err:  # an engine produced an invalid state: name the file
+            raise ValueError(f"{pair.path}: {' '.join(str(err).split())}") from err
     _check_finite(pair.path, runs, poses)
     return evaluate_chunk(
         task.label, poses, runs, task.formulas, task.records, task.rtol, task.index, task.planar_normals
@@ -434,6 +442,8 @@ def run_model(
                 sink.write(result.records)
             if keep:
                 kept.append(result.records)
+    if sink is not None and hasattr(sink, "flush"):
+        sink.flush()  # a failed write of this model's last chunk is this model's failure, not the next one's
     stats.compact()
     kept_records = RecordTable.concat(RecordTable(t) for t in kept)
     for formula, engine in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks

@@ -295,6 +295,25 @@ class RecordFiles:
                 self.written.append(write_records_csv(self.csv, small))
         return self.written
 
+    def abort(self) -> None:
+        """Stop after a failed or interrupted run: finish the pending write, close and delete the partial file.
+
+        A run that did not finish leaves no ``records.parquet`` that could pass for its records (and no
+        writing thread of ours).  Write errors are dropped: the run's own failure is the one reported.
+        """
+        try:
+            self.flush()
+        except Exception:  # the interruption is what the user is told about
+            pass
+        if self._writer is not None:
+            try:
+                self._writer.close()
+            except Exception:
+                pass
+            self._writer = None
+        self._small = None
+        self.parquet.unlink(missing_ok=True)
+
     def __enter__(self) -> RecordFiles:
         return self
 

@@ -72,7 +72,8 @@ def preflight(path: str | Path) -> str:
 _WORD_ATTRIBUTES = frozenset(
     "name class childclass type joint joint1 joint2 body body1 body2 site site1 site2 geom geom1 geom2 tendon "
     "actuator link parent child material texture mesh hfield file filename model prefix target objname refname "
-    "mode".split()
+    "mode refsite slidersite cranksite jointinparent sidesite tendon1 tendon2 flex objtype reftype instance plugin "
+    "meshdir texturedir assetdir".split()
 )
 
 

@@ -50,6 +50,13 @@ def test_each_repaired_link_is_one_finding_with_its_values(repaired) -> None:
     assert all(MJMINVAL <= m <= 10 * MJMINVAL for m in virtual.values["moments after"])
 
 
+def test_the_repair_message_shows_the_raised_mass_not_zero(repaired) -> None:
+    """The raised mass sits at MuJoCo's bound, below the round-off threshold: the message must still show it."""
+    virtual = next(f for f in repaired.findings if f.kind is Kind.REPAIR and f.element == "link virtual")
+    after = virtual.values["mass after"]
+    assert f"mass before 0, mass after {after:.6g}" in virtual.message()
+
+
 def test_mujoco_loads_the_repair_and_pinocchio_keeps_the_file(repaired) -> None:
     mj = repaired.mujoco.model
     body = mj.body("tilted")

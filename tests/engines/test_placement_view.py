@@ -78,3 +78,19 @@ def test_a_copied_engine_reads_its_own_placements(how: str) -> None:
         np.testing.assert_array_equal(states.rotation, H[..., :3, :3])
         np.testing.assert_array_equal(states.pole, H[..., :3, 3])
         np.testing.assert_array_equal(engine.segment_states(poses.qpos, poses.qvel).rotation, H[..., :3, :3])
+
+
+@pytest.mark.parametrize("checked_before", [False, True], ids=["fresh data", "data checked before"])
+def test_a_view_that_does_not_follow_the_data_is_refused(checked_before: bool, monkeypatch) -> None:
+    """A snapshot of the placements (bindings handing out copies) must not pass for a view of the data.
+
+    With ``checked_before`` the data already holds the check's first configuration (as an engine's data
+    does after its own check, and after pickling): a snapshot then matches one configuration.
+    """
+    pm = load_model(MODELS / "serial7.urdf").pinocchio.model
+    data = pm.createData()
+    if checked_before:
+        assert placement_view(pm, data) is not None
+    strided = np.lib.stride_tricks.as_strided
+    monkeypatch.setattr(np.lib.stride_tricks, "as_strided", lambda *a, **k: strided(*a, **k).copy())
+    assert placement_view(pm, data) is None

@@ -380,7 +380,7 @@ def placement_view(model: pin.Model, data: pin.Data) -> np.ndarray | None:
     joint ``i``'s rotation in Eigen's column-major order then its translation, read from that
     vector, so that one copy per pose takes every placement.  The layout is verified, not assumed:
     every joint's ``rotation`` and ``translation`` must sit at the addresses and strides the view
-    reads, and after a forward-kinematics pass at a random configuration the view must equal every
+    reads, and after forward-kinematics passes at two random configurations the view must equal every
     joint's ``homogeneous`` placement exactly; otherwise None (callers read the joints one by one).
 
     The view does not keep ``data`` alive and follows it: the caller holds ``data`` for as long as
@@ -413,12 +413,16 @@ def placement_view(model: pin.Model, data: pin.Data) -> np.ndarray | None:
     if not layout_ok:
         return None
     view = np.lib.stride_tricks.as_strided(rotations[0], shape=(n, 12), strides=(stride, 8), writeable=False)
-    moved = pin.integrate(model, pin.neutral(model), np.random.default_rng(0).uniform(-1.0, 1.0, model.nv))
-    pin.forwardKinematics(model, data, moved)
-    expected = np.array([M.homogeneous for M in placements.tolist()])
-    R, origin = _rotations_origins(view[None], True, slice(None))
-    if not (np.array_equal(R[0], expected[:, :3, :3]) and np.array_equal(origin[0], expected[:, :3, 3])):
-        return None
+    # Two configurations: a snapshot taken when ``data`` already held the first one (a data object
+    # checked before, or unpickled after its check) cannot match the second.
+    rng = np.random.default_rng(0)
+    for _ in range(2):
+        moved = pin.integrate(model, pin.neutral(model), rng.uniform(-1.0, 1.0, model.nv))
+        pin.forwardKinematics(model, data, moved)
+        expected = np.array([M.homogeneous for M in placements.tolist()])
+        R, origin = _rotations_origins(view[None], True, slice(None))
+        if not (np.array_equal(R[0], expected[:, :3, :3]) and np.array_equal(origin[0], expected[:, :3, 3])):
+            return None
     return view
 
 
