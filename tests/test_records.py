@@ -98,3 +98,32 @@ def test_a_failed_background_write_is_raised_not_lost(tmp_path: Path) -> None:
     files.write(_table([1.0], [1.0]))
     with pytest.raises(OSError, match="No space left"):
         files.close()
+
+
+def test_rows_of_a_formula_refused_in_a_later_chunk_are_listed_and_left_out_when_read(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """planar accepted by the first chunks (the gimbal turning about z), refused by a later one."""
+    import json
+
+    from koenig_check import pipeline
+    from koenig_check.cli import main
+
+    rng = np.random.default_rng(0)
+    planar = [[rng.uniform(-1, 1), 0.0, rng.normal(), 0.0] for _ in range(pipeline.PROBE_POSES + 44)]
+    spatial = [[rng.uniform(-1, 1), rng.uniform(-1, 1), rng.normal(), rng.normal()] for _ in range(20)]
+    poses = tmp_path / "poses.csv"
+    np.savetxt(poses, np.array(planar + spatial), delimiter=",")
+    argv = ["compare", "gimbal.xml", "--pose-file", str(poses), "--formulas", "exact", "planar"]
+    assert main([*argv, "--out", str(tmp_path / "whole")]) == 0  # one chunk: planar refused, no row of it
+    monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 50)
+    assert main([*argv, "--out", str(tmp_path / "chunked")]) == 0
+    raw = pq.read_table(tmp_path / "chunked" / "records.parquet")
+    assert "planar" in raw.column("formula").to_pylist()  # written by the chunks that accepted it
+    refused = json.loads(pq.read_metadata(tmp_path / "chunked" / "records.parquet").metadata[b"koenig_check.refused"])
+    assert {(r["formula"], r["source"]) for r in refused} == {("planar", "mujoco"), ("planar", "pinocchio")}
+    whole = koenig_check.read_records(tmp_path / "whole" / "records.parquet")
+    chunked = koenig_check.read_records(tmp_path / "chunked" / "records.parquet")
+    assert "planar" not in set(chunked["formula"]) and chunked.rows() == whole.rows()
+    small = json.loads((tmp_path / "chunked" / "records.json").read_text())["records"]
+    assert len(small) == len(whole) and not any(r[2] == "planar" for r in small)

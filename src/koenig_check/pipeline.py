@@ -445,6 +445,9 @@ def run_model(
     if sink is not None and hasattr(sink, "flush"):
         sink.flush()  # a failed write of this model's last chunk is this model's failure, not the next one's
     stats.compact()
+    if sink is not None and hasattr(sink, "refuse"):  # rows of a formula refused in a later chunk are in the file
+        for (formula, engine), reason in stats.refusals.items():
+            sink.refuse(label, formula, engine, reason)
     kept_records = RecordTable.concat(RecordTable(t) for t in kept)
     for formula, engine in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks
         accepted = kept_records.mask(formula=formula, source=engine)

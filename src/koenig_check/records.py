@@ -10,7 +10,8 @@ run in one piece.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+import json
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -50,6 +51,8 @@ _INDEX_TYPES = {
     "reference": pa.int8(),
     "scope": pa.int16(),
 }
+#: The key of a record file's metadata listing the formulas refused per model and state source (JSON).
+REFUSED_KEY = "koenig_check.refused"
 #: How the error columns follow from the stored ones (kept in the metadata of record files).
 DERIVATION = {
     "abs_error": "|value - reference_value|",
@@ -277,7 +280,8 @@ def read_records(path: str | Path) -> RecordTable:
 
     The file stores the columns of :data:`STORED_SCHEMA`; the returned table answers every column
     of :data:`RECORD_FIELDS`, the error columns computed as :data:`DERIVATION` says
-    (``.to_arrow()`` gives them as an Arrow table).
+    (``.to_arrow()`` gives them as an Arrow table).  Rows of a formula the run refused for their model
+    and state source (listed under :data:`REFUSED_KEY` in the file's metadata) are left out.
 
     Parameters
     ----------
@@ -298,4 +302,27 @@ def read_records(path: str | Path) -> RecordTable:
     missing = [k for k in STORED_SCHEMA.names if k not in table.column_names]
     if missing:
         raise RecordFileError(f"{path}: not a koenig-check record file: no column {', '.join(missing)}")
-    return RecordTable(table)
+    footer = pq.read_metadata(path).metadata or {}
+    refused = json.loads(footer.get(REFUSED_KEY.encode(), b"[]"))
+    return without_refused(RecordTable(table), refused)
+
+
+def without_refused(records: RecordTable, refused: Sequence[Mapping[str, str]]) -> RecordTable:
+    """The records without the rows of formulas refused for their model and state source.
+
+    Parameters
+    ----------
+    records : RecordTable
+    refused : sequence of mapping
+        Entries with ``model``, ``formula`` and ``source``.
+
+    Returns
+    -------
+    RecordTable
+    """
+    if not refused or not len(records):
+        return records
+    drop = np.zeros(len(records), dtype=bool)
+    for r in refused:
+        drop |= records.mask(model=r["model"], formula=r["formula"], source=r["source"])
+    return records.where(~drop) if drop.any() else records

@@ -16,7 +16,7 @@ import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
 from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
-from koenig_check.records import RECORD_FIELDS, STORED_SCHEMA, TEXT_FIELDS, RecordTable
+from koenig_check.records import RECORD_FIELDS, REFUSED_KEY, STORED_SCHEMA, TEXT_FIELDS, RecordTable, without_refused
 from koenig_check.report_content import (
     COLUMNS,
     POSE_LABELS,
@@ -192,6 +192,10 @@ class RecordSink(Protocol):
         """Finish every write taken (called before worker processes are forked)."""
         ...
 
+    def refuse(self, model: str, formula: str, source: str, reason: str) -> None:
+        """A formula refused for a model on one engine's states: rows of it already taken do not count."""
+        ...
+
 
 class RecordFiles:
     """The record files of a report directory, written as the records stream in.
@@ -233,6 +237,7 @@ class RecordFiles:
         # one write only: after flush() no thread of ours is left when --jobs forks its workers.
         self._pending: threading.Thread | None = None
         self._error: BaseException | None = None
+        self.refused: list[dict[str, str]] = []
         self.written: list[Path] = []
 
     def write(self, table: pa.Table) -> None:
@@ -269,12 +274,29 @@ class RecordFiles:
         if error is not None:
             raise error
 
+    def refuse(self, model: str, formula: str, source: str, reason: str) -> None:
+        """Record that a formula is refused for a model on one engine's states.
+
+        A refusal can come in a later chunk than the first (``planar`` on a pose file whose first poses
+        move in a plane): rows of that formula already written stay in the Parquet file, which cannot
+        take them back, and are listed as refused in its metadata (:data:`~koenig_check.records.REFUSED_KEY`);
+        :func:`~koenig_check.records.read_records`, ``records.csv`` and ``records.json`` leave them out,
+        so that a run in chunks reads back as the run in one piece.
+
+        Parameters
+        ----------
+        model, formula, source, reason : str
+        """
+        entry = {"model": model, "formula": formula, "source": source, "reason": reason}
+        if entry not in self.refused:
+            self.refused.append(entry)
+
     @property
     def small(self) -> RecordTable | None:
-        """The records of a small run (None once the run outgrew ``csv_rows``)."""
+        """The records of a small run (None once the run outgrew ``csv_rows``), refused rows left out."""
         if self._small is None:
             return None
-        return RecordTable.concat(RecordTable(t) for t in self._small)
+        return without_refused(RecordTable.concat(RecordTable(t) for t in self._small), self.refused)
 
     def close(self) -> list[Path]:
         """Finish the files; return every file written.
@@ -286,6 +308,8 @@ class RecordFiles:
         if self._writer is not None:
             try:
                 self.flush()
+                if self.refused:
+                    self._writer.add_key_value_metadata({REFUSED_KEY: json.dumps(self.refused)})
             finally:
                 self._writer.close()
                 self._writer = None
