@@ -25,20 +25,25 @@ USAGE_ERRORS = {
 }
 
 
-@pytest.fixture
-def no_model_loaded(monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """Fail loudly if any model is loaded; collect the names asked for."""
-    import koenig_check.engines as engines
-    import koenig_check.implied_dynamics.analysis  # noqa: F401  (imported, so bound to the real load_model, first)
-
+def _refuse_loading(monkeypatch: pytest.MonkeyPatch, module: object, loader: str) -> list[str]:
+    """Make ``module.loader`` fail loudly; return the list of the names it is asked for."""
     asked: list[str] = []
 
     def refuse(name, *args, **kwargs):
         asked.append(str(name))
         raise AssertionError(f"a model was loaded before the usage error: {name}")
 
-    monkeypatch.setattr(engines, "load_model", refuse)
+    monkeypatch.setattr(module, loader, refuse)
     return asked
+
+
+@pytest.fixture
+def no_model_loaded(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """Fail loudly if any model is loaded; collect the names asked for."""
+    import koenig_check.engines as engines
+    import koenig_check.implied_dynamics.analysis  # noqa: F401  (imported, so bound to the real load_model, first)
+
+    return _refuse_loading(monkeypatch, engines, "load_model")
 
 
 @pytest.mark.parametrize("argv", USAGE_ERRORS.values(), ids=USAGE_ERRORS.keys())
@@ -159,14 +164,7 @@ def no_dynamics_model_loaded(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     """Fail loudly if dynamics() loads its model; collect the names asked for."""
     from koenig_check.implied_dynamics import analysis
 
-    asked: list[str] = []
-
-    def refuse(name, *args, **kwargs):
-        asked.append(str(name))
-        raise AssertionError(f"a model was loaded before the usage error: {name}")
-
-    monkeypatch.setattr(analysis, "load", refuse)
-    return asked
+    return _refuse_loading(monkeypatch, analysis, "load")
 
 
 @pytest.mark.parametrize("kwargs", DYNAMICS_TYPE_ERRORS.values(), ids=DYNAMICS_TYPE_ERRORS.keys())

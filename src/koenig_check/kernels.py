@@ -299,11 +299,11 @@ def inertia_world_components(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
     A, tmp = np.empty((3, 3, *shape)), np.empty(shape)  # A = R I
     for i in range(3):
         for c in range(3):
-            _dot3(Rf[3 * i], Rf[3 * i + 1], Rf[3 * i + 2], I[0, c], I[1, c], I[2, c], A[i, c], tmp)
+            dot3(Rf[3 * i], Rf[3 * i + 1], Rf[3 * i + 2], I[0, c], I[1, c], I[2, c], A[i, c], tmp)
     out = np.empty((6, *R.shape[1:]))
     folded = out.reshape(6, *shape)
     for n, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))):
-        _dot3(A[i, 0], A[i, 1], A[i, 2], Rf[3 * j], Rf[3 * j + 1], Rf[3 * j + 2], folded[n], tmp)
+        dot3(A[i, 0], A[i, 1], A[i, 2], Rf[3 * j], Rf[3 * j + 1], Rf[3 * j + 2], folded[n], tmp)
     return out
 
 
@@ -327,27 +327,44 @@ def times_transpose_components(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
     folded, tmp = out.reshape(Rf.shape), np.empty(Rf.shape[1:])
     for i in range(3):
         for j in range(3):
-            _dot3(Rf[3 * i], Rf[3 * i + 1], Rf[3 * i + 2], ref[j, 0], ref[j, 1], ref[j, 2], folded[3 * i + j], tmp)
+            dot3(Rf[3 * i], Rf[3 * i + 1], Rf[3 * i + 2], ref[j, 0], ref[j, 1], ref[j, 2], folded[3 * i + j], tmp)
     return out
 
 
-def _dot3(
+def dot3(
     a0: np.ndarray,
     a1: np.ndarray,
     a2: np.ndarray,
     b0: np.ndarray,
     b1: np.ndarray,
     b2: np.ndarray,
-    out: np.ndarray,
-    tmp: np.ndarray,
+    out: np.ndarray | None = None,
+    tmp: np.ndarray | None = None,
 ) -> np.ndarray:
-    """``out = a0 b0 + a1 b1 + a2 b2``, summed left to right, through one scratch buffer."""
-    np.multiply(a0, b0, out=out)
-    np.multiply(a1, b1, out=tmp)
-    out += tmp
+    """``a0 b0 + a1 b1 + a2 b2`` of planes, summed left to right (broadcasting), into ``out`` if given.
+
+    The order of the plain expression ``a0 * b0 + a1 * b1 + a2 * b2``, hence its numbers, with one
+    scratch plane instead of a temporary per term.
+
+    Parameters
+    ----------
+    a0, a1, a2, b0, b1, b2 : ndarray
+        Planes (or per-segment constants) broadcasting to the result's shape.
+    out : ndarray, optional
+        Where to write the result (not one of the inputs).
+    tmp : ndarray, optional
+        The scratch plane, of the result's shape (allocated if not given).
+
+    Returns
+    -------
+    ndarray
+    """
+    first = np.multiply(a0, b0, out=out)
+    tmp = np.multiply(a1, b1, out=tmp)
+    first += tmp
     np.multiply(a2, b2, out=tmp)
-    out += tmp
-    return out
+    first += tmp
+    return first
 
 
 def scale(planes: np.ndarray, constants: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:

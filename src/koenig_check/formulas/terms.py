@@ -15,6 +15,7 @@ import numpy as np
 from koenig_check.formulas.cache import memo
 from koenig_check.kernels import (
     components,
+    dot3,
     inertia_world_components,
     matrix_components,
     scale,
@@ -70,39 +71,6 @@ def inertia_world6(states: SegmentStates) -> np.ndarray:
 def squared_norm(v: np.ndarray) -> np.ndarray:
     """``|v|²`` of component planes (3, ...)."""
     return dot3(v[0], v[1], v[2], v[0], v[1], v[2])
-
-
-def dot3(
-    a0: np.ndarray,
-    a1: np.ndarray,
-    a2: np.ndarray,
-    b0: np.ndarray,
-    b1: np.ndarray,
-    b2: np.ndarray,
-    out: np.ndarray | None = None,
-) -> np.ndarray:
-    """``a0 b0 + a1 b1 + a2 b2`` of planes, summed left to right (broadcasting), into ``out`` if given.
-
-    The order of the plain expression ``a0 * b0 + a1 * b1 + a2 * b2``, hence its numbers, with one
-    scratch plane instead of a temporary per term.
-
-    Parameters
-    ----------
-    a0, a1, a2, b0, b1, b2 : ndarray
-        Planes (or per-segment constants) broadcasting to the result's shape.
-    out : ndarray, optional
-        Where to write the result (not one of the inputs).
-
-    Returns
-    -------
-    ndarray
-    """
-    first = np.multiply(a0, b0, out=out)
-    tmp = np.multiply(a1, b1)
-    first += tmp
-    np.multiply(a2, b2, out=tmp)
-    first += tmp
-    return first
 
 
 def half_mass_times_squared_speed(mass: np.ndarray, v: np.ndarray) -> np.ndarray:
