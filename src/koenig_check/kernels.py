@@ -150,11 +150,7 @@ def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, o
     a, tmp = np.empty((3, *Rc.shape[1:])), np.empty(Rc.shape[1:])
     for n in range(half if symmetric else K):
         for i in range(3):  # a = R r_n
-            np.multiply(Rc[3 * i], r[n, 0], out=a[i])
-            np.multiply(Rc[3 * i + 1], r[n, 1], out=tmp)
-            a[i] += tmp
-            np.multiply(Rc[3 * i + 2], r[n, 2], out=tmp)
-            a[i] += tmp
+            dot3(Rc[3 * i], Rc[3 * i + 1], Rc[3 * i + 2], r[n, 0], r[n, 1], r[n, 2], a[i], tmp)
         for i, j, l in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):  # u_i = w_j a_l − w_l a_j = (ω × R r_n)_i
             u = folded[n, i]
             np.multiply(w[j], a[l], out=u)
