@@ -32,7 +32,7 @@ from koenig_check.grid import (
     run_engine,
 )
 from koenig_check.poses import PoseSet, random_pose_range
-from koenig_check.records import RecordTable
+from koenig_check.records import RecordTable, without_refused
 
 #: Segment-poses per chunk (poses × segments): memory per chunk stays near constant across models.
 CHUNK_SEGMENT_POSES = 32_768
@@ -430,8 +430,6 @@ def run_model(
     )
     keep = sink is None if keep_records is None else keep_records
     stats, kept = None, []
-    if jobs > 1 and client is None and sink is not None and hasattr(sink, "flush"):
-        sink.flush()  # no writing thread alive when the workers are forked
     for result in run_tasks(tasks, jobs=jobs, client=client):
         if stats is None:
             stats = result.stats
@@ -443,16 +441,16 @@ def run_model(
             if keep:
                 kept.append(result.records)
     if sink is not None and hasattr(sink, "flush"):
-        sink.flush()  # a failed write of this model's last chunk is this model's failure, not the next one's
+        # A failed write of this model's last chunk is this model's failure, not the next one's; and no
+        # writing thread is alive when the next model's --jobs workers are forked.
+        sink.flush()
     stats.compact()
-    if sink is not None and hasattr(sink, "refuse"):  # rows of a formula refused in a later chunk are in the file
-        for (formula, engine), reason in stats.refusals.items():
-            sink.refuse(label, formula, engine, reason)
-    kept_records = RecordTable.concat(RecordTable(t) for t in kept)
-    for formula, engine in stats.refusals:  # a refusal holds for the whole model: drop rows of accepting chunks
-        accepted = kept_records.mask(formula=formula, source=engine)
-        if accepted.any():
-            kept_records = kept_records.where(~accepted)
+    # A refusal holds for the whole model: rows of the chunks that accepted the formula do not count.
+    refused = [{"model": label, "formula": f, "source": e, "reason": r} for (f, e), r in stats.refusals.items()]
+    if sink is not None and hasattr(sink, "refuse"):  # those rows are in the file already: listed there
+        for entry in refused:
+            sink.refuse(**entry)
+    kept_records = without_refused(RecordTable.concat(RecordTable(t) for t in kept), refused)
     notes = list(pair.notes) + list(pose_set.notes if pose_set is not None else ()) + skipped
     kind = pose_set.kind if pose_set is not None else "random"
     return finish_comparison(label, pose_set, stats, kept_records, notes, ENGINES + tuple(extra), pose_kind=kind)

@@ -189,7 +189,7 @@ class RecordSink(Protocol):
         ...
 
     def flush(self) -> None:
-        """Finish every write taken (called before worker processes are forked)."""
+        """Finish every write taken (called at the end of each model, before the next one's workers are forked)."""
         ...
 
     def refuse(self, model: str, formula: str, source: str, reason: str) -> None:
