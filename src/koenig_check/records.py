@@ -19,7 +19,7 @@ import numpy as np
 import pyarrow as pa
 
 from koenig_check.findings import KoenigCheckError
-from koenig_check.stats import relative_error
+from koenig_check.stats import absolute_relative_error
 
 
 class RecordFileError(KoenigCheckError, ValueError):
@@ -67,8 +67,6 @@ STORED_SCHEMA = pa.schema(
     + [pa.field("value", pa.float64(), nullable=False), pa.field("reference_value", pa.float64(), nullable=False)],
     metadata={f"koenig_check.{k}": v for k, v in DERIVATION.items()},
 )
-#: The schema of record files: every column of :data:`RECORD_FIELDS`.
-FULL_SCHEMA = pa.schema(list(STORED_SCHEMA) + [pa.field(k, pa.float64()) for k in DERIVED_FIELDS])
 
 
 def categorical(codes: np.ndarray, categories: Sequence[str], name: str) -> pa.DictionaryArray:
@@ -104,7 +102,8 @@ def derived(value: np.ndarray, reference: np.ndarray) -> dict[str, np.ndarray]:
     dict of str to ndarray
     """
     signed = value - reference
-    return {"abs_error": np.abs(signed), "rel_error": np.abs(relative_error(value, reference)), "signed_error": signed}
+    rel = absolute_relative_error(signed, np.abs(reference))
+    return {"abs_error": np.abs(signed), "rel_error": rel, "signed_error": signed}
 
 
 def _decode(column: pa.ChunkedArray) -> np.ndarray:
@@ -265,7 +264,7 @@ def with_derived(table: pa.Table) -> pa.Table:
     Returns
     -------
     pyarrow.Table
-        With the columns of :data:`FULL_SCHEMA`.
+        With every column of :data:`RECORD_FIELDS`.
     """
     value = table.column("value").to_numpy()
     ref = table.column("reference_value").to_numpy()
