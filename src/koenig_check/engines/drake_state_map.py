@@ -33,7 +33,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from koenig_check.engines.drake_loader import DrakeLoadError
-from koenig_check.engines.state_map import mujoco_joint_names
+from koenig_check.engines.state_map import VelocityMapped, mujoco_joint_names
 
 _MJ_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 _COMPATIBLE = {
@@ -143,7 +143,7 @@ def match_drake_joints(mj_model: mujoco.MjModel, plant: Any, path: str) -> list[
     return pairs
 
 
-class DrakeStateMap:
+class DrakeStateMap(VelocityMapped):
     """Vectorized conversion from canonical (MuJoCo) states to Drake's.
 
     Parameters
@@ -227,35 +227,6 @@ class DrakeStateMap:
         v : ndarray, shape (P, drake_nv)
         """
         return self.positions(qpos), np.einsum("pij,pj->pi", self.velocity_matrix(qpos), qvel)
-
-    def matrix_to_canonical(self, qpos: np.ndarray, m_drake: np.ndarray) -> np.ndarray:
-        """``Tᵀ M T``: a Drake mass matrix in canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        m_drake : ndarray, shape (P, nv, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
-        T = self.velocity_matrix(qpos)
-        return np.swapaxes(T, -1, -2) @ m_drake @ T
-
-    def force_to_canonical(self, qpos: np.ndarray, tau: np.ndarray) -> np.ndarray:
-        """``Tᵀ τ``: Drake generalized forces in canonical coordinates (same power).
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        tau : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
-        return np.einsum("pij,pi->pj", self.velocity_matrix(qpos), tau)
 
 
 def _rotations(quat: np.ndarray) -> np.ndarray:

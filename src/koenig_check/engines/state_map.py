@@ -245,7 +245,48 @@ def match_joints(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = "<m
     return [pairs[j] for j in range(mj_model.njnt)]
 
 
-class StateMap:
+class VelocityMapped:
+    """Forces and mass matrices carried into canonical coordinates by ``T`` of ``v_engine = T q̇``.
+
+    A state map defines :meth:`velocity_matrix`; power is the same in both coordinates, so
+    ``τ = Tᵀ τ_engine`` and ``M = Tᵀ M_engine T``.
+    """
+
+    def velocity_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """``T`` with ``v_engine = T q̇``, shape (P, nv_engine, nv)."""
+        raise NotImplementedError
+
+    def force_to_canonical(self, qpos: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        """Convert the engine's generalized forces to canonical ones, ``τ = Tᵀ τ_engine`` (same power).
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        tau : ndarray, shape (P, nv_engine)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
+        return np.einsum("pij,pi->pj", self.velocity_matrix(qpos), np.atleast_2d(tau))
+
+    def matrix_to_canonical(self, qpos: np.ndarray, m_engine: np.ndarray) -> np.ndarray:
+        """Convert the engine's mass matrix to canonical coordinates, ``M = Tᵀ M_engine T``.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        m_engine : ndarray, shape (P, nv_engine, nv_engine)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
+        T = self.velocity_matrix(qpos)
+        return np.swapaxes(T, -1, -2) @ m_engine @ T
+
+
+class StateMap(VelocityMapped):
     """Vectorized conversion between canonical (MuJoCo) and Pinocchio states.
 
     Parameters
@@ -454,36 +495,6 @@ class StateMap:
         omega_local = qvel[:, self._lin_can + 3]
         a[:, self._lin_pin] -= np.cross(omega_local, v[:, self._lin_pin])
         return a
-
-    def force_to_canonical(self, qpos: np.ndarray, tau_pin: np.ndarray) -> np.ndarray:
-        """Convert Pinocchio generalized forces to canonical ones, ``τ = Tᵀ τ_pin`` (same power).
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        tau_pin : ndarray, shape (P, pin_nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
-        T = self.velocity_matrix(qpos)
-        return np.einsum("pij,pi->pj", T, np.atleast_2d(tau_pin))
-
-    def matrix_to_canonical(self, qpos: np.ndarray, m_pin: np.ndarray) -> np.ndarray:
-        """Convert a Pinocchio mass matrix to canonical coordinates, ``M = Tᵀ M_pin T``.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        m_pin : ndarray, shape (P, nv, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
-        T = self.velocity_matrix(qpos)
-        return np.swapaxes(T, -1, -2) @ m_pin @ T
 
 
 def _relative_rotations_mujoco(mj_model: mujoco.MjModel, qpos: np.ndarray, bodies: list[int]) -> list[np.ndarray]:
