@@ -1,0 +1,28 @@
+"""Old import paths of moved modules give the moved module itself."""
+
+from __future__ import annotations
+
+import importlib
+
+import pytest
+
+from koenig_check import _moved
+
+
+def test_an_old_name_gives_the_new_module_object(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(_moved.MOVED, "koenig_check._old_name_for_test", "koenig_check.roundoff")
+    old = importlib.import_module("koenig_check._old_name_for_test")
+    assert old is importlib.import_module("koenig_check.roundoff")
+    from koenig_check._old_name_for_test import ROUNDOFF  # type: ignore[import-not-found]
+
+    assert ROUNDOFF == old.ROUNDOFF
+
+
+@pytest.mark.parametrize("old", sorted(_moved.MOVED))
+def test_every_moved_name_imports(old: str) -> None:
+    assert importlib.import_module(old) is importlib.import_module(_moved.MOVED[old])
+
+
+def test_an_unknown_name_is_still_an_import_error() -> None:
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module("koenig_check._no_such_module")
