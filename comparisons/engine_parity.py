@@ -95,11 +95,11 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     Row
     """
     from koenig_check.engines import load_model
-    from koenig_check.engines.drake_engine import load_drake_engine
-    from koenig_check.engines.drake_loader import drake_available
+    from koenig_check.engines.drake.adapter import load_drake_engine
+    from koenig_check.engines.drake.loader import drake_available
     from koenig_check.engines.errors import InertiaError
-    from koenig_check.engines.mujoco_loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
-    from koenig_check.engines.pinocchio_loader import load_pinocchio
+    from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
+    from koenig_check.engines.pinocchio.loader import load_pinocchio
     from koenig_check.engines.sampling import random_states
     from koenig_check.engines.sources import resolve_model
     from koenig_check.grid import disagreement_cause, relative_error
@@ -358,7 +358,7 @@ def versions() -> str:
     import mujoco
     import pinocchio
 
-    from koenig_check.engines.drake_loader import drake_available, drake_version
+    from koenig_check.engines.drake.loader import drake_available, drake_version
 
     drake = f", Drake {drake_version()}" if drake_available() else ", Drake not installed"
     return f"MuJoCo {mujoco.__version__}, Pinocchio {pinocchio.__version__}{drake}, Python {platform.python_version()}"

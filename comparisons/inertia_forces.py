@@ -71,7 +71,7 @@ def targets() -> list[tuple[str, str]]:
 def model_dynamics(label: str, target: str, n_poses: int) -> ModelDynamics:
     """Run ``koenig_check.dynamics`` on one model (with Drake when it is installed) and keep the maxima."""
     import koenig_check
-    from koenig_check.engines.drake_loader import drake_available
+    from koenig_check.engines.drake.loader import drake_available
 
     engines = ("mujoco", "pinocchio", "drake") if drake_available() else ("mujoco", "pinocchio")
     result = koenig_check.dynamics(

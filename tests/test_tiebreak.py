@@ -116,8 +116,8 @@ def test_cli_engines_option_on_compare_and_parity(capsys: pytest.CaptureFixture[
 )
 def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str) -> None:
     from koenig_check.engines import load_model
-    from koenig_check.engines.drake_engine import load_drake_engine
-    from koenig_check.engines.drake_loader import DrakeLoadError
+    from koenig_check.engines.drake.adapter import load_drake_engine
+    from koenig_check.engines.drake.loader import DrakeLoadError
 
     pair = load_model(model, check=False)
     with pytest.raises(DrakeLoadError) as info:
@@ -131,7 +131,7 @@ def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str)
 
 @needs_drake
 def test_drake_limits_are_findings_naming_the_element() -> None:
-    from koenig_check.engines.drake_loader import load_drake
+    from koenig_check.engines.drake.loader import load_drake
     from koenig_check.engines.sources import resolve_model
 
     _, findings = load_drake(resolve_model("anymal_b_simple/anymal"))
@@ -148,7 +148,7 @@ def test_drake_limits_are_findings_naming_the_element() -> None:
 
 
 def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
-    import koenig_check.engines.drake_loader as loader
+    import koenig_check.engines.drake.loader as loader
 
     monkeypatch.setattr(loader, "drake_available", lambda: False)
     check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
@@ -162,7 +162,7 @@ def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.Mo
 
 
 def test_drake_reason_is_one_line_without_repeating_the_path() -> None:
-    from koenig_check.engines.drake_loader import one_line_reason
+    from koenig_check.engines.drake.loader import one_line_reason
 
     path = Path("/models/robot.urdf")
     text = f"{path}:12: error: first line\n  second line\n\n{path}:14: error: ERROR: third"

@@ -14,7 +14,18 @@ import sys
 from types import ModuleType
 
 #: Old module name -> the module it moved to.
-MOVED: dict[str, str] = {}
+MOVED: dict[str, str] = {
+    "koenig_check.engines.mujoco_engine": "koenig_check.engines.mujoco.adapter",
+    "koenig_check.engines.mujoco_loader": "koenig_check.engines.mujoco.loader",
+    "koenig_check.engines.inertia_repair": "koenig_check.engines.mujoco.inertia_repair",
+    "koenig_check.engines.pinocchio_engine": "koenig_check.engines.pinocchio.adapter",
+    "koenig_check.engines.pinocchio_loader": "koenig_check.engines.pinocchio.loader",
+    "koenig_check.engines.state_map": "koenig_check.engines.pinocchio.state_map",
+    "koenig_check.engines.drake_engine": "koenig_check.engines.drake.adapter",
+    "koenig_check.engines.drake_loader": "koenig_check.engines.drake.loader",
+    "koenig_check.engines.drake_state_map": "koenig_check.engines.drake.state_map",
+    "koenig_check.engines.drake_inertia": "koenig_check.engines.drake.inertia",
+}
 
 
 class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):

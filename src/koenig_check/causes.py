@@ -543,7 +543,7 @@ def _segment_by_body_id(mj_model: mujoco.MjModel) -> list[str]:
 
 
 def _joint_name(mj_model: mujoco.MjModel, j: int) -> str:
-    from koenig_check.engines.state_map import mujoco_joint_names
+    from koenig_check.engines.canonical import mujoco_joint_names
 
     return mujoco_joint_names(mj_model)[j]
 

@@ -1,7 +1,7 @@
 """Library noise: MuJoCo's default warning handler prints and writes ``MUJOCO_LOG.TXT`` in the working directory.
 
 The loader already turns MuJoCo's compiler warnings into findings while it compiles a model
-(:mod:`koenig_check.engines.mujoco_loader`); the same file compiled again elsewhere (the root-cause analysis, a
+(:mod:`koenig_check.engines.mujoco.loader`); the same file compiled again elsewhere (the root-cause analysis, a
 file refused for a NaN) would repeat them, and MuJoCo's default handler would leave ``MUJOCO_LOG.TXT`` behind.
 :func:`route_mujoco_warnings` sends them to the ``koenig_check.mujoco`` logger instead (silent unless
 logging is configured, e.g. by ``--debug``).

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.causes import FrameOffset, model_causes
-from koenig_check.engines.state_map import mujoco_coordinate_names
+from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.findings import Finding, Kind
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.segments import SegmentStates

@@ -19,7 +19,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from koenig_check.engines.state_map import mujoco_coordinate_names
+from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.findings import KoenigCheckError
 from koenig_check.poses import PoseSet
 

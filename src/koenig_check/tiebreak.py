@@ -51,7 +51,7 @@ def check_engines(engines: Sequence[str] | None) -> None:
     ------
     DrakeUnavailableError
     """
-    from koenig_check.engines.drake_loader import drake_available
+    from koenig_check.engines.drake.loader import drake_available
 
     if engines is not None and "drake" in engines and not drake_available():
         raise DrakeUnavailableError(
@@ -115,7 +115,7 @@ def consult_drake(pair: Any, engines: Sequence[str] | None, disagree: bool) -> C
     -------
     Consultation
     """
-    from koenig_check.engines.drake_loader import DrakeLoadError, drake_available
+    from koenig_check.engines.drake.loader import DrakeLoadError, drake_available
 
     if engines is not None and "drake" not in engines:
         return Consultation(findings=[_not_used("not asked for (engines: " + ", ".join(engines) + ")")])
@@ -125,7 +125,7 @@ def consult_drake(pair: Any, engines: Sequence[str] | None, disagree: bool) -> C
         return Consultation(findings=[_not_used("not needed, MuJoCo and Pinocchio agree")])
     if pair.options.pinocchio_model is not None:
         return Consultation(findings=[_not_used("Pinocchio was given another file (--pinocchio-model)")])
-    from koenig_check.engines.drake_engine import load_drake_engine
+    from koenig_check.engines.drake.adapter import load_drake_engine
 
     try:
         engine = load_drake_engine(pair.source, pair.mujoco.model)

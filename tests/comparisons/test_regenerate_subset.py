@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from common import parse_table_rows
 
-from koenig_check.engines.drake_loader import drake_available
+from koenig_check.engines.drake.loader import drake_available
 
 COMPARISONS = Path(__file__).resolve().parents[2] / "comparisons"
 

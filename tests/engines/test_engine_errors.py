@@ -9,7 +9,7 @@ import pytest
 
 from koenig_check.api import compare, make_poses
 from koenig_check.engines import ModelLoadError, load_model
-from koenig_check.engines.pinocchio_loader import parser_reason
+from koenig_check.engines.pinocchio.loader import parser_reason
 from koenig_check.findings import Kind
 
 MODELS = Path(__file__).parent / "models"
@@ -57,7 +57,7 @@ def test_floating_keyframes_pinocchio_refuses_are_dropped_for_pinocchio_and_said
     with pytest.raises(ModelLoadError, match="Keyframe size does not match model size"):
         import pinocchio as pin
 
-        from koenig_check.engines.pinocchio_loader import _build
+        from koenig_check.engines.pinocchio.loader import _build
         from koenig_check.engines.sources import resolve_model
 
         try:  # the limitation itself, straight from Pinocchio

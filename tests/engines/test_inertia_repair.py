@@ -17,7 +17,7 @@ from engine_helpers import EXPECTED_LOAD_FAILURES
 
 from koenig_check.api import compare
 from koenig_check.engines import InertiaError, ModelLoadError, list_models, load_model, resolve_model
-from koenig_check.engines.inertia_repair import MJMINVAL
+from koenig_check.engines.mujoco.inertia_repair import MJMINVAL
 from koenig_check.findings import Kind
 
 MODEL = Path(__file__).parent / "models" / "repair_needed.urdf"

@@ -7,8 +7,8 @@ import json
 import pytest
 
 from koenig_check.cli import main
-from koenig_check.engines.mujoco_engine import MujocoEngine
-from koenig_check.engines.pinocchio_engine import PinocchioEngine
+from koenig_check.engines.mujoco.adapter import MujocoEngine
+from koenig_check.engines.pinocchio.adapter import PinocchioEngine
 from koenig_check.formulas import FORMULAS
 
 

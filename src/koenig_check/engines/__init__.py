@@ -35,13 +35,13 @@ from koenig_check.engines.errors import (
 )
 from koenig_check.engines.finite import check_finite, check_segments
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
-from koenig_check.engines.mujoco_engine import MujocoEngine
-from koenig_check.engines.mujoco_loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
-from koenig_check.engines.pinocchio_engine import PinocchioEngine
-from koenig_check.engines.pinocchio_loader import load_pinocchio
+from koenig_check.engines.mujoco.adapter import MujocoEngine
+from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
+from koenig_check.engines.pinocchio.adapter import PinocchioEngine
+from koenig_check.engines.pinocchio.loader import load_pinocchio
+from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
 from koenig_check.engines.sampling import random_states
 from koenig_check.engines.sources import ModelSource, list_models, resolve_model
-from koenig_check.engines.state_map import StateMap, build_state_map
 from koenig_check.findings import Finding, Kind
 from koenig_check.validate import preflight
 

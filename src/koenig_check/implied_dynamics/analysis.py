@@ -22,8 +22,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from koenig_check.engines import ModelPair, load_model
+from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
-from koenig_check.engines.state_map import mujoco_coordinate_names
 from koenig_check.findings import Finding, KoenigCheckError
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
 from koenig_check.implied_dynamics.drake_column import add_drake_column

@@ -1,6 +1,6 @@
 """Drake adapter: segment states, point velocities, energy, mass matrix, inverse dynamics.
 
-Callers pass canonical (MuJoCo-layout) states; :class:`~koenig_check.engines.drake_state_map.DrakeStateMap`
+Callers pass canonical (MuJoCo-layout) states; :class:`~koenig_check.engines.drake.state_map.DrakeStateMap`
 converts them to Drake's ``(q, v)`` and converts mass matrices and generalized forces back.
 
 Segments
@@ -32,7 +32,7 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.base import as_batches, check_points, symmetrize
-from koenig_check.engines.drake_state_map import DrakeStateMap
+from koenig_check.engines.drake.state_map import DrakeStateMap
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
@@ -421,8 +421,8 @@ def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:
     DrakeLoadError
         Drake refuses the file, or its joints cannot be paired with MuJoCo's (one line naming the file).
     """
-    from koenig_check.engines.drake_loader import load_drake
-    from koenig_check.engines.drake_state_map import build_drake_state_map
+    from koenig_check.engines.drake.loader import load_drake
+    from koenig_check.engines.drake.state_map import build_drake_state_map
 
     plant, findings = load_drake(source, free_top_joints(mj_model))
     state_map = build_drake_state_map(mj_model, plant, str(source.path))
@@ -439,7 +439,7 @@ def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:
     engine = DrakeEngine(plant, state_map, source.path, np.asarray(mj_model.qpos0), findings)
     engine.findings += anchor_findings(plant, mj_model, state_map)
     if source.format == "urdf":
-        from koenig_check.engines.drake_inertia import replaced_inertias
+        from koenig_check.engines.drake.inertia import replaced_inertias
 
         warned = [
             f.element.split(" ", 1)[1] for f in findings if f.element.startswith("link ") and "inertia" in f.summary
@@ -459,7 +459,7 @@ def free_top_joints(mj_model: mujoco.MjModel) -> dict[str, str]:
     -------
     dict of str to str
     """
-    from koenig_check.engines.state_map import mujoco_joint_names
+    from koenig_check.engines.canonical import mujoco_joint_names
 
     names = mujoco_joint_names(mj_model)
     out = {}
@@ -488,7 +488,7 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
     -------
     list of Finding
     """
-    from koenig_check.engines.state_map import mujoco_joint_names
+    from koenig_check.engines.canonical import mujoco_joint_names
 
     data = mujoco.MjData(mj_model)
     mujoco.mj_kinematics(mj_model, data)

@@ -1,6 +1,6 @@
 """Pinocchio adapter: segment states, point velocities, energy, mass matrix, inverse dynamics.
 
-Callers pass canonical (MuJoCo-layout) states; the :class:`~koenig_check.engines.state_map.StateMap`
+Callers pass canonical (MuJoCo-layout) states; the :class:`~koenig_check.engines.pinocchio.state_map.StateMap`
 converts them to Pinocchio's ``(q, v)`` and converts the mass matrix and generalized forces back.
 
 Segments are Pinocchio joints with non-zero mass: ``model.inertias[i]`` already lumps the links
@@ -25,7 +25,7 @@ import pinocchio as pin
 
 from koenig_check.engines.base import as_batches, check_points, rows, symmetrize
 from koenig_check.engines.energy import EnergyParts
-from koenig_check.engines.state_map import StateMap
+from koenig_check.engines.pinocchio.state_map import StateMap
 from koenig_check.findings import Finding, Kind
 from koenig_check.kernels import body_point_velocities, cross, rotate
 from koenig_check.segments import SegmentStates

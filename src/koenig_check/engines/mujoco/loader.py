@@ -29,7 +29,7 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
-from koenig_check.engines.inertia_repair import Repair, repair_body
+from koenig_check.engines.mujoco.inertia_repair import Repair, repair_body
 from koenig_check.engines.sources import ModelSource, resolve_uri
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import check_physical_inertia
@@ -210,7 +210,7 @@ def _compile(
     """Compile, dropping meshes MuJoCo refuses one by one; raise clear errors otherwise.
 
     With ``repair``, a body whose mass or inertia MuJoCo refuses is repaired in ``spec``
-    (:func:`~koenig_check.engines.inertia_repair.repair_body`) and a copy compiled again (a failed
+    (:func:`~koenig_check.engines.mujoco.inertia_repair.repair_body`) and a copy compiled again (a failed
     compilation leaves the spec's static bodies fused).
 
     Returns the model, the names of the meshes dropped on the way and the repairs.
@@ -329,7 +329,7 @@ def load_mujoco(
         Load inertias violating ``A + B >= C`` with MuJoCo's ``balanceinertia``.
     repair_inertia : bool
         Change each body whose mass or inertia MuJoCo refuses by the smallest amount MuJoCo accepts
-        (:mod:`koenig_check.engines.inertia_repair`); a ``REPAIR`` finding per body says by how much.
+        (:mod:`koenig_check.engines.mujoco.inertia_repair`); a ``REPAIR`` finding per body says by how much.
 
     Returns
     -------

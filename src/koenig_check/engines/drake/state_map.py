@@ -32,8 +32,8 @@ import mujoco
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from koenig_check.engines.drake_loader import DrakeLoadError
-from koenig_check.engines.state_map import VelocityMapped, mujoco_joint_names
+from koenig_check.engines.canonical import VelocityMapped, mujoco_joint_names
+from koenig_check.engines.drake.loader import DrakeLoadError
 
 _MJ_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 _COMPATIBLE = {

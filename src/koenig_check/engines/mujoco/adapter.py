@@ -33,8 +33,8 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.base import as_batches, check_points, rows, symmetrize
+from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.energy import EnergyParts
-from koenig_check.engines.state_map import mujoco_joint_names
 from koenig_check.findings import Finding, Kind
 from koenig_check.kernels import body_point_velocities, cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates

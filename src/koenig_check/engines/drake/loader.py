@@ -1,7 +1,7 @@
 """Build a Drake ``MultibodyPlant`` from an MJCF or URDF file, with the base chosen like the other engines.
 
 Drake (``pydrake``, the optional extra ``[drake]``) is the tie-breaker engine: it is imported only
-here and in :mod:`koenig_check.engines.drake_engine`, and only when asked for.
+here and in :mod:`koenig_check.engines.drake.adapter`, and only when asked for.
 
 What Drake 1.51's parsers do, verified on the project's files and example-robot-data:
 
@@ -23,7 +23,7 @@ What Drake 1.51's parsers do, verified on the project's files and example-robot-
   resolve through Drake's package map, filled from the directories the model source knows.  Drake
   refuses a mimic joint whose leader has a different number of dofs (Talos's grippers), and warns
   (but loads) a link whose inertia has a negative principal moment (anymal's base).
-* Floating base: a ``QuaternionFloatingJoint`` named :data:`~koenig_check.engines.mujoco_loader.ROOT_JOINT_NAME`
+* Floating base: a ``QuaternionFloatingJoint`` named :data:`~koenig_check.engines.mujoco.loader.ROOT_JOINT_NAME`
   on the body that carries MuJoCo's added free joint (replacing the weld the parser put there).
 
 Every warning Drake prints while parsing is a ``LOAD`` finding (engine ``drake``), one per distinct
