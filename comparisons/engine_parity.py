@@ -94,6 +94,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     -------
     Row
     """
+    from koenig_check.diagnosis.import_parity import import_parity
     from koenig_check.engines import load_model
     from koenig_check.engines.drake.adapter import load_drake_engine
     from koenig_check.engines.drake.loader import drake_available
@@ -103,7 +104,6 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     from koenig_check.engines.sampling import random_states
     from koenig_check.engines.sources import resolve_model
     from koenig_check.grid import disagreement_cause, relative_error
-    from koenig_check.parity import import_parity
     from koenig_check.validate import preflight
 
     path, floating, n_poses, use_drake = task
@@ -161,12 +161,12 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
         row.seconds = time.perf_counter() - start
         return row
     qpos, qvel = random_states(pair.mujoco.model, n_poses, seed=model_seed(f"{row.model} {row.base}"))
-    energies = {e.engine: e.kinetic_energy(qpos, qvel) for e in pair.engines}
+    energies = {name: e.kinetic_energy(qpos, qvel) for name, e in pair.engines.items()}
     mj, pn = energies["mujoco"].rigid, energies["pinocchio"].rigid
     row.parity = float(np.abs(relative_error(pn, mj)).max())
     arm = np.abs(energies["pinocchio"].armature - energies["mujoco"].armature)
     arm_rel = float((arm / np.maximum(np.abs(mj) + energies["mujoco"].armature, 1e-300)).max())
-    engines = list(pair.engines)
+    engines = list(pair.engines.values())
     if drake is not None:
         try:
             dr = drake.kinetic_energy(qpos, qvel).rigid

@@ -15,9 +15,9 @@ import pytest
 
 import koenig_check
 from independent_energy import engines_agree
+from koenig_check.diagnosis.import_parity import compiler_findings, format_parity, import_parity
 from koenig_check.engines import load_model
 from koenig_check.findings import Finding, Kind, KoenigCheckError
-from koenig_check.parity import compiler_findings, format_parity, import_parity
 
 CAUSES = Path(__file__).resolve().parent / "models" / "causes"
 
@@ -224,5 +224,6 @@ def test_geoms_inside_a_frame_are_named_with_the_segment_they_weigh_on() -> None
     assert (cause.engine, cause.element, cause.segments) == ("pinocchio", "frame #1 in body base", ("j1",))
     assert cause.values["geoms"] == 1 and cause.affects_energy
     # MuJoCo's segment carries the frame's 2 kg sphere, Pinocchio's does not.
-    masses = {e.engine: e.segment_states(pair.mujoco.model.qpos0[None], np.zeros((1, 1))).mass[0] for e in pair.engines}
+    q0, zero = pair.mujoco.model.qpos0[None], np.zeros((1, 1))
+    masses = {name: e.segment_states(q0, zero).mass[0] for name, e in pair.engines.items()}
     assert masses == pytest.approx({"mujoco": 3.0, "pinocchio": 1.0})

@@ -11,9 +11,9 @@ from common import dm_control_corpus, dm_control_root
 
 import koenig_check
 from independent_energy import engines_agree
+from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.engines import load_model
 from koenig_check.findings import Kind, KoenigCheckError
-from koenig_check.parity import import_parity
 
 pytest.importorskip("dm_control")
 ROOT = dm_control_root()

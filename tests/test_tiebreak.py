@@ -9,9 +9,9 @@ import pytest
 
 import koenig_check
 from koenig_check.cli import main
+from koenig_check.engines.errors import EngineUnavailableError as DrakeUnavailableError
 from koenig_check.findings import Kind
 from koenig_check.testing import assert_energy_parity
-from koenig_check.tiebreak import DrakeUnavailableError
 
 HERE = Path(__file__).parent
 TIEBREAK = HERE / "models" / "tiebreak"
@@ -125,8 +125,10 @@ def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str)
     message = str(info.value)
     assert "\n" not in message and message.startswith(str(pair.source.path)) and message.endswith(text)
     check = koenig_check.compare(model, n_poses=1, formulas=["exact"], engines=ALL)
-    found = [f.summary for f in check.comparisons[0].findings if f.engine == "drake"]
+    found = [f.summary for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_NOT_USED]
     assert found == [f"Drake not used: {message}"]
+    # Drake was asked for and could not check the model: the check asked for was not made, and says why.
+    assert not check.ok and message in check.reason()
 
 
 @needs_drake
@@ -148,9 +150,9 @@ def test_drake_limits_are_findings_naming_the_element() -> None:
 
 
 def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
-    import koenig_check.engines.drake.loader as loader
+    import koenig_check.engines.registry as registry
 
-    monkeypatch.setattr(loader, "drake_available", lambda: False)
+    monkeypatch.setattr(registry, "installed", lambda name: name != "drake")
     check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
     assert set(check.comparisons[0].engines) == {"mujoco", "pinocchio"}
     assert "Drake not used: not installed" in check.reason()

@@ -164,7 +164,7 @@ def no_dynamics_model_loaded(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     """Fail loudly if dynamics() loads its model; collect the names asked for."""
     from koenig_check.implied_dynamics import analysis
 
-    return _refuse_loading(monkeypatch, analysis, "load")
+    return _refuse_loading(monkeypatch, analysis, "load_model")
 
 
 @pytest.mark.parametrize("kwargs", DYNAMICS_TYPE_ERRORS.values(), ids=DYNAMICS_TYPE_ERRORS.keys())

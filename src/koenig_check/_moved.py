@@ -25,6 +25,8 @@ MOVED: dict[str, str] = {
     "koenig_check.engines.drake_loader": "koenig_check.engines.drake.loader",
     "koenig_check.engines.drake_state_map": "koenig_check.engines.drake.state_map",
     "koenig_check.engines.drake_inertia": "koenig_check.engines.drake.inertia",
+    "koenig_check.tiebreak": "koenig_check.diagnosis.three_way",
+    "koenig_check.parity": "koenig_check.diagnosis.import_parity",
 }
 
 

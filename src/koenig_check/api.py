@@ -2,19 +2,20 @@
 
 from __future__ import annotations
 
-import sys
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from koenig_check import grid, pipeline, poses, tiebreak
+from koenig_check import grid, pipeline, poses
 from koenig_check.arguments import POSE_KINDS, check_compare_arguments, check_keywords, keywords_of
+from koenig_check.diagnosis import policy, reason
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
-from koenig_check.findings import Kind
+from koenig_check.engines.registry import check_engines
 from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import RecordTable
+from koenig_check.run.labels import unique_labels
 
 if TYPE_CHECKING:
     from koenig_check.report import RecordSink
@@ -53,9 +54,10 @@ class CrossCheck:
     def ok(self) -> bool:
         """True when every model loaded and the engines agree with each other and with ``exact``.
 
-        With Drake consulted, an engine that departs from the other two (a ``VERDICT`` finding) counts.
+        With Drake consulted, an engine that departs from the other two (a ``VERDICT`` finding) counts, and so does
+        an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made).
         """
-        verdicts = any(f.kind is Kind.VERDICT for c in self.comparisons for f in c.findings)
+        verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
         return not self.failures and all(p.agrees for p in self.parities) and not verdicts
 
     def add(self, comparison: ModelComparison) -> EngineParity:
@@ -80,19 +82,14 @@ class CrossCheck:
         """One line saying why :attr:`ok` is False (empty when it is True)."""
         parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in self.failures]  # once, not twice
         for comparison, parity in zip(self.comparisons, self.parities, strict=True):
-            lead = tiebreak.lead_line(comparison.findings)
+            lead = reason.lead_line(comparison.findings)
             if lead or not parity.agrees:
                 text = "; ".join(t for t in (lead, "" if parity.agrees else parity.reason) if t)
-                unused = tiebreak.drake_usage(comparison.findings)
+                unused = reason.engine_usage(comparison.findings)
                 if not lead and unused:
                     text += f"; {unused}"
                 parts.append(f"{parity.model}: {text}")
         return "; ".join(parts)
-
-
-def _label(model: str | Path, floating: bool) -> str:
-    text = Path(model).name if Path(str(model)).suffix else str(model)
-    return f"{text} (floating)" if floating else text
 
 
 def make_poses(
@@ -180,7 +177,7 @@ def compare_model(
     label : str, optional
     load_options : LoadOptions, optional
         How the model is loaded (see :class:`koenig_check.engines.load_options.LoadOptions`); its
-        ``engines`` decide whether Drake runs (:mod:`koenig_check.tiebreak`).
+        ``engines`` decide whether Drake runs (:mod:`koenig_check.diagnosis.policy`).
     rtol : float
         Tolerance under which engines agree (the over/under counts of the summaries, and whether
         Drake is consulted by default).
@@ -209,27 +206,25 @@ def compare_model(
     Exception
         Any load or comparison failure, with a one-line message.
     """
+    from koenig_check.diagnosis.diagnose import diagnose
     from koenig_check.engines import load_model
-    from koenig_check.parity import import_parity
 
     options = load_options_from(load_options, load_kwargs)
-    pair = load_model(model, options)
+    loaded = load_model(model, options)
     source = pipeline.ModelSource(str(model), options)
-    asked = options.engines is not None and "drake" in options.engines
-    drake = tiebreak.consult_drake(pair, options.engines, disagree=True) if asked else None
-    extra = {"drake": drake.engine} if drake is not None and drake.used else {}
-    pipeline.remember(source, pair, extra)
+    for name in policy.asked_for(options.engines):  # named engines run on every pose, when they can
+        loaded.attach(name)
     if pose_file is not None:
         from koenig_check.pose_file import load_pose_file
 
-        pose_set = load_pose_file(pose_file, pair.mujoco.model)
+        pose_set = load_pose_file(pose_file, loaded.mujoco.model)
     random = None
     if pose_set is None and pose_kind == "random":
         poses.check_random(n_poses, seed, velocity_scale)
         random = pipeline.RandomRange(0, n_poses, seed, velocity_scale)
     elif pose_set is None:
         pose_set = make_poses(
-            pair.mujoco.model,
+            loaded.mujoco.model,
             pose_kind,
             n_poses=n_poses,
             seed=seed,
@@ -238,9 +233,9 @@ def compare_model(
             duration=duration,
         )
     comp = pipeline.run_model(
-        pair,
+        loaded,
         source,
-        label or _label(model, options.floating),
+        label or unique_labels([model], options.floating)[0],
         formulas,
         pose_set=pose_set,
         random=random,
@@ -251,16 +246,15 @@ def compare_model(
         sink=sink,
         keep_records=keep_records,
         chunk_poses=chunk_poses,
-        extra_engines=extra,
     )
     disagree = comp.stats is not None and comp.stats.parity.rigid.value > rtol
-    if drake is None:  # by default Drake is the tie-breaker, consulted only where the two disagree
-        drake = tiebreak.consult_drake(pair, options.engines, disagree)
-    findings = list(pair.findings) + import_parity(pair).as_findings() + drake.findings
-    verdicts = _three_way_verdicts(pair, drake, pose_set, random, findings, rtol) if drake.used else []
-    comp.findings = verdicts + findings
+    sample = _verdict_sample(loaded, pose_set, random)
+    diagnosis = diagnose(loaded, disagree=disagree, qpos=sample.qpos, qvel=sample.qvel, rtol=rtol)
+    comp.findings = diagnosis.findings
     comp.notes = (
-        [f"three engines: {f.message()}" for f in verdicts] + [f.message() for f in drake.findings] + comp.notes
+        [f"three engines: {f.message()}" for f in diagnosis.verdicts]
+        + [f.message() for f in diagnosis.optional_findings]
+        + comp.notes
     )
     return comp
 
@@ -269,27 +263,13 @@ def compare_model(
 VERDICT_POSES = 256
 
 
-def _three_way_verdicts(
-    pair: Any,
-    drake: tiebreak.Consultation,
-    pose_set: poses.PoseSet | None,
-    random: pipeline.RandomRange | None,
-    findings: list,
-    rtol: float,
-) -> list:
-    """Which engine departs, from all three engines on the first :data:`VERDICT_POSES` poses."""
-    if pose_set is None:
-        stop = min(random.stop, random.start + VERDICT_POSES)
-        sample = poses.random_pose_range(pair.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
-    else:
-        sample = pose_set.slice(0, VERDICT_POSES)
-    engines = {"mujoco": pair.mujoco, "pinocchio": pair.pinocchio, "drake": drake.engine}
-    try:
-        runs = {name: grid.run_engine(engine, sample) for name, engine in engines.items()}
-    except ValueError as err:
-        raise ValueError(f"{pair.path}: {one_line(err)}") from err
-    states = {name: run.states for name, run in runs.items()}
-    return tiebreak.energy_verdicts(runs, findings, rtol) + tiebreak.import_verdicts(states, findings, rtol)
+def _verdict_sample(loaded: Any, pose_set: poses.PoseSet | None, random: pipeline.RandomRange | None) -> poses.PoseSet:
+    """The first :data:`VERDICT_POSES` poses of the run, on which the three engines' energies are compared."""
+    if pose_set is not None:
+        return pose_set.slice(0, VERDICT_POSES)
+    assert random is not None
+    stop = min(random.stop, random.start + VERDICT_POSES)
+    return poses.random_pose_range(loaded.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
 
 
 def compare(
@@ -338,10 +318,9 @@ def compare(
     check_compare_arguments(rtol, options)
     options = dict(options)
     load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
-    tiebreak.check_engines(load.engines)
+    check_engines(load.engines)
     result = CrossCheck(rtol=rtol)
-    for model in models:
-        label = _label(model, load.floating)
+    for model, label in zip(models, unique_labels(models, load.floating), strict=True):
         if progress:
             progress(label)
         result.settings[label] = {k: options[k] for k in _SETTINGS if k in options}
@@ -403,13 +382,3 @@ def one_line(err: BaseException) -> str:
     """
     text = " ".join(str(err).split())
     return text or type(err).__name__
-
-
-def stderr_progress(message: str) -> None:
-    """Print a progress line on standard error.
-
-    Parameters
-    ----------
-    message : str
-    """
-    print(f"  … {message}", file=sys.stderr, flush=True)

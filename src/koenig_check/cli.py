@@ -321,12 +321,13 @@ def _check_compare_usage(args: argparse.Namespace) -> None:
 
 def _load_options(args: argparse.Namespace) -> LoadOptions:
     """The load options of a command; ``--allow-coupled`` is accepted with a note and ignored."""
-    from koenig_check.tiebreak import DrakeUnavailableError, check_engines
+    from koenig_check.engines.errors import EngineUnavailableError
+    from koenig_check.engines.registry import check_engines
 
     options = LoadOptions.from_namespace(args)
     try:
         check_engines(options.engines)
-    except DrakeUnavailableError as err:  # a usage error: refused before any work
+    except EngineUnavailableError as err:  # a usage error: refused before any work
         print(f"koenig-check: error: {err}", file=sys.stderr)
         raise SystemExit(2) from None
     if options.allow_coupled:
@@ -409,20 +410,29 @@ def _cmd_demo(args: argparse.Namespace) -> int:
 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
+    from koenig_check.diagnosis.diagnose import diagnose
+    from koenig_check.diagnosis.import_parity import format_parity
+    from koenig_check.diagnosis.policy import asked_for
+    from koenig_check.diagnosis.reason import lead_line
     from koenig_check.engines import load_model
-    from koenig_check.parity import format_parity, import_parity
-    from koenig_check.tiebreak import parity_verdicts
+    from koenig_check.findings import Kind
 
     options = _load_options(args)
-    pair = load_model(args.model, options)
-    report = import_parity(pair)
-    verdicts, drake_findings = parity_verdicts(pair, options.engines, disagree=not report.clean)
-    for f in verdicts + drake_findings:
-        print(f"three engines: {f.message()}" if f in verdicts else f.message())
+    model = load_model(args.model, options)
+    for name in asked_for(options.engines):
+        model.attach(name)
+    diagnosis = diagnose(model)
+    report = diagnosis.parity
+    assert report is not None
+    for f in diagnosis.findings:
+        if f.kind is Kind.VERDICT:
+            print(f"three engines: {f.message()}")
+        elif f in diagnosis.optional_findings:
+            print(f.message())
     print(format_parity(report))
-    if report.clean and not verdicts:
+    lead = lead_line(diagnosis.findings)
+    if report.clean and not lead:
         return 0
-    lead = "; ".join(f.message() for f in verdicts)
     print(
         f"koenig-check: import differences in {args.model}: {'; '.join(t for t in (lead, report.headline()) if t)}",
         file=sys.stderr,

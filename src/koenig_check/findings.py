@@ -42,6 +42,7 @@ class Kind(str, Enum):
 
     # What was done to load the model (the user asked for it, or a documented engine limitation).
     ENGINE_NOT_USED = "engine_not_used"  # an optional engine was not run on the model, and why
+    ENGINE_UNABLE = "engine_unable"  # an engine the user asked for could not check the model: the check was not made
     LOAD = "load"  # a loading decision: inertia-only meshes, keyframes skipped, a file loaded for one engine
     REPAIR = "repair"  # a mass property changed so that an engine accepts the model (--repair-inertia)
     COUPLING = "coupling"  # joints coupled by the file (mimic, equality, tendon, weld/connect)

@@ -14,12 +14,15 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 import pyarrow as pa
 
-from koenig_check.findings import Finding, Kind, root_causes
+from koenig_check.diagnosis.reason import disagreement_cause
+from koenig_check.engines.base import Engine
+from koenig_check.engines.registry import REQUIRED as ENGINES
+from koenig_check.findings import Finding
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.cache import SharedStates
 from koenig_check.formulas.point_masses import equimomental_points
@@ -47,21 +50,8 @@ __all__ = [
 
 #: Default relative tolerance for "agrees".
 DEFAULT_RTOL = 1e-9
-ENGINES = ("mujoco", "pinocchio")
 #: Which records a run keeps: per segment and totals, totals only, or none.
 RECORD_MODES = ("segments", "totals", "none")
-
-
-class EngineModel(Protocol):
-    """What the grid needs from an engine adapter."""
-
-    engine: str
-
-    def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates: ...
-
-    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray: ...
-
-    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> Any: ...
 
 
 @dataclass
@@ -119,46 +109,33 @@ class ModelComparison:
     engines: tuple[str, ...] = ENGINES
 
 
-def run_engine(engine: EngineModel, poses: PoseSet) -> EngineRun:
-    """Evaluate one engine on a pose set: segment states, its energy, point velocities.
-
-    Engines with a ``sweep`` method give all three from one pass per pose.
+def run_engine(engine: Engine, poses: PoseSet) -> EngineRun:
+    """Evaluate one engine on a pose set: segment states, its energy, point velocities (one sweep).
 
     Parameters
     ----------
-    engine : EngineModel
+    engine : Engine
     poses : PoseSet
 
     Returns
     -------
     EngineRun
     """
-    sweep = getattr(engine, "sweep", None)
-    if sweep is not None:
-        states, pv, rigid, armature = sweep(poses.qpos, poses.qvel, _points_for(engine))
-        return EngineRun(engine.engine, states, rigid, armature, pv)
-    states = engine.segment_states(poses.qpos, poses.qvel)
-    energy = engine.kinetic_energy(poses.qpos, poses.qvel)
-    try:
-        offsets, _ = equimomental_points(states.mass, states.inertia_body, states.names)
-    except ValueError:  # a non-physical inertia has no point set: point_masses will refuse, with the reason
-        pv = None
-    else:
-        pv = engine.point_velocities(poses.qpos, poses.qvel, offsets)
-    return EngineRun(engine.engine, states, np.asarray(energy.rigid), np.asarray(energy.armature), pv)
+    states, pv, rigid, armature = engine.sweep(poses.qpos, poses.qvel, _points_for(engine))
+    return EngineRun(engine.engine, states, rigid, armature, pv)
 
 
 #: Equimomental points of the last models' segments, keyed by their mass properties (see :func:`_points_for`).
 _POINTS: dict[tuple, np.ndarray | None] = {}
 
 
-def _points_for(engine: Any) -> np.ndarray | None:
+def _points_for(engine: Engine) -> np.ndarray | None:
     """The equimomental points of an engine's segments, or None; computed once per set of mass properties.
 
     The mass properties are constant over the poses, so every chunk of a model asks for the same
     points: they are kept, keyed by the masses, inertias and names they come from.
     """
-    mass, inertia = np.asarray(engine._mass, dtype=float), np.asarray(engine._inertia, dtype=float)
+    mass, inertia = (np.asarray(a, dtype=float) for a in engine.mass_properties())
     key = (mass.tobytes(), inertia.tobytes(), tuple(engine.segment_names))
     if key in _POINTS:
         return _POINTS[key]
@@ -648,42 +625,6 @@ def engine_parity(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> En
         not reasons,
         "; ".join(reasons),
     )
-
-
-#: Kinds of per-segment import differences (symptoms, after the root causes in a reason).
-_SYMPTOMS = (Kind.MASS, Kind.COM, Kind.INERTIA, Kind.ANCHOR, Kind.AXIS, Kind.ARMATURE, Kind.SEGMENTS, Kind.FRAME)
-
-
-def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
-    """The cause of an engine disagreement, chosen from the findings, for the one-line reason.
-
-    Root causes that change the energy come first (a repaired or compiler-altered inertia, a
-    construct one parser ignores), then the per-segment import differences, then each engine's
-    inconsistencies with itself.
-
-    Parameters
-    ----------
-    findings : sequence of Finding
-    limit : int
-        At most this many findings are named (the count of the others is given).
-
-    Returns
-    -------
-    str
-        Empty when no finding explains a change of energy.
-    """
-    energy = [f for f in findings if f.affects_energy]
-    roots = [f for f in root_causes(energy) if f.affects_energy]
-    symptoms = [f for f in energy if f.kind in _SYMPTOMS and f not in roots]
-    selves = [f for f in energy if f.kind is Kind.SELF_CONSISTENCY and f not in roots]
-    chosen: list[Finding] = []
-    for f in roots + symptoms + selves:
-        if f not in chosen:
-            chosen.append(f)
-    text = "; ".join(f.message() for f in chosen[:limit])
-    if len(chosen) > limit:
-        text += f"; and {len(chosen) - limit} more finding(s)"
-    return text
 
 
 def records_for(comparisons: Iterable[ModelComparison]) -> RecordTable:

@@ -96,8 +96,8 @@ class ChunkTask:
     poses : RandomRange or PoseSet
     planar_normals : dict, optional
         Per engine, the plane normals of eq. (16) for every chunk of the model (see :func:`probe_normals`).
-    extra_engines : tuple of str
-        Engines run on every pose besides MuJoCo and Pinocchio (``("drake",)`` when asked for).
+    engines : tuple of str
+        The engines run on every pose (MuJoCo, Pinocchio, and Drake when asked for).
     """
 
     source: ModelSource
@@ -108,28 +108,26 @@ class ChunkTask:
     index: int
     poses: RandomRange | PoseSet
     planar_normals: dict[str, np.ndarray] | None = None
-    extra_engines: tuple[str, ...] = ()
+    engines: tuple[str, ...] = ENGINES
 
 
-_PAIRS: dict[ModelSource, tuple[Any, dict[str, Any]]] = {}
+_MODELS: dict[ModelSource, Any] = {}
 
 
-def remember(source: ModelSource, pair: Any, extra: dict[str, Any] | None = None) -> None:
-    """Let this process's chunks reuse a model already loaded.
+def remember(source: ModelSource, model: Any) -> None:
+    """Let this process's chunks reuse a model already loaded (with the optional engines attached to it).
 
     Parameters
     ----------
     source : ModelSource
-    pair : koenig_check.engines.ModelPair
-    extra : dict, optional
-        Other engines loaded on the model (``{"drake": DrakeEngine}``).
+    model : koenig_check.engines.LoadedModel
     """
-    _PAIRS.clear()  # one model at a time: memory stays bounded over many models
-    _PAIRS[source] = (pair, dict(extra or {}))
+    _MODELS.clear()  # one model at a time: memory stays bounded over many models
+    _MODELS[source] = model
 
 
 def loaded(source: ModelSource) -> Any:
-    """The model pair of a source, loaded once per process.
+    """The model of a source, loaded once per process (its optional engines are attached on first use).
 
     Parameters
     ----------
@@ -137,40 +135,15 @@ def loaded(source: ModelSource) -> Any:
 
     Returns
     -------
-    koenig_check.engines.ModelPair
+    koenig_check.engines.LoadedModel
     """
-    cached = _PAIRS.get(source)
-    if cached is None:
+    model = _MODELS.get(source)
+    if model is None:
         from koenig_check.engines import load_model
 
-        remember(source, load_model(source.model, source.options))
-        cached = _PAIRS[source]
-    return cached[0]
-
-
-def extra_engine(source: ModelSource, name: str) -> Any:
-    """Another engine on a source's model (Drake), loaded once per process.
-
-    Parameters
-    ----------
-    source : ModelSource
-    name : str
-        ``"drake"``.
-
-    Returns
-    -------
-    EngineModel
-    """
-    pair = loaded(source)
-    extra = _PAIRS[source][1]
-    if name not in extra:
-        from koenig_check.tiebreak import consult_drake
-
-        consulted = consult_drake(pair, ("mujoco", "pinocchio", name), disagree=True)
-        if not consulted.used:
-            raise ValueError(f"{pair.path}: {consulted.findings[0].message()}")
-        extra[name] = consulted.engine
-    return extra[name]
+        model = load_model(source.model, source.options)
+        remember(source, model)
+    return model
 
 
 def _check_finite(path: Any, runs: dict[str, EngineRun], poses: PoseSet) -> None:
@@ -208,17 +181,16 @@ def run_chunk(task: ChunkTask) -> ChunkResult:
     # The engines of a process's model are shared by its chunks, and their data (MuJoCo's MjData, Pinocchio's
     # Data) is scratch memory: chunks run in threads (a Dask worker's) take turns with the engines.
     with _ENGINES_LOCK:
-        pair = loaded(task.source)
+        model = loaded(task.source)
         poses = task.poses
         if isinstance(poses, RandomRange):
-            poses = random_pose_range(pair.mujoco.model, poses.start, poses.stop, poses.seed, poses.velocity_scale)
+            poses = random_pose_range(model.mujoco.model, poses.start, poses.stop, poses.seed, poses.velocity_scale)
+        engines = {name: model.engine(name) for name in task.engines}  # an engine that cannot check it: its reason
         try:
-            runs = {"mujoco": run_engine(pair.mujoco, poses), "pinocchio": run_engine(pair.pinocchio, poses)}
-            for name in task.extra_engines:
-                runs[name] = run_engine(extra_engine(task.source, name), poses)
+            runs = {name: run_engine(engine, poses) for name, engine in engines.items()}
         except ValueError as err:  # an engine produced an invalid state: name the file
-            raise ValueError(f"{pair.path}: {' '.join(str(err).split())}") from err
-    _check_finite(pair.path, runs, poses)
+            raise ValueError(f"{model.path}: {' '.join(str(err).split())}") from err
+    _check_finite(model.path, runs, poses)
     return evaluate_chunk(
         task.label, poses, runs, task.formulas, task.records, task.rtol, task.index, task.planar_normals
     )
@@ -236,7 +208,7 @@ def probe_normals(pair: Any, poses: PoseSet | None, random: RandomRange | None) 
 
     Parameters
     ----------
-    pair : koenig_check.engines.ModelPair
+    pair : koenig_check.engines.LoadedModel
     poses : PoseSet, optional
     random : RandomRange, optional
 
@@ -251,7 +223,7 @@ def probe_normals(pair: Any, poses: PoseSet | None, random: RandomRange | None) 
     else:
         stop = min(random.stop, random.start + PROBE_POSES)
         probe = random_pose_range(pair.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
-    return {e.engine: infer_normals(e.segment_states(probe.qpos, probe.qvel)) for e in pair.engines}
+    return {name: infer_normals(e.segment_states(probe.qpos, probe.qvel)) for name, e in pair.engines.items()}
 
 
 def plan(
@@ -265,7 +237,7 @@ def plan(
     random: RandomRange | None = None,
     size: int | None = None,
     planar_normals: dict[str, np.ndarray] | None = None,
-    extra_engines: tuple[str, ...] = (),
+    engines: tuple[str, ...] = ENGINES,
 ) -> list[ChunkTask]:
     """Cut a model's poses into chunk tasks.
 
@@ -287,8 +259,8 @@ def plan(
         Poses per chunk.
     planar_normals : dict, optional
         See :func:`probe_normals`.
-    extra_engines : tuple of str
-        Engines run on every pose besides MuJoCo and Pinocchio.
+    engines : tuple of str
+        The engines run on every pose.
 
     Returns
     -------
@@ -300,7 +272,7 @@ def plan(
     formulas = tuple(formulas)
 
     def task(index: int, chunk: RandomRange | PoseSet) -> ChunkTask:
-        return ChunkTask(source, label, formulas, records, rtol, index, chunk, planar_normals, tuple(extra_engines))
+        return ChunkTask(source, label, formulas, records, rtol, index, chunk, planar_normals, tuple(engines))
 
     if poses is not None:
         if poses.times is not None or poses.n_poses <= size:
@@ -379,14 +351,14 @@ def run_model(
     sink: Any = None,
     keep_records: bool | None = None,
     chunk_poses: int | None = None,
-    extra_engines: dict[str, Any] | None = None,
 ) -> ModelComparison:
     """Run a loaded model's poses chunk by chunk; merge the statistics, stream the records.
 
     Parameters
     ----------
-    pair : koenig_check.engines.ModelPair
-        The model, loaded here (chunks run here reuse it; other processes load ``source``).
+    pair : koenig_check.engines.LoadedModel
+        The model, loaded here, with the engines to run on every pose (chunks run here reuse it; other
+        processes load ``source`` and attach the same engines).
     source : ModelSource
     label : str
     formulas : iterable of str, optional
@@ -405,15 +377,12 @@ def run_model(
         Keep the records in memory too (default: only without a sink).
     chunk_poses : int, optional
         Poses per chunk (default :func:`chunk_size`).
-    extra_engines : dict, optional
-        Other engines loaded on the model and run on every pose (``{"drake": DrakeEngine}``).
 
     Returns
     -------
     ModelComparison
     """
-    extra = dict(extra_engines or {})
-    remember(source, pair, extra)
+    remember(source, pair)
     names, skipped = formula_names(formulas, pose_set is not None and pose_set.times is not None)
     tasks = plan(
         source,
@@ -426,7 +395,7 @@ def run_model(
         random=random,
         size=chunk_poses,
         planar_normals=probe_normals(pair, pose_set, random) if "planar" in names else None,
-        extra_engines=tuple(extra),
+        engines=tuple(pair.engines),
     )
     keep = sink is None if keep_records is None else keep_records
     stats, kept = None, []
@@ -453,4 +422,4 @@ def run_model(
     kept_records = without_refused(RecordTable.concat(RecordTable(t) for t in kept), refused)
     notes = list(pair.notes) + list(pose_set.notes if pose_set is not None else ()) + skipped
     kind = pose_set.kind if pose_set is not None else "random"
-    return finish_comparison(label, pose_set, stats, kept_records, notes, ENGINES + tuple(extra), pose_kind=kind)
+    return finish_comparison(label, pose_set, stats, kept_records, notes, tuple(pair.engines), pose_kind=kind)

@@ -140,7 +140,7 @@ def model_findings(
     -------
     ModelFindings
     """
-    from koenig_check import tiebreak
+    from koenig_check.diagnosis.reason import lead_line
 
     if parity is None:
         engines = "no engine comparison"
@@ -156,7 +156,7 @@ def model_findings(
         )
     else:
         engines = f"MuJoCo and Pinocchio DISAGREE: {parity.reason}"
-    lead = tiebreak.lead_line(comp.findings)
+    lead = lead_line(comp.findings)
     if lead:
         engines += f"; three engines: {lead}"
     exact, inexact = [], []

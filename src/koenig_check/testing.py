@@ -6,13 +6,13 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from koenig_check.api import load_options_from
+from koenig_check.diagnosis import policy
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.formulas import FORMULAS
 from koenig_check.grid import DEFAULT_RTOL, relative_error
@@ -59,17 +59,19 @@ def assert_energy_parity(
         Naming the segment, the pose and the size of the largest difference, with the
         import-parity causes found for that segment.
     """
+    from koenig_check.diagnosis.diagnose import diagnose
+    from koenig_check.diagnosis.reason import disagreement_cause, lead_line
     from koenig_check.engines import load_model
-    from koenig_check.parity import import_parity
+    from koenig_check.engines.registry import check_engines
     from koenig_check.poses import random_poses
 
     if pinocchio_model is not None:
         load_kwargs["pinocchio_model"] = pinocchio_model
-    from koenig_check.tiebreak import check_engines
-
     options = load_options_from(load_options, load_kwargs)
     check_engines(options.engines)
     pair = load_model(model, options)
+    for name in policy.asked_for(options.engines):  # named engines are compared on every pose
+        pair.attach(name)
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     sa = pair.mujoco.segment_states(poses.qpos, poses.qvel)
     sb = pair.pinocchio.segment_states(poses.qpos, poses.qvel)
@@ -85,13 +87,13 @@ def assert_energy_parity(
     err = np.abs(eb - ea) / scale
     p, b = np.unravel_index(int(np.argmax(err)), err.shape)
     problems = []
+    worst_segment = None
     if err[p, b] > rtol:
-        causes = import_parity(pair, rtol=rtol).causes_for(sa.names[b])
+        worst_segment = len(problems)
         problems.append(
             f"segment {sa.names[b]!r} at pose {poses.ids[p]}: MuJoCo {ea[p, b]:.9g} J, "
             f"Pinocchio {eb[p, b]:.9g} J, "
             f"difference {eb[p, b] - ea[p, b]:+.3g} J ({err[p, b]:.3g} of the pose's total energy)"
-            + (f"; import parity: {', '.join(causes)} differ" if causes else "")
         )
     ka = pair.mujoco.kinetic_energy(poses.qpos, poses.qvel)
     kb = pair.pinocchio.kinetic_energy(poses.qpos, poses.qvel)
@@ -111,23 +113,23 @@ def assert_energy_parity(
                 f"armature energy at pose {poses.ids[k]}: MuJoCo {ka.armature[k]:.9g} J, "
                 f"Pinocchio {kb.armature[k]:.9g} J"
             )
-    from koenig_check import tiebreak
-
-    drake = tiebreak.consult_drake(pair, pair.options.engines, bool(problems))
-    if drake.used:
-        findings = pair.findings + import_parity(pair, rtol=rtol).as_findings() + drake.findings
-        energies = {"mujoco": ka, "pinocchio": kb, "drake": drake.engine.kinetic_energy(poses.qpos, poses.qvel)}
-        if not include_armature:
-            energies = {e: replace(k, armature=np.zeros_like(k.armature)) for e, k in energies.items()}
-        q0 = np.asarray(pair.mujoco.model.qpos0, dtype=float)[None]
-        states = {e.engine: e.segment_states(q0, np.zeros((1, pair.mujoco.nv))) for e in (*pair.engines, drake.engine)}
-        verdicts = tiebreak.energy_verdicts(energies, findings, rtol) + tiebreak.import_verdicts(states, findings, rtol)
-        if verdicts:
-            problems.insert(0, tiebreak.lead_line(verdicts))
+    diagnosis = diagnose(
+        pair,
+        disagree=bool(problems),
+        qpos=poses.qpos,
+        qvel=poses.qvel,
+        rtol=rtol,
+        include_armature=include_armature,
+    )
+    if worst_segment is not None and diagnosis.parity is not None:
+        causes = diagnosis.parity.causes_for(sa.names[b])
+        if causes:
+            problems[worst_segment] += f"; import parity: {', '.join(causes)} differ"
+    lead = lead_line(diagnosis.findings)
+    if lead:
+        problems.insert(0, lead)
     if problems:
-        from koenig_check.grid import disagreement_cause
-
-        cause = disagreement_cause(pair.findings + import_parity(pair, rtol=rtol).as_findings())
+        cause = disagreement_cause(diagnosis.findings)
         if cause:
             problems.append(f"cause: {cause}")
         raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))

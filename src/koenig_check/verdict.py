@@ -29,11 +29,11 @@ def _wrap(head: str, text: str, width: int = WIDTH) -> list[str]:
 
 
 def _cause(check: CrossCheck, model: str) -> str:
-    from koenig_check import tiebreak
+    from koenig_check.diagnosis.reason import lead_line
 
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         if parity.model == model:
-            lead = tiebreak.lead_line(comparison.findings)
+            lead = lead_line(comparison.findings)
             return "; ".join(t for t in (lead, "" if parity.agrees else parity.reason) if t)
     return ""
 

@@ -58,7 +58,7 @@ def loaded(request: pytest.FixtureRequest) -> tuple[ModelPair, DrakeEngine, np.n
 def test_energy_agrees_with_both_engines(loaded) -> None:
     pair, drake, qpos, qvel = loaded
     ed = drake.kinetic_energy(qpos, qvel)
-    for other in pair.engines:
+    for other in pair.engines.values():
         assert _rel(ed.rigid, other.kinetic_energy(qpos, qvel).rigid) < RTOL, other.engine
 
 
@@ -78,7 +78,7 @@ def test_mass_matrix_and_inverse_dynamics_agree(loaded) -> None:
 def test_segment_states_agree(loaded) -> None:
     pair, drake, qpos, qvel = loaded
     sd = drake.segment_states(qpos, qvel)
-    for other in pair.engines:
+    for other in pair.engines.values():
         so = other.segment_states(qpos, qvel)
         assert sorted(sd.names) == sorted(so.names), other.engine
         so = so.select(segments=list(sd.names))

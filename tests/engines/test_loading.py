@@ -274,5 +274,5 @@ def test_masses_rescaled_by_mujoco_compiler_are_import_differences(tmp_path):
     assert set(pair.import_differences) == {"ja", "jb"}
     assert any(f.kind is Kind.LOAD and "warning" in f.summary and "settotalmass" in f.summary for f in pair.findings)
     assert all(f.kind is Kind.COMPILER and f.affects_energy for fs in pair.import_differences.values() for f in fs)
-    states = [e.segment_states(*random_states(pair.mujoco.model, 1)) for e in pair.engines]
+    states = [e.segment_states(*random_states(pair.mujoco.model, 1)) for e in pair.engines.values()]
     assert states[0].mass == pytest.approx([2.0, 4.0]) and states[1].mass == pytest.approx([1.0, 2.0])

@@ -30,7 +30,7 @@ def test_point_masses_record_moves_by_the_shift_of_the_given_point_velocities(mo
     path = next(p for p in builtin_models() if p.name == model)
     pair = load_model(path)
     poses = random_poses(pair.mujoco.model, 4, seed=3)
-    runs = {e.engine: grid.run_engine(e, poses) for e in pair.engines}
+    runs = {e.engine: grid.run_engine(e, poses) for e in pair.engines.values()}
     base = grid.evaluate_chunk(model, poses, runs, ["point_masses"], records="segments")
     rng = np.random.default_rng(11)
     for engine, run in runs.items():

@@ -24,7 +24,7 @@ def chain(load_pair):
 
 @pytest.mark.parametrize("engine", ENGINES)
 def test_engine_mass_matrix_carries_the_armature_and_the_reference_removes_it(chain, engine):
-    eng = dict(zip(ENGINES, chain.engines, strict=True))[engine]
+    eng = chain.engines[engine]
     qpos, qvel, qacc = states_with_accelerations(chain, 3)
     raw, rigid = eng.mass_matrix(qpos), rigid_mass_matrix(eng, qpos)
     assert np.allclose(raw - rigid, np.diag(ARMATURE), rtol=0, atol=1e-12)
@@ -35,7 +35,7 @@ def test_engine_mass_matrix_carries_the_armature_and_the_reference_removes_it(ch
 def test_formula_mass_matrix_has_no_armature_and_matches_the_rigid_part(chain):
     qpos, _, _ = states_with_accelerations(chain, 3)
     M = implied_mass_matrix(FormulaEnergy("exact", chain.mujoco), qpos)
-    for eng in chain.engines:
+    for eng in chain.engines.values():
         raw = eng.mass_matrix(qpos)
         # the armature is no rounding matter here: ignoring it would be a 1e-3-size error
         assert (np.linalg.norm(M - raw, axis=(1, 2)) / np.linalg.norm(raw, axis=(1, 2)) > 1e-3).all()

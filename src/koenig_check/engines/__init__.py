@@ -1,57 +1,96 @@
-"""Engine adapters: load one model file into MuJoCo and Pinocchio and put both in the same state.
+"""Engines: one model file loaded in MuJoCo and Pinocchio (and optional engines), driven in canonical states.
 
 Public API
 ----------
-``load_model(path_or_name, options=None, *, fmt=None, check=True, **load_options) -> ModelPair``
-    ``pair.mujoco`` and ``pair.pinocchio`` answer the same methods for canonical (MuJoCo-layout)
-    states: ``segment_states``, ``point_velocities``, ``kinetic_energy``, ``mass_matrix``,
-    ``inverse_dynamics``; ``pair.state_map`` converts states; ``pair.findings`` (typed
-    :class:`~koenig_check.findings.Finding` records) say what was changed or noticed while loading
-    and what each engine includes.
+``load_model(path_or_name, options=None, *, fmt=None, check=True, **load_options) -> LoadedModel``
+    ``model.engines`` holds every engine by name (``"mujoco"``, ``"pinocchio"``, and ``"drake"`` once
+    attached with ``model.attach("drake")``); each is an :class:`~koenig_check.engines.base.Engine` answering
+    the same methods for canonical (MuJoCo-layout) states: ``sweep``, ``segment_states``,
+    ``point_velocities``, ``kinetic_energy``, ``mass_matrix``, ``inverse_dynamics``; ``model.state_map``
+    converts states for Pinocchio; ``model.findings`` (typed :class:`~koenig_check.findings.Finding` records)
+    say what was changed or noticed while loading and what each engine includes.
 ``list_models()``, ``resolve_model()``
     Names of the project's models and of every example-robot-data URDF.
 ``random_states(model, n, seed)``
     Seeded random canonical states.
+
+Layout: ``base.py`` (the :class:`Engine` interface), ``registry.py`` (names, optional engines),
+``loading.py`` (:class:`LoadedModel`), ``canonical.py`` (canonical coordinates), one subpackage per engine
+(``mujoco/``, ``pinocchio/``, ``drake/``: loader, adapter, state map).  Names are imported on first use, so
+that importing one engine's module does not import the others.
 """
 
 from __future__ import annotations
 
-import os
-import warnings
-from dataclasses import dataclass, field, replace
-from typing import Any
+import importlib
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+if TYPE_CHECKING:
+    from koenig_check.engines.base import Engine
+    from koenig_check.engines.canonical import mujoco_coordinate_names, mujoco_joint_names
+    from koenig_check.engines.energy import EnergyParts
+    from koenig_check.engines.errors import (
+        CoupledJointsError,
+        EngineUnavailableError,
+        InertiaError,
+        JointMismatch,
+        ModelLoadError,
+        NoMovingSegmentError,
+    )
+    from koenig_check.engines.load_options import LoadOptions
+    from koenig_check.engines.loading import LoadedModel, ModelPair, load_model
+    from koenig_check.engines.mujoco.adapter import MujocoEngine
+    from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME
+    from koenig_check.engines.pinocchio.adapter import PinocchioEngine
+    from koenig_check.engines.pinocchio.state_map import StateMap
+    from koenig_check.engines.registry import ENGINE_NAMES
+    from koenig_check.engines.sampling import random_states
+    from koenig_check.engines.sources import ModelSource, list_models, resolve_model
 
-from koenig_check.causes import explain_load_failures
-from koenig_check.engines.coupling import coupling_findings
-from koenig_check.engines.energy import EnergyParts, self_consistency
-from koenig_check.engines.errors import (
-    CoupledJointsError,
-    InertiaError,
-    JointMismatch,
-    ModelLoadError,
-    NoMovingSegmentError,
-)
-from koenig_check.engines.finite import check_finite, check_segments
-from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
-from koenig_check.engines.mujoco.adapter import MujocoEngine
-from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
-from koenig_check.engines.pinocchio.adapter import PinocchioEngine
-from koenig_check.engines.pinocchio.loader import load_pinocchio
-from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
-from koenig_check.engines.sampling import random_states
-from koenig_check.engines.sources import ModelSource, list_models, resolve_model
-from koenig_check.findings import Finding, Kind
-from koenig_check.validate import preflight
+#: Public name -> the module that defines it.
+_HOME = {
+    "Engine": "base",
+    "EngineModel": "base",
+    "mujoco_coordinate_names": "canonical",
+    "mujoco_joint_names": "canonical",
+    "EnergyParts": "energy",
+    "CoupledJointsError": "errors",
+    "EngineUnavailableError": "errors",
+    "InertiaError": "errors",
+    "JointMismatch": "errors",
+    "ModelLoadError": "errors",
+    "NoMovingSegmentError": "errors",
+    "LoadOptions": "load_options",
+    "LoadedModel": "loading",
+    "ModelPair": "loading",
+    "load_model": "loading",
+    "CONSISTENCY_POSES": "loading",
+    "POSE_ATOL": "loading",
+    "MujocoEngine": "mujoco.adapter",
+    "ROOT_JOINT_NAME": "mujoco.loader",
+    "PinocchioEngine": "pinocchio.adapter",
+    "StateMap": "pinocchio.state_map",
+    "ENGINE_NAMES": "registry",
+    "random_states": "sampling",
+    "ModelSource": "sources",
+    "list_models": "sources",
+    "resolve_model": "sources",
+}
 
 __all__ = [
+    "CONSISTENCY_POSES",
+    "ENGINE_NAMES",
+    "POSE_ATOL",
     "ROOT_JOINT_NAME",
     "CoupledJointsError",
     "EnergyParts",
+    "Engine",
+    "EngineModel",
+    "EngineUnavailableError",
     "InertiaError",
     "JointMismatch",
     "LoadOptions",
+    "LoadedModel",
     "ModelLoadError",
     "ModelPair",
     "ModelSource",
@@ -61,229 +100,20 @@ __all__ = [
     "StateMap",
     "list_models",
     "load_model",
+    "mujoco_coordinate_names",
+    "mujoco_joint_names",
     "random_states",
     "resolve_model",
 ]
 
-#: Number of seeded random states the self-consistency checks run on at load time.
-CONSISTENCY_POSES = 3
-#: Tolerance (rotation entries, metres) under which both engines place a segment identically.
-POSE_ATOL = 1e-9
+
+def __getattr__(name: str) -> Any:
+    if name not in _HOME:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_HOME[name]}"), name)
+    globals()[name] = value
+    return value
 
 
-@dataclass
-class ModelPair:
-    """One model file loaded in both engines.
-
-    Parameters
-    ----------
-    source : ModelSource
-    mujoco : MujocoEngine
-    pinocchio : PinocchioEngine
-    state_map : StateMap
-    options : LoadOptions
-        How it was loaded.
-    findings : list of Finding
-        Everything learned while loading: loading decisions, couplings, inertias MuJoCo's compiler
-        or a repair changed (with the segments concerned), armature and pose differences between
-        the engines, and each engine's self-consistency facts and inconsistencies.
-    """
-
-    source: ModelSource
-    mujoco: MujocoEngine
-    pinocchio: PinocchioEngine
-    state_map: StateMap
-    options: LoadOptions = field(default_factory=LoadOptions)
-    findings: list[Finding] = field(default_factory=list)
-
-    @property
-    def path(self) -> str:
-        """The model file."""
-        return str(self.source.path)
-
-    @property
-    def engines(self) -> tuple[MujocoEngine, PinocchioEngine]:
-        """Both engine models, MuJoCo first."""
-        return (self.mujoco, self.pinocchio)
-
-    @property
-    def floating(self) -> bool:
-        """Whether a free base was asked for."""
-        return self.options.floating
-
-    @property
-    def notes(self) -> list[str]:
-        """The findings rendered for people, one line each (:meth:`Finding.message`)."""
-        return [f.message() for f in self.findings]
-
-    @property
-    def import_differences(self) -> dict[str, list[Finding]]:
-        """Segment -> the findings by which the engines were given different mass properties for it."""
-        out: dict[str, list[Finding]] = {}
-        for f in self.findings:
-            if f.affects_energy and f.kind in (Kind.REPAIR, Kind.COMPILER):
-                for segment in f.segments or ("(static)",):
-                    out.setdefault(segment, []).append(f)
-        return out
-
-
-def _armature_findings(mj: MujocoEngine, pn: PinocchioEngine, state_map: StateMap) -> list[Finding]:
-    """Compare the armature each engine was given, joint by joint (canonical dofs)."""
-    arm_pin = np.zeros(state_map.nv)
-    arm_pin[state_map.velocity_permutation[1]] = np.asarray(pn.model.armature)[state_map.velocity_permutation[0]]
-    arm_mj = np.asarray(mj.model.dof_armature)
-    width = {"free": 6, "ball": 3}
-    out = []
-    for p in state_map.pairs:
-        a, b = (x[p.vadr : p.vadr + width.get(p.kind, 1)] for x in (arm_mj, arm_pin))
-        if not np.allclose(a, b, rtol=1e-12):
-            out.append(
-                Finding(
-                    Kind.ARMATURE,
-                    "both",
-                    f"joint {p.name}",
-                    "armature differs between the engines",
-                    {"mujoco": float(a[0]), "pinocchio": float(b[0])},
-                    affects_energy=True,
-                    segments=(p.name,),
-                )
-            )
-    return out
-
-
-def _pose_findings(mj: MujocoEngine, pn: PinocchioEngine) -> list[Finding]:
-    """Compare where both engines put each segment at MuJoCo's ``qpos0`` (frame-only differences)."""
-    common = [n for n in mj.segment_names if n in pn.segment_names]
-    if not common:
-        return []
-    qpos0 = np.asarray(mj.model.qpos0, dtype=float)[None]
-    zero = np.zeros((1, mj.nv))
-    sm = mj.segment_states(qpos0, zero).select(segments=common)
-    sp = pn.segment_states(qpos0, zero).select(segments=common)
-    d_rot = np.abs(sm.rotation - sp.rotation).max(axis=(0, 2, 3))
-    d_com = np.linalg.norm(sm.com - sp.com, axis=-1).max(axis=0)
-    bad = [n for n, a, b in zip(common, d_rot, d_com, strict=True) if a > POSE_ATOL or b > POSE_ATOL]
-    if not bad:
-        return []
-    return [
-        Finding(
-            Kind.FRAME,
-            "both",
-            "segments " + ", ".join(bad[:8]) + (" …" if len(bad) > 8 else ""),
-            "segment poses differ between the engines at qpos0",
-            {"max rotation entry": float(d_rot.max()), "max COM distance (m)": float(d_com.max())},
-            segments=tuple(bad),
-        )
-    ]
-
-
-@explain_load_failures
-def load_model(
-    path_or_name: str | os.PathLike[str],
-    options: LoadOptions | None = None,
-    *,
-    fmt: str | None = None,
-    check: bool = True,
-    **legacy: Any,
-) -> ModelPair:
-    """Load a model file (or a named model) into MuJoCo and Pinocchio.
-
-    Parameters
-    ----------
-    path_or_name : str or path
-        A file, or a name from :func:`list_models`.
-    options : LoadOptions, optional
-        How to load it (floating base, inertia balancing or repair, a separate file for
-        Pinocchio).  The same options are accepted as keywords (``floating=True``, ...;
-        ``pinocchio_source`` is the older name of ``pinocchio_model``).
-    fmt : {"mjcf", "urdf"}, optional
-        Disambiguates a project model name.
-    check : bool
-        Run the engines' self-consistency checks on a few random states and record the findings.
-
-    Returns
-    -------
-    ModelPair
-
-    Raises
-    ------
-    ModelLoadError, InertiaError
-        If an engine cannot load the file (one-line message naming the file, the element and
-        the engine's whole reason; for an inertia MuJoCo refuses, the option that would load it).
-    koenig_check.validate.ModelFileError
-        If the file fails the pre-flight checks (missing, empty, not XML, DOCTYPE...).
-    JointMismatch
-        If the engines' joints cannot be paired by name.
-
-    Notes
-    -----
-    Coupled joints (URDF mimic, MJCF joint/tendon equalities, connect and weld constraints) are
-    loaded and recorded as ``COUPLING`` findings: the kinetic energy is defined on the tree's
-    coordinates.  ``allow_coupled`` is a deprecated no-op.
-
-    Pinocchio gets a free flyer exactly when MuJoCo's model ends with a free joint on its single
-    root body, named like it, so the two engines' free joints always pair.
-    """
-    if "pinocchio_source" in legacy:
-        legacy["pinocchio_model"] = legacy.pop("pinocchio_source")
-    unknown = sorted(set(legacy) - set(LoadOptions.names()))
-    if unknown:
-        raise TypeError(f"load_model() got unexpected keyword argument(s) {unknown}")
-    opts = options if options is not None else LoadOptions()
-    if legacy:
-        opts = replace(opts, **legacy)
-    if opts.allow_coupled:
-        warnings.warn(ALLOW_COUPLED_DEPRECATION, DeprecationWarning, stacklevel=2)
-    source = resolve_model(path_or_name, fmt)
-    pin_source = source if opts.pinocchio_model is None else resolve_model(opts.pinocchio_model)
-    for s in {source.path: source, pin_source.path: pin_source}.values():
-        preflight(s.path)
-    mj_model, mj_findings, body_findings = load_mujoco(
-        source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
-    )
-    pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
-    if pin_source is not source:
-        pin_findings.insert(
-            0,
-            Finding(
-                Kind.LOAD,
-                "pinocchio",
-                f"file {pin_source.path.name}",
-                "Pinocchio loaded from another file than MuJoCo",
-                {"pinocchio": str(pin_source.path), "mujoco": str(source.path)},
-            ),
-        )
-    check_finite(mj_model, pin_model, str(source.path))
-    if mj_model.nv == 0:
-        raise NoMovingSegmentError(
-            f"{source.path}: nothing moves (no joint), so there is nothing to compare; not an engine error "
-            "(--floating, floating=True, gives the root body a free joint)"
-        )
-    state_map = build_state_map(mj_model, pin_model, str(source.path))
-    mj = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
-    pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_findings + state_map.findings)
-    tolerate = frozenset({"pinocchio"}) if opts.balance_inertia or opts.repair_inertia else frozenset()
-    pn.findings += check_segments((mj, pn), mj_model.qpos0, str(source.path), tolerate)
-    findings = mj.findings + pn.findings + coupling_findings(source, mj_model)
-    findings += _armature_findings(mj, pn, state_map) + _pose_findings(mj, pn)
-    if set(mj.segment_names) != set(pn.segment_names):
-        only_mj = sorted(set(mj.segment_names) - set(pn.segment_names))
-        only_pin = sorted(set(pn.segment_names) - set(mj.segment_names))
-        findings.append(
-            Finding(
-                Kind.SEGMENTS,
-                "both",
-                "segments " + ", ".join(only_mj + only_pin),
-                "segments differ between the engines",
-                {"only mujoco": only_mj, "only pinocchio": only_pin},
-                affects_energy=True,
-                segments=tuple(only_mj + only_pin),
-            )
-        )
-    if check:
-        qpos, qvel = random_states(mj_model, CONSISTENCY_POSES, seed=12345)
-        for engine in (mj, pn):
-            found = self_consistency(engine, qpos, qvel)
-            engine.findings.extend(found)
-            findings.extend(found)
-    return ModelPair(source, mj, pn, state_map, opts, findings)
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_HOME))

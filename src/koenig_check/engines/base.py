@@ -1,9 +1,9 @@
-"""The interface both engine adapters implement, and helpers they share."""
+"""The one interface every engine adapter implements (:class:`Engine`), and helpers the adapters share."""
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from pathlib import Path
-from typing import Protocol
 
 import numpy as np
 
@@ -12,10 +12,25 @@ from koenig_check.findings import Finding
 from koenig_check.segments import SegmentStates
 
 
-class EngineModel(Protocol):
+class Engine(ABC):
     """A model loaded in one engine, answering for batches of canonical states.
 
-    Every method takes canonical (MuJoCo-layout) states: ``qpos`` (P, nq), ``qvel``/``qacc`` (P, nv).
+    Every engine adapter (MuJoCo, Pinocchio, Drake, and any engine added later) derives from this class and
+    implements its abstract methods; the checker calls nothing else.  Every method takes canonical
+    (MuJoCo-layout, :mod:`koenig_check.engines.canonical`) states: ``qpos`` (P, nq), ``qvel``/``qacc`` (P, nv).
+
+    Attributes
+    ----------
+    engine : str
+        The engine's name (a key of :data:`koenig_check.engines.registry.ENGINE_NAMES`).
+    path : Path
+        The file the engine read.
+    findings : list of Finding
+        What was learned while loading it.
+    segment_names : tuple of str
+        The segments (bodies moved by one joint, keyed by that joint) with mass, in the engine's order.
+    nq, nv : int
+        Canonical sizes.
     """
 
     engine: str
@@ -24,38 +39,82 @@ class EngineModel(Protocol):
     segment_names: tuple[str, ...]
     nq: int
     nv: int
+    #: Per segment, in :attr:`segment_names` order: mass (B,) and central inertia in the segment's axes (B, 3, 3).
+    _mass: np.ndarray
+    _inertia: np.ndarray
 
+    def mass_properties(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each segment's mass (B,) and central inertia in its own axes (B, 3, 3): constant over poses.
+
+        Returns
+        -------
+        mass : ndarray, shape (B,)
+        inertia : ndarray, shape (B, 3, 3)
+        """
+        return self._mass, self._inertia
+
+    def sweep(
+        self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray | None = None
+    ) -> tuple[SegmentStates, np.ndarray | None, np.ndarray, np.ndarray]:
+        """Segment states, point velocities and energy of a batch: what the comparison reads per pose.
+
+        Engines that can read all three in one pass per pose override this; the default calls
+        :meth:`segment_states`, :meth:`kinetic_energy` and :meth:`point_velocities`.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+        points : ndarray, shape (B, K, 3), optional
+            Offsets from each segment's COM, in the segment's axes.
+
+        Returns
+        -------
+        states : SegmentStates
+        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
+        rigid, armature : ndarray, shape (P,)
+            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
+        """
+        states = self.segment_states(qpos, qvel)
+        energy = self.kinetic_energy(qpos, qvel)
+        pv = None if points is None else self.point_velocities(qpos, qvel, points)
+        return states, pv, np.asarray(energy.rigid), np.asarray(energy.armature)
+
+    @abstractmethod
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return the engine's segment states."""
-        ...
 
+    @abstractmethod
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
         """Return world velocities (P, B, K, 3) of points (B, K, 3) fixed in the segments."""
-        ...
 
+    @abstractmethod
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
         """Return the engine's kinetic energy, armature separate."""
-        ...
 
+    @abstractmethod
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return the mass matrix (P, nv, nv) in canonical velocity coordinates."""
-        ...
 
+    @abstractmethod
     def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Return generalized forces (P, nv), gravity off, canonical coordinates."""
-        ...
 
+    @abstractmethod
     def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return the armature part (P, nv, nv) of :meth:`mass_matrix`."""
-        ...
 
+    @abstractmethod
     def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Return the armature part (P, nv) of :meth:`inverse_dynamics`."""
-        ...
 
+    @abstractmethod
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by joint kind."""
-        ...
+
+
+#: The former name of :class:`Engine`.
+EngineModel = Engine
 
 
 def as_batch(x: np.ndarray, n: int, what: str) -> np.ndarray:

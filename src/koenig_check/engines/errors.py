@@ -55,3 +55,19 @@ class JointMismatch(KoenigCheckError, ValueError):  # noqa: N818 - the name the 
         if self.kind_mismatch:
             parts.append(f"incompatible types: {self.kind_mismatch}")
         super().__init__(f"{path}: joints do not match between the engines ({'; '.join(parts)})")
+
+
+class EngineUnavailableError(KoenigCheckError, ValueError):
+    """An engine was asked for but cannot run: not installed, or it cannot check the model.
+
+    Parameters
+    ----------
+    message : str
+        One line naming the engine (and the file, when the engine refused it) with the engine's own reason.
+    engine : str
+        The engine's name.
+    """
+
+    def __init__(self, message: str, engine: str = "") -> None:
+        super().__init__(message)
+        self.engine = engine

@@ -24,7 +24,7 @@ import numpy as np
 from koenig_check.engines import ModelPair, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
-from koenig_check.findings import Finding, KoenigCheckError
+from koenig_check.findings import Finding, Kind, KoenigCheckError
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
 from koenig_check.implied_dynamics.drake_column import add_drake_column
 from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix
@@ -124,11 +124,20 @@ class DynamicsResult:
 
     @property
     def ok(self) -> bool:
-        """True when ``exact`` agrees with both engines by every route and the engines agree."""
-        return "exact" not in self.refusals and not self.failures()
+        """True when ``exact`` agrees with both engines by every route, the engines agree, and so on.
+
+        Every engine the user named must have checked the model too (:meth:`unmade` is empty).
+        """
+        return "exact" not in self.refusals and not self.failures() and not self.unmade()
+
+    def unmade(self) -> list[Finding]:
+        """The checks asked for and not made: an engine the user named could not check the model."""
+        return [f for f in self.findings if f.kind is Kind.ENGINE_UNABLE]
 
     def reason(self) -> str:
         """One line: why the check failed, or ``""``."""
+        if self.unmade():
+            return f"{self.model}: " + "; ".join(f.message() for f in self.unmade())
         if "exact" in self.refusals:
             return f"{self.model}: exact refused: {self.refusals['exact']}"
         bad = self.failures()
@@ -195,7 +204,7 @@ def dynamics_of_pair(
         notes=list(pair.notes),
         findings=list(pair.findings),
     )
-    engines = dict(zip(ENGINES, pair.engines, strict=True))
+    engines = {name: pair.engines[name] for name in ENGINES}
     for name, eng in engines.items():
         result.engine_mass[name] = rigid_mass_matrix(eng, qpos)
         result.engine_forces[name] = rigid_inertia_forces(eng, qpos, qvel, qacc)
@@ -228,27 +237,6 @@ def dynamics_of_pair(
         )
     )
     return result
-
-
-def load(model: str | os.PathLike[str], options: LoadOptions) -> ModelPair:
-    """Load a model in both engines with the shared load options.
-
-    Parameters
-    ----------
-    model : str or path
-    options : LoadOptions
-
-    Returns
-    -------
-    ModelPair
-    """
-    return load_model(
-        model,
-        floating=options.floating,
-        balance_inertia=options.balance_inertia,
-        pinocchio_source=options.pinocchio_model,
-        allow_coupled=options.allow_coupled,
-    )
 
 
 def dynamics(
@@ -287,7 +275,7 @@ def dynamics(
         ``result.errors`` (arrays of per-pose relative errors), ``result.ok``, ``result.reason()``.
     """
     from koenig_check.arguments import check_dynamics_arguments, check_keywords
-    from koenig_check.tiebreak import check_engines
+    from koenig_check.engines.registry import check_engines
 
     options = LoadOptions.pop_from(load_options)
     accepted = ["n_poses", "seed", "formulas", "m_rtol", "q_rtol", "velocity_scale", *LoadOptions.names()]
@@ -295,7 +283,7 @@ def dynamics(
     check_dynamics_arguments(n_poses, seed, formulas, m_rtol, q_rtol, velocity_scale)
 
     check_engines(options.engines)
-    pair = load(model, options)
+    pair = load_model(model, options)  # every load option, one definition (repair_inertia included)
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     qacc = velocity_scale * _random_accelerations(pair.mujoco.nv, n_poses, seed)
     result = dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)

@@ -4,7 +4,7 @@ Drake's ``CalcMassMatrix`` and ``CalcInverseDynamics`` include the reflected ine
 (Drake's armature, on one-dof joints only, where Drake's velocity is the canonical one): it is taken
 out as each engine's own armature is, ``M − diag(I_refl)`` and ``τ − I_refl ⊙ q̈``.  Drake is run when
 ``engines`` asks for it, or by default (when installed) when MuJoCo and Pinocchio disagree on ``M`` or
-``Q*`` (:mod:`koenig_check.tiebreak`); the result's notes say when it was not used.
+``Q*`` (:mod:`koenig_check.diagnosis.policy`); the result's notes say when it was not used.
 """
 
 from __future__ import annotations
@@ -30,19 +30,22 @@ def add_drake_column(result: Any, pair: Any, engines: Sequence[str] | None, pari
     parity_label : str
         The pseudo-formula under which engines are compared with each other.
     """
-    from koenig_check.tiebreak import consult_drake
+    from koenig_check.diagnosis import policy
 
     disagree = any(
         e.formula == parity_label and e.max_rel_error > (result.m_rtol if e.quantity == "M" else result.q_rtol)
         for e in result.errors
     )
-    drake = consult_drake(pair, engines, disagree)
-    result.findings += drake.findings
-    result.notes += [f.message() for f in drake.findings]
-    if not drake.used:
+    why = policy.to_consult("drake", engines, disagree)
+    drake = pair.attach("drake") if why is None else None
+    found = [why] if why is not None else list(pair.optional_findings)
+    found = policy.unmade_checks(found, engines) + found
+    result.findings += found
+    result.notes += [f.message() for f in found]
+    if drake is None:
         return
-    M = rigid_mass_matrix(drake.engine, result.qpos)
-    Q = rigid_inertia_forces(drake.engine, result.qpos, result.qvel, result.qacc)
+    M = rigid_mass_matrix(drake, result.qpos)
+    Q = rigid_inertia_forces(drake, result.qpos, result.qvel, result.qacc)
     result.engine_mass["drake"], result.engine_forces["drake"] = M, Q
     for (name, route), r in list(result.routes.items()):
         result.errors.append(discrepancy(r.M, M, name, route, "drake"))

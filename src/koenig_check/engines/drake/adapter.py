@@ -31,14 +31,14 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from koenig_check.engines.base import as_batches, check_points, symmetrize
+from koenig_check.engines.base import Engine, as_batches, check_points, symmetrize
 from koenig_check.engines.drake.state_map import DrakeStateMap
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
 
 
-class DrakeEngine:
+class DrakeEngine(Engine):
     """A model loaded in Drake.
 
     Parameters

@@ -32,7 +32,6 @@ message, with the link it concerns when the line number names one.
 
 from __future__ import annotations
 
-import importlib.util
 import logging
 import re
 import tempfile
@@ -65,10 +64,9 @@ def drake_available() -> bool:
     -------
     bool
     """
-    try:
-        return importlib.util.find_spec("pydrake") is not None
-    except (ImportError, ValueError):
-        return False
+    from koenig_check.engines.registry import installed
+
+    return installed("drake")
 
 
 def drake_version() -> str:

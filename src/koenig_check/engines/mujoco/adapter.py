@@ -32,7 +32,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from koenig_check.engines.base import as_batches, check_points, rows, symmetrize
+from koenig_check.engines.base import Engine, as_batches, check_points, rows, symmetrize
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.findings import Finding, Kind
@@ -42,7 +42,7 @@ from koenig_check.segments import SegmentStates
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 
 
-class MujocoEngine:
+class MujocoEngine(Engine):
     """A model loaded in MuJoCo.
 
     Parameters

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from koenig_check.engines.base import as_batches, check_points, rows, symmetrize
+from koenig_check.engines.base import Engine, as_batches, check_points, rows, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.pinocchio.state_map import StateMap
 from koenig_check.findings import Finding, Kind
@@ -31,7 +31,7 @@ from koenig_check.kernels import body_point_velocities, cross, rotate
 from koenig_check.segments import SegmentStates
 
 
-class PinocchioEngine:
+class PinocchioEngine(Engine):
     """A model loaded in Pinocchio.
 
     Parameters

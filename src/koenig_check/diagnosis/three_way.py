@@ -1,4 +1,4 @@
-"""Drake as tie-breaker: when MuJoCo and Pinocchio disagree on a file, a third engine says which one departs.
+"""Three engines compared: when two agree and the third departs, which one, and the construct responsible.
 
 Two engines that disagree cannot say which is right; three can.  For each comparison (rigid-body
 energy, reflected-inertia/armature energy, and per segment mass, COM and central inertia) the three
@@ -9,206 +9,22 @@ MJCF parser does not read); when all three differ, the finding says so (engine `
 and the one-line reason lead with these findings (they are not root causes themselves: the construct a
 verdict names is, and the two-engine cause that follows in the reason keeps its place).
 
-When is Drake consulted
------------------------
-``engines=None`` (the default): only when Drake is installed *and* MuJoCo and Pinocchio disagree on a
-model, so agreeing models cost nothing extra.  ``engines=("mujoco", "pinocchio", "drake")``: on every
-model.  ``engines=("mujoco", "pinocchio")``: never.  Whenever Drake is not used, a ``LOAD`` finding
-(engine ``drake``) says why: not installed, not needed, not asked for, or refused by Drake (its whole
-reason on one line, naming the file).
+When Drake runs (on every pose, or only where MuJoCo and Pinocchio disagree) is the checker's policy
+(:mod:`koenig_check.diagnosis.policy`); this module is the pure logic on the engines' values.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.load_options import ENGINE_NAMES
-from koenig_check.findings import Finding, Kind, KoenigCheckError
+from koenig_check.engines.registry import ENGINE_NAMES, LABEL
+from koenig_check.findings import Finding, Kind
 
-#: How engines are named for people.
-LABEL = {"mujoco": "MuJoCo", "pinocchio": "Pinocchio", "drake": "Drake"}
 #: Default relative tolerance under which two engines "agree".
 TIEBREAK_RTOL = 1e-9
-
-
-class DrakeUnavailableError(KoenigCheckError, ValueError):
-    """Drake was asked for (``--engines …,drake``) but ``pydrake`` cannot be imported."""
-
-
-def check_engines(engines: Sequence[str] | None) -> None:
-    """Refuse, before any work, an engine list that asks for Drake when it is not installed.
-
-    Parameters
-    ----------
-    engines : sequence of str or None
-
-    Raises
-    ------
-    DrakeUnavailableError
-    """
-    from koenig_check.engines.drake.loader import drake_available
-
-    if engines is not None and "drake" in engines and not drake_available():
-        raise DrakeUnavailableError(
-            "engines: drake asked for but pydrake is not installed (pip install 'koenig-check[drake]')"
-        )
-
-
-@dataclass
-class Consultation:
-    """The outcome of asking for Drake on one model.
-
-    Attributes
-    ----------
-    engine : DrakeEngine or None
-        The loaded adapter, or ``None`` when Drake was not used.
-    findings : list of Finding
-        Drake's load findings, or one ``LOAD`` finding saying why Drake was not used.
-    """
-
-    engine: Any = None
-    findings: list[Finding] = field(default_factory=list)
-
-    @property
-    def used(self) -> bool:
-        """Whether Drake was loaded."""
-        return self.engine is not None
-
-
-def _not_used(why: str, **values: Any) -> Finding:
-    return Finding(Kind.ENGINE_NOT_USED, "drake", "model", f"Drake not used: {why}", values)
-
-
-def engines_disagree(mj_rigid: np.ndarray, pin_rigid: np.ndarray, rtol: float = TIEBREAK_RTOL) -> bool:
-    """Whether MuJoCo's and Pinocchio's rigid-body energies differ beyond ``rtol`` at some pose.
-
-    Parameters
-    ----------
-    mj_rigid, pin_rigid : ndarray, shape (P,)
-    rtol : float
-
-    Returns
-    -------
-    bool
-    """
-    return bool(np.any(~_close(np.asarray(mj_rigid), np.asarray(pin_rigid), rtol)))
-
-
-def consult_drake(pair: Any, engines: Sequence[str] | None, disagree: bool) -> Consultation:
-    """Load Drake on a model when asked for, or by default when the two engines disagree.
-
-    Parameters
-    ----------
-    pair : ModelPair
-        The model loaded in MuJoCo and Pinocchio.
-    engines : sequence of str or None
-        The engines asked for (``None``: Drake as tie-breaker when installed and needed).
-    disagree : bool
-        Whether MuJoCo and Pinocchio disagree on this model.
-
-    Returns
-    -------
-    Consultation
-    """
-    from koenig_check.engines.drake.loader import DrakeLoadError, drake_available
-
-    if engines is not None and "drake" not in engines:
-        return Consultation(findings=[_not_used("not asked for (engines: " + ", ".join(engines) + ")")])
-    if not drake_available():
-        return Consultation(findings=[_not_used("not installed (pip install 'koenig-check[drake]')")])
-    if engines is None and not disagree:
-        return Consultation(findings=[_not_used("not needed, MuJoCo and Pinocchio agree")])
-    if pair.options.pinocchio_model is not None:
-        return Consultation(findings=[_not_used("Pinocchio was given another file (--pinocchio-model)")])
-    from koenig_check.engines.drake.adapter import load_drake_engine
-
-    try:
-        engine = load_drake_engine(pair.source, pair.mujoco.model)
-    except DrakeLoadError as err:
-        return Consultation(findings=[_not_used(" ".join(str(err).split()))])
-    except ImportError as err:  # installed but not importable
-        return Consultation(findings=[_not_used(f"pydrake cannot be imported: {' '.join(str(err).split())}")])
-    findings = list(engine.findings) + armature_findings(pair, engine) + _drake_file_causes(pair)
-    return Consultation(engine, findings)
-
-
-def _drake_file_causes(pair: Any) -> list[Finding]:
-    """The constructs of an MJCF file that Drake's parser skips too: ``<frame>`` (measured on 1.51)."""
-    from koenig_check.causes import _read_mjcf, _segment_of_body, frame_causes
-
-    if pair.source.format != "mjcf":
-        return []
-    root = _read_mjcf(Path(str(pair.source.path)))
-    return [] if root is None else frame_causes(root, _segment_of_body(pair.mujoco.model), engine="drake")
-
-
-def armature_findings(pair: Any, drake: Any) -> list[Finding]:
-    """Joints whose armature MuJoCo has but Drake's model lacks (Drake's MJCF parser reads no ``armature``).
-
-    Parameters
-    ----------
-    pair : ModelPair
-    drake : DrakeEngine
-
-    Returns
-    -------
-    list of Finding
-        One ``IGNORED_CONSTRUCT`` root cause naming the joints, when any.
-    """
-    mj = pair.mujoco
-    arm = np.asarray(mj.model.dof_armature, dtype=float)
-    reflected = drake.armature_per_dof()
-    joints = [
-        p.name for p in drake.state_map.pairs if arm[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
-    ]
-    extension = [
-        p.name
-        for p in drake.state_map.pairs
-        if reflected[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
-    ]
-    out = []
-    if extension:
-        out.append(
-            Finding(
-                Kind.ARMATURE,
-                "drake",
-                "actuators of joints " + ", ".join(extension),
-                "reflected inertia (rotor inertia × gear ratio², Drake's URDF/MJCF actuator data) that MuJoCo's "
-                "armature does not match",
-                {
-                    "joints": extension,
-                    "drake": [float(reflected[p.vadr]) for p in drake.state_map.pairs if p.name in extension],
-                },
-                affects_energy=True,
-                root_cause=True,
-                segments=tuple(extension),
-            )
-        )
-    joints = [j for j in joints if j not in extension]
-    if not joints or pair.source.format != "mjcf":
-        return out
-    return [
-        *out,
-        Finding(
-            Kind.IGNORED_CONSTRUCT,
-            "drake",
-            "joint armature",
-            "Drake's MJCF parser does not read a joint's armature (its analogue is an actuator's reflected "
-            "inertia, rotor inertia × gear ratio²)",
-            {
-                "joints": joints,
-                "mujoco armature": [float(arm[p.vadr]) for p in drake.state_map.pairs if p.name in joints],
-            },
-            affects_energy=True,
-            root_cause=True,
-            segments=tuple(joints),
-        ),
-    ]
 
 
 def _close(a: np.ndarray, b: np.ndarray, rtol: float, scale: np.ndarray | float | None = None) -> np.ndarray:
@@ -412,63 +228,3 @@ def _shown(value: np.ndarray) -> Any:
     if value.ndim == 2:
         return np.round(np.linalg.eigvalsh(0.5 * (value + value.T)), 12).tolist()
     return np.round(value, 12).tolist()
-
-
-def lead_line(findings: Sequence[Finding]) -> str:
-    """The verdicts, one after the other, for the head of a one-line reason (empty when none).
-
-    Parameters
-    ----------
-    findings : sequence of Finding
-
-    Returns
-    -------
-    str
-    """
-    return "; ".join(f.message() for f in findings if f.kind is Kind.VERDICT)
-
-
-def drake_usage(findings: Sequence[Finding]) -> str:
-    """Why Drake was not used on a model, from its findings (empty when it was used).
-
-    Parameters
-    ----------
-    findings : sequence of Finding
-
-    Returns
-    -------
-    str
-    """
-    for f in findings:
-        if f.engine == "drake" and f.kind is Kind.ENGINE_NOT_USED:
-            return f.summary
-    return ""
-
-
-def parity_verdicts(pair: Any, engines: Sequence[str] | None, disagree: bool) -> tuple[list[Finding], list[Finding]]:
-    """Three-way import verdicts of a loaded model (per segment mass, COM, principal moments at ``qpos0``).
-
-    Parameters
-    ----------
-    pair : ModelPair
-    engines : sequence of str or None
-        As :attr:`LoadOptions.engines`.
-    disagree : bool
-        Whether MuJoCo and Pinocchio disagree (the import parity is not clean).
-
-    Returns
-    -------
-    verdicts : list of Finding
-    drake_findings : list of Finding
-        Drake's load findings, or why it was not used.
-    """
-    from koenig_check.parity import import_parity
-
-    drake = consult_drake(pair, engines, disagree)
-    if not drake.used:
-        return [], drake.findings
-    q0 = np.asarray(pair.mujoco.model.qpos0, dtype=float)[None]
-    zero = np.zeros((1, pair.mujoco.nv))
-    states = {e.engine: e.segment_states(q0, zero) for e in (*pair.engines, drake.engine)}
-    findings = list(pair.findings) + import_parity(pair).as_findings() + drake.findings
-    return import_verdicts(states, findings), drake.findings

@@ -1,0 +1,135 @@
+"""The one diagnosis of a loaded model: what the API, the CLI and the testing helper all call.
+
+:func:`diagnose` gathers what is known about why the engines may see different robots in one file: the
+engines' own load findings, the import parity (computed once), the optional engines where the checker's
+policy uses them (:mod:`koenig_check.diagnosis.policy`), and, with three engines, the verdicts that say
+which engine departs (:mod:`koenig_check.diagnosis.three_way`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from koenig_check.diagnosis import policy, three_way
+from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
+from koenig_check.findings import Finding
+
+
+@dataclass
+class Diagnosis:
+    """What is known about one model, typed.
+
+    Attributes
+    ----------
+    findings : list of Finding
+        The three-engine verdicts first, then the model's load findings, the import differences of
+        :attr:`parity`, what the optional engines found or why they were not used, and the checks the user
+        asked for that could not be made (``ENGINE_UNABLE``).
+    parity : ParityReport
+        Import parity of MuJoCo and Pinocchio.
+    verdicts : list of Finding
+        The three-engine verdicts (empty without a third engine).
+    engines : tuple of str
+        The engines that checked the model.
+    """
+
+    findings: list[Finding] = field(default_factory=list)
+    parity: ParityReport | None = None
+    verdicts: list[Finding] = field(default_factory=list)
+    engines: tuple[str, ...] = ()
+
+    @property
+    def optional_findings(self) -> list[Finding]:
+        """The findings about the optional engines (what they found, or why they were not used)."""
+        return [f for f in self.findings if f.engine in policy.OPTIONAL and f not in self.verdicts]
+
+
+def diagnose(
+    model: Any,
+    *,
+    disagree: bool | None = None,
+    qpos: np.ndarray | None = None,
+    qvel: np.ndarray | None = None,
+    rtol: float = PARITY_RTOL,
+    include_armature: bool = True,
+) -> Diagnosis:
+    """Diagnose a loaded model: import parity, the optional engines where used, the three-engine verdicts.
+
+    Parameters
+    ----------
+    model : koenig_check.engines.LoadedModel
+        An optional engine the user named is attached already (it ran on every pose); one consulted by
+        default is attached here when MuJoCo and Pinocchio disagree.
+    disagree : bool, optional
+        Whether MuJoCo and Pinocchio disagree on the model (their energies); by default, whether their
+        import parity finds a difference.
+    qpos, qvel : ndarray, shape (P, nq) and (P, nv), optional
+        Canonical states on which the three engines' energies are compared (without them, only the
+        mass properties at MuJoCo's ``qpos0`` are).
+    rtol : float
+        Relative tolerance of the import parity and of the verdicts.
+    include_armature : bool
+        Compare the engines' armature energies too.
+
+    Returns
+    -------
+    Diagnosis
+    """
+    parity = import_parity(model, rtol=rtol)
+    if disagree is None:
+        disagree = not parity.clean
+    engines = model.options.engines
+    optional: list[Finding] = []
+    for name in policy.OPTIONAL:
+        if name in model.engines:
+            continue
+        why = policy.to_consult(name, engines, disagree)
+        if why is None:
+            model.attach(name)
+        elif name not in policy.asked_for(engines):
+            optional.append(why)
+    optional = model.optional_findings + optional
+    findings = list(model.findings) + parity.as_findings() + optional
+    verdicts: list[Finding] = []
+    if len(model.engines) == 3:
+        verdicts = _verdicts(model, findings, qpos, qvel, rtol, include_armature)
+    unmade = policy.unmade_checks(optional, engines)
+    return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
+
+
+def _verdicts(
+    model: Any,
+    findings: list[Finding],
+    qpos: np.ndarray | None,
+    qvel: np.ndarray | None,
+    rtol: float,
+    include_armature: bool,
+) -> list[Finding]:
+    """Which engine departs: on the energies at the given states, on the mass properties at ``qpos0``."""
+    out: list[Finding] = []
+    if qpos is not None and qvel is not None:
+        try:
+            energies = {name: e.kinetic_energy(qpos, qvel) for name, e in model.engines.items()}
+        except ValueError as err:  # an engine produced an invalid state: name the file
+            raise ValueError(f"{model.path}: {' '.join(str(err).split())}") from err
+        if not include_armature:
+            energies = {n: _RigidOnly(k.rigid) for n, k in energies.items()}
+        out += three_way.energy_verdicts(energies, findings, rtol)
+    q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
+    zero = np.zeros((1, model.mujoco.nv))
+    states = {name: e.segment_states(q0, zero) for name, e in model.engines.items()}
+    return out + three_way.import_verdicts(states, findings, rtol)
+
+
+@dataclass(frozen=True)
+class _RigidOnly:
+    """An engine's energies with the armature term left out of the comparison."""
+
+    rigid: np.ndarray
+
+    @property
+    def armature(self) -> np.ndarray:
+        return np.zeros_like(self.rigid)

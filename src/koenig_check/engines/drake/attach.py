@@ -1,0 +1,115 @@
+"""Drake attached to a model already loaded in MuJoCo and Pinocchio, with the constructs its parser misreads."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from koenig_check.engines.base import Engine
+from koenig_check.engines.registry import not_used
+from koenig_check.findings import Finding, Kind
+
+
+def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
+    """Load a model's file in Drake, paired with MuJoCo's joints.
+
+    Parameters
+    ----------
+    model : koenig_check.engines.LoadedModel
+
+    Returns
+    -------
+    engine : DrakeEngine or None
+        None when Drake cannot check this model.
+    findings : list of Finding
+        Drake's load findings, the armature Drake's parser does not read and the ``<frame>`` elements it
+        skips; or one ``ENGINE_NOT_USED`` finding with Drake's whole reason on one line.
+    """
+    from koenig_check.engines.drake.adapter import load_drake_engine
+    from koenig_check.engines.drake.loader import DrakeLoadError
+
+    if model.options.pinocchio_model is not None:
+        return None, [not_used("drake", "Pinocchio was given another file (--pinocchio-model)")]
+    try:
+        engine = load_drake_engine(model.source, model.mujoco.model)
+    except DrakeLoadError as err:
+        return None, [not_used("drake", " ".join(str(err).split()))]
+    except ImportError as err:  # installed but not importable
+        return None, [not_used("drake", f"pydrake cannot be imported: {' '.join(str(err).split())}")]
+    return engine, list(engine.findings) + armature_findings(model, engine) + _file_causes(model)
+
+
+def _file_causes(model: Any) -> list[Finding]:
+    """The constructs of an MJCF file that Drake's parser skips too: ``<frame>`` (measured on 1.51)."""
+    from koenig_check.causes import _read_mjcf, _segment_of_body, frame_causes
+
+    if model.source.format != "mjcf":
+        return []
+    root = _read_mjcf(Path(str(model.source.path)))
+    return [] if root is None else frame_causes(root, _segment_of_body(model.mujoco.model), engine="drake")
+
+
+def armature_findings(model: Any, drake: Any) -> list[Finding]:
+    """Joints whose armature MuJoCo has but Drake's model lacks (Drake's MJCF parser reads no ``armature``).
+
+    Parameters
+    ----------
+    model : LoadedModel
+    drake : DrakeEngine
+
+    Returns
+    -------
+    list of Finding
+        One ``IGNORED_CONSTRUCT`` root cause naming the joints, when any.
+    """
+    mj = model.mujoco
+    arm = np.asarray(mj.model.dof_armature, dtype=float)
+    reflected = drake.armature_per_dof()
+    joints = [
+        p.name for p in drake.state_map.pairs if arm[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
+    ]
+    extension = [
+        p.name
+        for p in drake.state_map.pairs
+        if reflected[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
+    ]
+    out = []
+    if extension:
+        out.append(
+            Finding(
+                Kind.ARMATURE,
+                "drake",
+                "actuators of joints " + ", ".join(extension),
+                "reflected inertia (rotor inertia × gear ratio², Drake's URDF/MJCF actuator data) that MuJoCo's "
+                "armature does not match",
+                {
+                    "joints": extension,
+                    "drake": [float(reflected[p.vadr]) for p in drake.state_map.pairs if p.name in extension],
+                },
+                affects_energy=True,
+                root_cause=True,
+                segments=tuple(extension),
+            )
+        )
+    joints = [j for j in joints if j not in extension]
+    if not joints or model.source.format != "mjcf":
+        return out
+    return [
+        *out,
+        Finding(
+            Kind.IGNORED_CONSTRUCT,
+            "drake",
+            "joint armature",
+            "Drake's MJCF parser does not read a joint's armature (its analogue is an actuator's reflected "
+            "inertia, rotor inertia × gear ratio²)",
+            {
+                "joints": joints,
+                "mujoco armature": [float(arm[p.vadr]) for p in drake.state_map.pairs if p.name in joints],
+            },
+            affects_energy=True,
+            root_cause=True,
+            segments=tuple(joints),
+        ),
+    ]
