@@ -86,3 +86,21 @@ def test_engine_disagreement_is_named_among_the_failures(monkeypatch):
     assert (ENGINE_PARITY, "mujoco", "pinocchio", "M") in failed
     assert ("exact", "kane@mujoco", "pinocchio", "M") in failed
     assert ("exact", "kane@mujoco", "mujoco", "M") not in failed
+
+
+@pytest.mark.parametrize("options", [{"repair_inertia": True}, {"balance_inertia": True, "repair_inertia": True}])
+def test_every_load_option_reaches_the_dynamics_loader(options, capsys):
+    """``--repair-inertia`` loads in dynamics what it loads in compare (it was dropped: the refusal named it)."""
+    from pathlib import Path
+
+    from koenig_check.findings import Kind
+    from koenig_check.implied_dynamics.analysis import dynamics
+
+    path = Path(__file__).resolve().parents[1] / "engines" / "models" / "repair_needed.urdf"
+    result = dynamics(path, n_poses=1, formulas=["exact"], engines=("mujoco", "pinocchio"), **options)
+    repaired = {f.element for f in result.findings if f.kind is Kind.REPAIR}
+    assert {"link tilted", "link virtual"} <= repaired
+    flags = [f"--{k.replace('_', '-')}" for k in options]
+    main(["dynamics", str(path), *flags, "--poses", "1", "--formulas", "exact", "--engines", "mujoco,pinocchio"])
+    out, err = capsys.readouterr()
+    assert "exact" in out and "MuJoCo rejects its inertia" not in err
