@@ -90,3 +90,24 @@ def test_parity_report_prints_armature_round_off_as_zero(model: str) -> None:
     for row in rows:
         mj, pn = (float(x) for x in row.split()[1:3])
         assert all(v == 0 or abs(v) >= ROUNDOFF for v in (mj, pn)) and "e-16" not in row.split()[1]
+
+
+@pytest.mark.parametrize(
+    ("model", "element", "effect"),
+    [
+        ("go1", "link base", "welded to the world: cannot change the energy"),
+        (
+            Path(__file__).parent / "engines" / "models" / "repair_needed.urdf",
+            "link tilted",
+            "moving: can change MuJoCo's energy",
+        ),
+    ],
+)
+def test_a_model_changed_to_be_loaded_says_so_on_its_row(model, element: str, effect: str) -> None:
+    check = koenig_check.compare(
+        model, repair_inertia=True, n_poses=2, formulas=["exact"], engines=("mujoco", "pinocchio")
+    )
+    label = check.parities[0].model
+    row = " ".join(" ".join(line.split()) for line in verdict_table(check).split("\n\n")[0].splitlines()[2:])
+    assert row.startswith(label) and "changed so that MuJoCo loads it" in row
+    assert element in row and effect in row

@@ -29,12 +29,13 @@ def _wrap(head: str, text: str, width: int = WIDTH) -> list[str]:
 
 
 def _cause(check: CrossCheck, model: str) -> str:
-    from koenig_check.diagnosis.reason import lead_line
+    from koenig_check.diagnosis.reason import changes_line, lead_line
 
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         if parity.model == model:
             lead = lead_line(comparison.findings)
-            return "; ".join(t for t in (lead, "" if parity.agrees else parity.reason) if t)
+            changes = changes_line(comparison.findings)  # a model changed to be loaded says so, agreeing or not
+            return "; ".join(t for t in (lead, "" if parity.agrees else parity.reason, changes) if t)
     return ""
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 import shutil
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -276,3 +277,19 @@ def test_masses_rescaled_by_mujoco_compiler_are_import_differences(tmp_path):
     assert all(f.kind is Kind.COMPILER and f.affects_energy for fs in pair.import_differences.values() for f in fs)
     states = [e.segment_states(*random_states(pair.mujoco.model, 1)) for e in pair.engines.values()]
     assert states[0].mass == pytest.approx([2.0, 4.0]) and states[1].mass == pytest.approx([1.0, 2.0])
+
+
+def test_a_model_without_moving_mass_is_refused_naming_its_links(tmp_path) -> None:
+    """Energies at round-off of zero are no disagreement: nothing to compare, and which links have no mass."""
+    import koenig_check
+    from koenig_check.cli import main
+    from koenig_check.engines.errors import NoMassError
+
+    path = Path(__file__).parent / "models" / "massless.urdf"
+    with pytest.raises(NoMassError, match=r"no mass to compare.*\(arm, hand: MuJoCo 4e-15 kg, Pinocchio 0 kg") as err:
+        load_model(path, repair_inertia=True)
+    assert err.value.links == ("arm", "hand") and "\n" not in str(err.value)
+    check = koenig_check.compare(path, repair_inertia=True, n_poses=2)
+    assert not check.ok and not check.comparisons and not check.summaries  # no formula ran on it
+    assert "no mass to compare" in check.reason()
+    assert main(["compare", str(path), "--repair-inertia", "--poses", "2"]) == 1

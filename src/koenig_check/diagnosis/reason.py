@@ -77,3 +77,32 @@ def engine_usage(findings: Sequence[Finding], engine: str = "drake") -> str:
         if f.engine == engine and f.kind is Kind.ENGINE_NOT_USED:
             return f.summary
     return ""
+
+
+def changes_line(findings: Sequence[Finding], shown: int = 4) -> str:
+    """The links changed so that MuJoCo loads the model (``REPAIR``), and whether each can change the energy.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+    shown : int
+        At most this many links are named per group (the count of the others is given).
+
+    Returns
+    -------
+    str
+        Empty when nothing was changed.
+    """
+    repairs = [f for f in findings if f.kind is Kind.REPAIR]
+    if not repairs:
+        return ""
+    groups = (
+        ("moving: can change MuJoCo's energy", [f.element for f in repairs if f.segments]),
+        ("welded to the world: cannot change the energy", [f.element for f in repairs if not f.segments]),
+    )
+    parts = []
+    for what, elements in groups:
+        if elements:
+            more = f" (+{len(elements) - shown} more)" if len(elements) > shown else ""
+            parts.append(f"{', '.join(elements[:shown])}{more} ({what})")
+    return "changed so that MuJoCo loads it (Pinocchio keeps the file's values): " + "; ".join(parts)

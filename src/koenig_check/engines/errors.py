@@ -21,6 +21,22 @@ class NoMovingSegmentError(ModelLoadError):
     """The model has no joint: nothing moves, there is no kinetic energy to compare."""
 
 
+class NoMassError(ModelLoadError):
+    """Nothing that moves has mass (at most round-off, e.g. MuJoCo's minimum masses of a repair).
+
+    Parameters
+    ----------
+    message : str
+        One line naming the file and the massless moving links.
+    links : tuple of str
+        The moving links (bodies) without mass.
+    """
+
+    def __init__(self, message: str, links: tuple[str, ...] = ()) -> None:
+        super().__init__(message)
+        self.links = tuple(links)
+
+
 class JointMismatch(KoenigCheckError, ValueError):  # noqa: N818 - the name the design uses
     """The joints of the MuJoCo model and the Pinocchio model cannot be paired by name.
 

@@ -16,6 +16,7 @@ from koenig_check.engines.coupling import coupling_findings
 from koenig_check.engines.energy import self_consistency
 from koenig_check.engines.errors import (
     EngineUnavailableError,
+    NoMassError,
     NoMovingSegmentError,
 )
 from koenig_check.engines.finite import check_finite, check_segments
@@ -28,6 +29,7 @@ from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
 from koenig_check.engines.sampling import random_states
 from koenig_check.engines.sources import ModelSource, resolve_model
 from koenig_check.findings import Finding, Kind
+from koenig_check.roundoff import ROUNDOFF
 from koenig_check.validate import preflight
 
 #: Number of seeded random states the self-consistency checks run on at load time.
@@ -217,6 +219,27 @@ def _pose_findings(mj: MujocoEngine, pn: PinocchioEngine) -> list[Finding]:
     ]
 
 
+#: A moving mass (kg) at most this, in every engine, is no mass: round-off, or MuJoCo's minimum masses of a repair.
+NO_MASS = ROUNDOFF
+
+
+def _check_moving_mass(mj_model: Any, pin_model: Any, path: str, repaired: bool) -> None:
+    """Refuse a model whose moving bodies have no mass in any engine: there is no kinetic energy to compare."""
+    moving = [b for b in range(1, mj_model.nbody) if mj_model.body_weldid[b] != 0]
+    mj_mass = float(np.sum(mj_model.body_mass[moving]))
+    pin_mass = float(sum(pin_model.inertias[i].mass for i in range(1, pin_model.njoints)))
+    if max(mj_mass, pin_mass) > NO_MASS:
+        return
+    links = tuple(mj_model.body(b).name or f"body{b}" for b in moving)
+    shown = ", ".join(links[:6]) + (f" (+{len(links) - 6} more)" if len(links) > 6 else "")
+    how = "; MuJoCo holds only the minimum masses of --repair-inertia" if repaired else ""
+    raise NoMassError(
+        f"{path}: no mass to compare: no moving link has mass ({shown}: MuJoCo {mj_mass:.3g} kg, "
+        f"Pinocchio {pin_mass:.3g} kg{how}); give the links an <inertial>",
+        links,
+    )
+
+
 @explain_load_failures
 def load_model(
     path_or_name: str | os.PathLike[str],
@@ -299,6 +322,7 @@ def load_model(
             f"{source.path}: nothing moves (no joint), so there is nothing to compare; not an engine error "
             "(--floating, floating=True, gives the root body a free joint)"
         )
+    _check_moving_mass(mj_model, pin_model, str(source.path), repaired=opts.repair_inertia)
     state_map = build_state_map(mj_model, pin_model, str(source.path))
     mj = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
     pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_findings + state_map.findings)
