@@ -52,7 +52,7 @@ def _bare(model: str, n_poses: int) -> None:
     import pinocchio as pin
 
     from koenig_check.engines import load_model
-    from koenig_check.poses import random_poses
+    from koenig_check.run.poses import random_poses
 
     pair = load_model(model)
     poses = random_poses(pair.mujoco.model, n_poses, seed=0)

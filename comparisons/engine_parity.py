@@ -95,6 +95,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     Row
     """
     from koenig_check.diagnosis.import_parity import import_parity
+    from koenig_check.diagnosis.reason import disagreement_cause
     from koenig_check.engines import load_model
     from koenig_check.engines.drake.adapter import load_drake_engine
     from koenig_check.engines.drake.loader import drake_available
@@ -103,7 +104,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     from koenig_check.engines.pinocchio.loader import load_pinocchio
     from koenig_check.engines.sampling import random_states
     from koenig_check.engines.sources import resolve_model
-    from koenig_check.grid import disagreement_cause, relative_error
+    from koenig_check.run.stats import relative_error
     from koenig_check.validate import preflight
 
     path, floating, n_poses, use_drake = task

@@ -222,7 +222,7 @@ def claim_c(pair, out: Path) -> tuple[Claim, list[list[object]]]:
     import matplotlib.pyplot as plt
 
     from koenig_check.formulas import integrate_angular_velocity
-    from koenig_check.poses import trajectory_poses
+    from koenig_check.run.poses import trajectory_poses
 
     a, A, B = grid_qpos()
     s = states_at(pair, np.c_[A.ravel(), B.ravel()], np.tile(RATES, (A.size, 1)))

@@ -13,7 +13,7 @@ import pytest
 from koenig_check.api import compare
 from koenig_check.engines import load_model
 from koenig_check.findings import Kind
-from koenig_check.pose_file import PoseFileError, load_pose_file
+from koenig_check.run.pose_file import PoseFileError, load_pose_file
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
 

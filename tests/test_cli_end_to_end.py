@@ -13,7 +13,7 @@ import pytest
 
 from koenig_check.cli import main
 from koenig_check.formulas import FORMULAS
-from koenig_check.grid import RECORD_FIELDS
+from koenig_check.run.records import RECORD_FIELDS
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -189,7 +189,7 @@ def test_engine_disagreement_names_its_import_cause(tmp_path: Path) -> None:
     import re
 
     from koenig_check.api import compare_model
-    from koenig_check.grid import engine_parity
+    from koenig_check.run.summaries import engine_parity
 
     comp = compare_model(MODELS / "serial7.urdf", n_poses=4)
     assert engine_parity(comp).agrees and not [f for f in comp.findings if f.affects_energy]

@@ -8,8 +8,11 @@ import pytest
 from koenig_check.analytic import random_states
 from koenig_check.formulas import FORMULAS
 from koenig_check.formulas.point_masses import equimomental_points, rigid_point_velocities
-from koenig_check.grid import EngineRun, compare_runs, engine_parity, relative_error, summarize
-from koenig_check.poses import PoseSet
+from koenig_check.run.comparison import compare_runs
+from koenig_check.run.engine_runs import EngineRun
+from koenig_check.run.poses import PoseSet
+from koenig_check.run.stats import relative_error
+from koenig_check.run.summaries import engine_parity, summarize
 
 
 def _run(engine: str, states, rigid_scale: float = 1.0, armature: float = 0.0) -> EngineRun:

@@ -8,7 +8,7 @@ import numpy as np
 
 from koenig_check.engines import load_model
 from koenig_check.formulas.point_masses import equimomental_points
-from koenig_check.grid import _points_for
+from koenig_check.run.engine_runs import _points_for
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
 

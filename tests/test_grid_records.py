@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.grid import _chunk_table
-from koenig_check.records import RecordTable
+from koenig_check.run.chunks import _chunk_table
+from koenig_check.run.records import RecordTable
 
 FORMULAS = ["exact", "koenig", "planar"]
 SOURCES = ["mujoco", "pinocchio"]
@@ -60,8 +60,9 @@ def test_records_of_a_chunk_are_each_formula_evaluated_alone_on_the_engine_state
 
     from koenig_check.engines import load_model
     from koenig_check.formulas import FORMULAS
-    from koenig_check.grid import evaluate_chunk, run_engine
-    from koenig_check.poses import random_poses
+    from koenig_check.run.chunks import evaluate_chunk
+    from koenig_check.run.engine_runs import run_engine
+    from koenig_check.run.poses import random_poses
 
     pair = load_model(Path(__file__).resolve().parents[1] / "models" / "double_pendulum.xml")
     poses = random_poses(pair.mujoco.model, 6, seed=3)

@@ -26,3 +26,14 @@ def test_every_moved_name_imports(old: str) -> None:
 def test_an_unknown_name_is_still_an_import_error() -> None:
     with pytest.raises(ModuleNotFoundError):
         importlib.import_module("koenig_check._no_such_module")
+
+
+def test_a_split_module_gives_each_name_from_its_new_home() -> None:
+    from koenig_check.grid import DEFAULT_RTOL, ModelComparison, evaluate_chunk, summarize  # type: ignore[attr-defined]
+
+    from koenig_check.run import chunks, comparison, stats, summaries
+
+    assert (DEFAULT_RTOL, ModelComparison) == (stats.DEFAULT_RTOL, comparison.ModelComparison)
+    assert (evaluate_chunk, summarize) == (chunks.evaluate_chunk, summaries.summarize)
+    with pytest.raises(ImportError):
+        from koenig_check.grid import no_such_name  # type: ignore[attr-defined]  # noqa: F401

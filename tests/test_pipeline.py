@@ -13,9 +13,10 @@ import pytest
 
 import koenig_check
 from koenig_check.api import compare_model
-from koenig_check.grid import summarize_records
-from koenig_check.poses import random_pose_range, random_poses
-from koenig_check.records import RECORD_FIELDS
+from koenig_check.run import summaries
+from koenig_check.run.poses import random_pose_range, random_poses
+from koenig_check.run.records import RECORD_FIELDS
+from koenig_check.run.summaries import summarize_records
 
 FREE_BALL_HINGE = Path(__file__).parent / "data" / "free_ball_hinge.xml"
 MODELS = Path(__file__).resolve().parents[1] / "models"
@@ -28,8 +29,8 @@ def _run(**options):
 
 def _assert_same(a, b) -> None:
     assert a.stats.n_poses == b.stats.n_poses == N_POSES
-    assert koenig_check.grid.summarize(a) == koenig_check.grid.summarize(b)
-    assert koenig_check.grid.engine_parity(a) == koenig_check.grid.engine_parity(b)
+    assert summaries.summarize(a) == summaries.summarize(b)
+    assert summaries.engine_agreement(a) == summaries.engine_agreement(b)
     assert a.refusals == b.refusals
     assert len(a.records) == len(b.records) > 0
     ca, cb = a.records.columns, b.records.columns
@@ -45,7 +46,7 @@ def serial():
 def test_the_model_has_free_ball_and_hinge_joints(serial) -> None:
     pair = koenig_check.engines.load_model(FREE_BALL_HINGE)
     assert set(pair.mujoco.dofs_by_kind()) == {"free", "ball", "hinge"}
-    assert koenig_check.grid.engine_parity(serial).agrees
+    assert summaries.engine_agreement(serial).agrees
 
 
 def test_chunked_run_equals_serial_run(serial) -> None:
@@ -65,7 +66,7 @@ def test_dask_cluster_equals_serial_run(serial) -> None:
     ):
         _assert_same(serial, _run(chunk_poses=11, client=client))
         check = koenig_check.compare([FREE_BALL_HINGE], n_poses=N_POSES, seed=5, client=client, records="segments")
-    assert check.ok and koenig_check.grid.summarize(check.comparisons[0]) == koenig_check.grid.summarize(serial)
+    assert check.ok and summaries.summarize(check.comparisons[0]) == summaries.summarize(serial)
 
 
 def test_random_pose_ranges_are_slices_of_the_sequence() -> None:
@@ -81,7 +82,7 @@ def test_random_pose_ranges_are_slices_of_the_sequence() -> None:
 @pytest.mark.parametrize("model", [FREE_BALL_HINGE, MODELS / "serial7.xml", MODELS / "gimbal.xml"])
 def test_streamed_summary_equals_summary_of_the_full_record_table(model: Path) -> None:
     comp = compare_model(model, n_poses=300, seed=1, records="segments", chunk_poses=64)
-    streamed = koenig_check.grid.summaries_from_stats(comp.model, comp.stats)
+    streamed = summaries.summaries_from_stats(comp.model, comp.stats)
     from_table = summarize_records(comp.records, comp.stats.rtol, comp.model)
     assert len(streamed) == len(from_table) > 10
     assert streamed == from_table
@@ -97,10 +98,10 @@ def test_grid_and_trajectory_poses_stream_the_same(tmp_path: Path) -> None:
     gimbal = MODELS / "gimbal.xml"
     opts = {"pose_kind": "grid", "n_poses": 9, "grid_joints": ("outer_z", "inner_x"), "records": "segments"}
     whole, chunked = compare_model(gimbal, **opts), compare_model(gimbal, chunk_poses=10, **opts)
-    assert koenig_check.grid.summarize(whole) == koenig_check.grid.summarize(chunked)
+    assert summaries.summarize(whole) == summaries.summarize(chunked)
     np.testing.assert_array_equal(whole.records["value"], chunked.records["value"])
     traj = compare_model(gimbal, pose_kind="trajectory", n_poses=50, chunk_poses=10)
-    assert any(s.formula == "alyushin_paper:integrated" for s in koenig_check.grid.summarize(traj))
+    assert any(s.formula == "alyushin_paper:integrated" for s in summaries.summarize(traj))
 
 
 MEMORY_SCRIPT = """
@@ -205,9 +206,9 @@ def test_no_writing_thread_is_alive_when_jobs_fork_their_workers(tmp_path: Path,
     import threading
     import time
 
-    from koenig_check import pipeline
     from koenig_check.cli import main
     from koenig_check.report import RecordFiles
+    from koenig_check.run import pipeline
 
     monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 8)
     write = RecordFiles._write_now
@@ -256,8 +257,8 @@ def test_a_failed_record_write_fails_its_own_model_not_the_next(tmp_path: Path, 
 def test_an_interrupted_run_leaves_no_partial_record_file_and_no_writing_thread(tmp_path: Path, monkeypatch) -> None:
     import threading
 
-    from koenig_check import pipeline
     from koenig_check.cli import main
+    from koenig_check.run import pipeline
 
     run_chunk, started = pipeline.run_chunk, []
 
@@ -283,7 +284,7 @@ def test_dask_threads_sharing_one_model_equal_serial_run(monkeypatch) -> None:
     import threading
     import time
 
-    from koenig_check import pipeline
+    from koenig_check.run import pipeline
 
     distributed = pytest.importorskip("distributed")
     run_engine, lock, active, most = pipeline.run_engine, threading.Lock(), [0], [0]
@@ -310,4 +311,4 @@ def test_dask_threads_sharing_one_model_equal_serial_run(monkeypatch) -> None:
     assert most[0] == 1
     for name in ("value", "reference_value"):
         np.testing.assert_array_equal(threaded.records[name], serial.records[name], err_msg=name)
-    assert koenig_check.grid.summarize(threaded) == koenig_check.grid.summarize(serial)
+    assert summaries.summarize(threaded) == summaries.summarize(serial)

@@ -6,7 +6,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from koenig_check.poses import grid_poses, keyframe_poses, random_poses, trajectory_poses
+from koenig_check.run.poses import grid_poses, keyframe_poses, random_poses, trajectory_poses
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
 

@@ -1,4 +1,4 @@
-"""Record files: what ``records.parquet`` stores and how it reads back (koenig_check.records)."""
+"""Record files: what ``records.parquet`` stores and how it reads back (koenig_check.run.records)."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ import pyarrow.parquet as pq
 import pytest
 
 import koenig_check
-from koenig_check.records import STORED_SCHEMA, RecordFileError, RecordTable, categorical
 from koenig_check.report import RecordFiles
+from koenig_check.run.records import STORED_SCHEMA, RecordFileError, RecordTable, categorical
 
 
 def _table(value: list[float], reference: list[float]) -> pa.Table:
@@ -106,8 +106,8 @@ def test_rows_of_a_formula_refused_in_a_later_chunk_are_listed_and_left_out_when
     """planar accepted by the first chunks (the gimbal turning about z), refused by a later one."""
     import json
 
-    from koenig_check import pipeline
     from koenig_check.cli import main
+    from koenig_check.run import pipeline
 
     rng = np.random.default_rng(0)
     planar = [[rng.uniform(-1, 1), 0.0, rng.normal(), 0.0] for _ in range(pipeline.PROBE_POSES + 44)]

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from koenig_check import stats
-from koenig_check.stats import Extreme, QuantileSketch
+from koenig_check.run.stats import Extreme, QuantileSketch
 
 
 def _sketch(chunks) -> QuantileSketch:

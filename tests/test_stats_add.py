@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from koenig_check.stats import GroupStats, QuantileSketch, absolute_relative_error, relative_error
+from koenig_check.run.stats import GroupStats, QuantileSketch, absolute_relative_error, relative_error
 
 EDGES = [
     (1.0, 1.0),

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 
     from koenig_check.api import CrossCheck
     from koenig_check.implied_dynamics.analysis import DynamicsResult
-    from koenig_check.records import RecordTable
+    from koenig_check.run.records import RecordTable
 
 __all__ = ["SegmentStates", "compare", "dynamics", "read_records"]
 __version__ = "0.1.0"
@@ -69,7 +69,7 @@ def dynamics(model: Any, **options: Any) -> DynamicsResult:
 def read_records(path: str | Path) -> RecordTable:
     """Read a report's ``records.parquet`` back, the error columns included.
 
-    See :func:`koenig_check.records.read_records`.
+    See :func:`koenig_check.run.records.read_records`.
 
     Parameters
     ----------
@@ -80,6 +80,6 @@ def read_records(path: str | Path) -> RecordTable:
     RecordTable
         Index by column name (``value``, ``rel_error``, …) for numpy arrays; ``.to_arrow()`` for a table.
     """
-    from koenig_check.records import read_records as _read
+    from koenig_check.run.records import read_records as _read
 
     return _read(path)

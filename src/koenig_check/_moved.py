@@ -1,7 +1,9 @@
 """Old import paths of modules that moved, kept working for now.
 
 A module that moves adds one line to :data:`MOVED` (old dotted name -> new dotted name); importing the old
-name then gives the new module itself (the same object, so patching either name patches both).
+name then gives the new module itself (the same object, so patching either name patches both).  A module
+split in several adds one line to :data:`SPLIT` (old name -> the new modules): the old name then gives a
+module whose names are looked up in the new ones, in order.
 """
 
 from __future__ import annotations
@@ -27,7 +29,41 @@ MOVED: dict[str, str] = {
     "koenig_check.engines.drake_inertia": "koenig_check.engines.drake.inertia",
     "koenig_check.tiebreak": "koenig_check.diagnosis.three_way",
     "koenig_check.parity": "koenig_check.diagnosis.import_parity",
+    "koenig_check.pipeline": "koenig_check.run.pipeline",
+    "koenig_check.poses": "koenig_check.run.poses",
+    "koenig_check.pose_file": "koenig_check.run.pose_file",
+    "koenig_check.records": "koenig_check.run.records",
+    "koenig_check.stats": "koenig_check.run.stats",
 }
+
+
+#: Old module name -> the modules it was split into.
+SPLIT: dict[str, tuple[str, ...]] = {
+    "koenig_check.grid": (
+        "koenig_check.run.comparison",
+        "koenig_check.run.chunks",
+        "koenig_check.run.engine_runs",
+        "koenig_check.run.summaries",
+        "koenig_check.run.stats",
+        "koenig_check.run.records",
+        "koenig_check.diagnosis.reason",
+    ),
+}
+
+
+class _SplitModule(ModuleType):
+    """An old module name whose names now live in several modules."""
+
+    def __init__(self, name: str, homes: tuple[str, ...]) -> None:
+        super().__init__(name, f"Moved: the names of {name} now live in {', '.join(homes)}.")
+        self._homes = homes
+
+    def __getattr__(self, attr: str) -> object:
+        for home in self._homes:
+            module = importlib.import_module(home)
+            if hasattr(module, attr):
+                return getattr(module, attr)
+        raise AttributeError(f"module {self.__name__!r} has no attribute {attr!r} (moved to {', '.join(self._homes)})")
 
 
 class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
@@ -37,12 +73,14 @@ class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         self, fullname: str, path: object = None, target: object = None
     ) -> importlib.machinery.ModuleSpec | None:
         """A spec for an old name of :data:`MOVED`, else None (the other finders look)."""
-        if fullname not in MOVED:
+        if fullname not in MOVED and fullname not in SPLIT:
             return None
         return importlib.util.spec_from_loader(fullname, self)
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
         """The module the old name moved to."""
+        if spec.name in SPLIT:
+            return _SplitModule(spec.name, SPLIT[spec.name])
         return importlib.import_module(MOVED[spec.name])
 
     def exec_module(self, module: ModuleType) -> None:

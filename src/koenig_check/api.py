@@ -8,14 +8,16 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from koenig_check import grid, pipeline, poses
 from koenig_check.arguments import POSE_KINDS, check_compare_arguments, check_keywords, keywords_of
 from koenig_check.diagnosis import policy, reason
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.engines.registry import check_engines
-from koenig_check.grid import DEFAULT_RTOL, EngineParity, FormulaSummary, ModelComparison
-from koenig_check.records import RecordTable
+from koenig_check.run import pipeline, poses, summaries
+from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.labels import unique_labels
+from koenig_check.run.records import RecordTable
+from koenig_check.run.stats import DEFAULT_RTOL
+from koenig_check.run.summaries import EngineParity, FormulaSummary
 
 if TYPE_CHECKING:
     from koenig_check.report import RecordSink
@@ -48,7 +50,7 @@ class CrossCheck:
     @property
     def records(self) -> RecordTable:
         """All tidy records of all models (iterate for dicts, index by column name for arrays)."""
-        return grid.records_for(self.comparisons)
+        return records_for(self.comparisons)
 
     @property
     def ok(self) -> bool:
@@ -73,8 +75,8 @@ class CrossCheck:
             The parity just recorded.
         """
         self.comparisons.append(comparison)
-        self.summaries += grid.summarize(comparison, self.rtol)
-        parity = grid.engine_parity(comparison, self.rtol)
+        self.summaries += summaries.summarize(comparison, self.rtol)
+        parity = summaries.engine_agreement(comparison, self.rtol)
         self.parities.append(parity)
         return parity
 
@@ -173,7 +175,7 @@ def compare_model(
     pose_set : PoseSet, optional
         Use these canonical states instead of drawing poses.
     pose_file : str or Path, optional
-        Read the canonical states from a file (see :mod:`koenig_check.pose_file`).
+        Read the canonical states from a file (see :mod:`koenig_check.run.pose_file`).
     label : str, optional
     load_options : LoadOptions, optional
         How the model is loaded (see :class:`koenig_check.engines.load_options.LoadOptions`); its
@@ -215,7 +217,7 @@ def compare_model(
     for name in policy.asked_for(options.engines):  # named engines run on every pose, when they can
         loaded.attach(name)
     if pose_file is not None:
-        from koenig_check.pose_file import load_pose_file
+        from koenig_check.run.pose_file import load_pose_file
 
         pose_set = load_pose_file(pose_file, loaded.mujoco.model)
     random = None

@@ -178,7 +178,7 @@ def check_compare_arguments(rtol: Any, options: Mapping[str, Any]) -> None:
     ------
     ArgumentTypeError, ArgumentValueError
     """
-    from koenig_check.grid import RECORD_MODES
+    from koenig_check.run.chunks import RECORD_MODES
 
     check_tolerance(rtol)
     kind = options.get("pose_kind", "random")

@@ -128,7 +128,8 @@ def build_parser() -> argparse.ArgumentParser:
     -------
     argparse.ArgumentParser
     """
-    from koenig_check.grid import DEFAULT_RTOL, RECORD_MODES
+    from koenig_check.run.chunks import RECORD_MODES
+    from koenig_check.run.stats import DEFAULT_RTOL
 
     parser = _Parser(
         prog="koenig-check",

@@ -6,8 +6,9 @@ import importlib.resources
 from pathlib import Path
 
 from koenig_check.api import CrossCheck, compare_model, one_line
-from koenig_check.grid import DEFAULT_RTOL, ModelComparison
 from koenig_check.progress import Progress
+from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.stats import DEFAULT_RTOL
 
 #: Built-in models that are a single free body: loaded with a floating base.
 FLOATING_MODELS = frozenset({"free_body.urdf"})

@@ -17,9 +17,9 @@ import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.figure import Figure
 
-from koenig_check.grid import ModelComparison, relative_error
 from koenig_check.roundoff import ROUNDOFF
-from koenig_check.stats import QuantileSketch
+from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.stats import QuantileSketch, relative_error
 
 #: Engine colours, the same in every figure.
 ENGINE_COLORS = {"mujoco": "tab:blue", "pinocchio": "tab:orange", "drake": "tab:green"}
@@ -150,7 +150,7 @@ def error_map_figure(
     Parameters
     ----------
     comparison : ModelComparison
-        Built on a grid :class:`~koenig_check.poses.PoseSet`.
+        Built on a grid :class:`~koenig_check.run.poses.PoseSet`.
     formulas : sequence of str
     path : Path
     engine : str
@@ -203,7 +203,7 @@ def trajectory_figure(
     Parameters
     ----------
     comparison : ModelComparison
-        Built on a trajectory :class:`~koenig_check.poses.PoseSet`.
+        Built on a trajectory :class:`~koenig_check.run.poses.PoseSet`.
     formulas : sequence of str
     path : Path
     rtol : float

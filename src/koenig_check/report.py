@@ -15,8 +15,6 @@ import pyarrow as pa
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
-from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
-from koenig_check.records import RECORD_FIELDS, REFUSED_KEY, STORED_SCHEMA, TEXT_FIELDS, RecordTable, without_refused
 from koenig_check.report_content import (
     COLUMNS,
     POSE_LABELS,
@@ -29,6 +27,16 @@ from koenig_check.report_content import (
     shared_notes,
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
+from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.records import (
+    RECORD_FIELDS,
+    REFUSED_KEY,
+    STORED_SCHEMA,
+    TEXT_FIELDS,
+    RecordTable,
+    without_refused,
+)
+from koenig_check.run.summaries import EngineParity, FormulaSummary
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
@@ -202,8 +210,8 @@ class RecordFiles:
 
     Every chunk goes straight to ``records.parquet`` (Parquet through pyarrow: columnar,
     categorical columns stored as dictionary codes, read directly by pandas, polars, DuckDB,
-    Spark).  The file holds the stored columns (:data:`~koenig_check.records.STORED_SCHEMA`); the
-    error columns are one subtraction away (:func:`~koenig_check.records.read_records` adds them)
+    Spark).  The file holds the stored columns (:data:`~koenig_check.run.records.STORED_SCHEMA`); the
+    error columns are one subtraction away (:func:`~koenig_check.run.records.read_records` adds them)
     and would triple its size and its writing time, being incompressible floats.  Runs of at most
     ``csv_rows`` records also get ``records.csv`` when closed, and keep their rows for
     ``records.json``; beyond that the small copy is dropped, so memory stays bounded.
@@ -246,7 +254,7 @@ class RecordFiles:
         Parameters
         ----------
         table : pyarrow.Table
-            Columns of :data:`~koenig_check.records.STORED_SCHEMA`.
+            Columns of :data:`~koenig_check.run.records.STORED_SCHEMA`.
         """
         if not table.num_rows:
             return
@@ -279,8 +287,8 @@ class RecordFiles:
 
         A refusal can come in a later chunk than the first (``planar`` on a pose file whose first poses
         move in a plane): rows of that formula already written stay in the Parquet file, which cannot
-        take them back, and are listed as refused in its metadata (:data:`~koenig_check.records.REFUSED_KEY`);
-        :func:`~koenig_check.records.read_records`, ``records.csv`` and ``records.json`` leave them out,
+        take them back, and are listed as refused in its metadata (:data:`~koenig_check.run.records.REFUSED_KEY`);
+        :func:`~koenig_check.run.records.read_records`, ``records.csv`` and ``records.json`` leave them out,
         so that a run in chunks reads back as the run in one piece.
 
         Parameters

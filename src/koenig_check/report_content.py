@@ -10,8 +10,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from koenig_check.formulas import FORMULAS
-from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
 from koenig_check.roundoff import ROUNDOFF, fmt
+from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.summaries import EngineParity, FormulaSummary
 
 #: Plain-words description of each formula family (the registry name's part before the first ':').
 _BASE_TEXT = {

@@ -12,7 +12,6 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from koenig_check.grid import FormulaSummary, ModelComparison
 from koenig_check.report_content import (
     COLUMNS,
     POSE_LABELS,
@@ -25,6 +24,8 @@ from koenig_check.report_content import (
     shared_notes,
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
+from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.summaries import FormulaSummary
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck

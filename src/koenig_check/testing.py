@@ -15,7 +15,7 @@ from koenig_check.api import load_options_from
 from koenig_check.diagnosis import policy
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.formulas import FORMULAS
-from koenig_check.grid import DEFAULT_RTOL, relative_error
+from koenig_check.run.stats import DEFAULT_RTOL, relative_error
 
 
 def assert_energy_parity(
@@ -63,7 +63,7 @@ def assert_energy_parity(
     from koenig_check.diagnosis.reason import disagreement_cause, lead_line
     from koenig_check.engines import load_model
     from koenig_check.engines.registry import check_engines
-    from koenig_check.poses import random_poses
+    from koenig_check.run.poses import random_poses
 
     if pinocchio_model is not None:
         load_kwargs["pinocchio_model"] = pinocchio_model

@@ -7,8 +7,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from koenig_check.api import CrossCheck
-from koenig_check.grid import FormulaSummary
 from koenig_check.roundoff import ROUNDOFF, shown
+from koenig_check.run.summaries import FormulaSummary
 
 #: Terminal width the verdict fits in.
 WIDTH = 100

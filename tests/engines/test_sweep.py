@@ -9,7 +9,7 @@ import pytest
 
 from koenig_check.engines import load_model
 from koenig_check.formulas.point_masses import equimomental_points
-from koenig_check.poses import random_poses
+from koenig_check.run.poses import random_poses
 
 FREE_BALL_HINGE = Path(__file__).resolve().parents[1] / "data" / "free_ball_hinge.xml"
 MODELS = Path(__file__).resolve().parents[2] / "models"

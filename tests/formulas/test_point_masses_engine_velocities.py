@@ -10,13 +10,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check import grid
 from koenig_check.demo import builtin_models
 from koenig_check.engines import load_model
-from koenig_check.poses import random_poses
+from koenig_check.run import chunks, engine_runs
+from koenig_check.run.poses import random_poses
 
 
-def _segment_records(chunk: grid.ChunkResult, engine: str) -> dict[tuple[str, str], float]:
+def _segment_records(chunk: chunks.ChunkResult, engine: str) -> dict[tuple[str, str], float]:
     rows = chunk.records.to_pylist()
     return {
         (r["pose"], r["scope"]): r["value"]
@@ -30,17 +30,17 @@ def test_point_masses_record_moves_by_the_shift_of_the_given_point_velocities(mo
     path = next(p for p in builtin_models() if p.name == model)
     pair = load_model(path)
     poses = random_poses(pair.mujoco.model, 4, seed=3)
-    runs = {e.engine: grid.run_engine(e, poses) for e in pair.engines.values()}
-    base = grid.evaluate_chunk(model, poses, runs, ["point_masses"], records="segments")
+    runs = {e.engine: engine_runs.run_engine(e, poses) for e in pair.engines.values()}
+    base = chunks.evaluate_chunk(model, poses, runs, ["point_masses"], records="segments")
     rng = np.random.default_rng(11)
     for engine, run in runs.items():
         states = run.states
         u = rng.normal(size=(states.n_poses, states.n_segments, 3))
         shifted = dict(runs)
-        shifted[engine] = grid.EngineRun(
+        shifted[engine] = engine_runs.EngineRun(
             run.engine, states, run.rigid, run.armature, run.point_velocities + u[:, :, None, :]
         )
-        moved = grid.evaluate_chunk(model, poses, shifted, ["point_masses"], records="segments")
+        moved = chunks.evaluate_chunk(model, poses, shifted, ["point_masses"], records="segments")
         before, after = _segment_records(base, engine), _segment_records(moved, engine)
         assert len(before) == states.n_poses * states.n_segments
         for p, pose in enumerate(poses.ids):

@@ -399,7 +399,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     -------
     ParityReport
     """
-    from koenig_check.poses import random_qpos
+    from koenig_check.run.poses import random_qpos
 
     mj, pn = pair.mujoco, pair.pinocchio
     mj_model = mj.model

@@ -32,7 +32,7 @@ from koenig_check.implied_dynamics.errors import Discrepancy, discrepancy
 from koenig_check.implied_dynamics.kane import kane_mujoco, kane_pinocchio
 from koenig_check.implied_dynamics.lagrange import lagrange_inertia_forces
 from koenig_check.implied_dynamics.reference import rigid_inertia_forces, rigid_mass_matrix
-from koenig_check.poses import random_poses
+from koenig_check.run.poses import random_poses
 
 #: Default relative tolerance (Frobenius norm, per pose) for ``M`` of ``exact`` against an engine.
 M_RTOL = 1e-9

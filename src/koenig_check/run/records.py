@@ -19,7 +19,7 @@ import numpy as np
 import pyarrow as pa
 
 from koenig_check.findings import KoenigCheckError
-from koenig_check.stats import absolute_relative_error
+from koenig_check.run.stats import absolute_relative_error
 
 
 class RecordFileError(KoenigCheckError, ValueError):

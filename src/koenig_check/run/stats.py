@@ -16,6 +16,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+#: Default relative tolerance for "agrees".
+DEFAULT_RTOL = 1e-9
+
 #: Values kept exactly per group before the quantile sketch switches to bins.
 EXACT_LIMIT = 1 << 14
 #: Logarithmic bins per decade of the quantile sketch (relative error of a quantile ≤ 0.058 %).

@@ -21,7 +21,7 @@ import numpy as np
 
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.findings import KoenigCheckError
-from koenig_check.poses import PoseSet
+from koenig_check.run.poses import PoseSet
 
 #: Largest accepted deviation of a quaternion's norm from 1.
 QUAT_NORM_TOL = 1e-6

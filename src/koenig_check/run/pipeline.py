@@ -3,7 +3,7 @@
 A :class:`ChunkTask` names everything a chunk needs — the model source and its load options, the
 formulas, the record mode, the tolerance and the pose range (seeded random poses ``start`` to
 ``stop``, or the poses themselves) — and :func:`run_chunk` turns it into a
-:class:`~koenig_check.grid.ChunkResult`: mergeable statistics and, when asked, records.  The same
+:class:`~koenig_check.run.chunks.ChunkResult`: mergeable statistics and, when asked, records.  The same
 tasks run in this process, in local processes (``jobs``) or on a Dask cluster (``client``); the
 results are merged in pose order, so every way gives the same summaries and records.
 """
@@ -21,18 +21,12 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.load_options import LoadOptions
-from koenig_check.grid import (
-    ENGINES,
-    ChunkResult,
-    EngineRun,
-    ModelComparison,
-    evaluate_chunk,
-    finish_comparison,
-    formula_names,
-    run_engine,
-)
-from koenig_check.poses import PoseSet, random_pose_range
-from koenig_check.records import RecordTable, without_refused
+from koenig_check.engines.registry import REQUIRED as ENGINES
+from koenig_check.run.chunks import ChunkResult, evaluate_chunk, formula_names
+from koenig_check.run.comparison import ModelComparison, finish_comparison
+from koenig_check.run.engine_runs import EngineRun, run_engine
+from koenig_check.run.poses import PoseSet, random_pose_range
+from koenig_check.run.records import RecordTable, without_refused
 
 #: Segment-poses per chunk (poses × segments): memory per chunk stays near constant across models.
 CHUNK_SEGMENT_POSES = 32_768
@@ -88,7 +82,7 @@ class ChunkTask:
     label : str
         Model label written in the records.
     formulas : tuple of str
-        Formulas to evaluate (already resolved, see :func:`koenig_check.grid.formula_names`).
+        Formulas to evaluate (already resolved, see :func:`koenig_check.run.chunks.formula_names`).
     records : {"segments", "totals", "none"}
     rtol : float
     index : int

@@ -1,0 +1,237 @@
+"""One chunk of poses: every formula on every engine's states against every engine's energy, from arrays.
+
+For each model, each engine produces its own :class:`SegmentStates` (the *state source*) and its own kinetic
+energy (the *reference*).  Every formula is evaluated on each source's states and compared with each engine's
+rigid-body energy (armature excluded, totals) and, segment by segment, with ``exact`` on the same source's
+states.  :func:`evaluate_chunk` turns a chunk into mergeable statistics (:class:`~koenig_check.run.stats.ModelStats`)
+and, when asked, records.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pyarrow as pa
+
+from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
+from koenig_check.formulas.cache import SharedStates
+from koenig_check.run.engine_runs import EngineRun
+from koenig_check.run.poses import PoseSet
+from koenig_check.run.records import STORED_SCHEMA, categorical
+from koenig_check.run.stats import DEFAULT_RTOL, Extreme, ModelStats, relative_error
+
+#: Which records a run keeps: per segment and totals, totals only, or none.
+RECORD_MODES = ("segments", "totals", "none")
+
+
+def _evaluate(name: str, run: EngineRun, states: Any, angles: np.ndarray | None, normal=None, ids=None) -> np.ndarray:
+    if name == "planar" and (normal is not None or ids is not None):
+        return FORMULAS[name].func(states, normal=normal, pose_labels=ids)
+    if name == "point_masses":
+        if run.point_velocities is None:
+            return FORMULAS[name].func(run.states)  # raises, naming the non-physical segment
+        return FORMULAS[name].func(states, point_velocities=run.point_velocities)
+    return FORMULAS[name](states, angles=angles)
+
+
+def formula_names(formulas: Sequence[str] | None, path: bool) -> tuple[list[str], list[str]]:
+    """The formulas to evaluate and the notes on those skipped.
+
+    Parameters
+    ----------
+    formulas : sequence of str, optional
+        Formula names (default: all).
+    path : bool
+        Whether the poses form a path (path-dependent variants are skipped otherwise).
+
+    Returns
+    -------
+    names : list of str
+    notes : list of str
+    """
+    names = list(FORMULAS) if formulas is None else list(formulas)
+    unknown = [n for n in names if n not in FORMULAS]
+    if unknown:
+        raise ValueError(f"unknown formulas {unknown}; known: {list(FORMULAS)}")
+    notes = [
+        f"{n}: skipped, the poses are not a path (use a trajectory)"
+        for n in names
+        if FORMULAS[n].needs_path and not path
+    ]
+    return [n for n in names if path or not FORMULAS[n].needs_path], notes
+
+
+@dataclass
+class ChunkResult:
+    """What one chunk of poses contributes: its statistics and, when asked, its records."""
+
+    index: int
+    stats: ModelStats
+    records: pa.Table | None
+
+
+def evaluate_chunk(
+    label: str,
+    poses: PoseSet,
+    runs: dict[str, EngineRun],
+    names: Sequence[str],
+    records: str = "totals",
+    rtol: float = DEFAULT_RTOL,
+    index: int = 0,
+    planar_normals: dict[str, np.ndarray] | None = None,
+) -> ChunkResult:
+    """Every formula on every engine's states of one chunk: statistics and records, from arrays.
+
+    Parameters
+    ----------
+    label : str
+        Model label written in every record.
+    poses : PoseSet
+        The chunk's poses (their ids label the records).
+    runs : dict of str to EngineRun
+    names : sequence of str
+        Formulas to evaluate (see :func:`formula_names`).
+    records : {"segments", "totals", "none"}
+        Which records to build: per-segment and totals, totals only, or none.
+    rtol : float
+    index : int
+        The chunk's position, kept in the result.
+    planar_normals : dict of str to ndarray (B, 3), optional
+        Per state source, the plane normals of eq. (16), fixed for every chunk of a model (by
+        default ``planar`` infers them from the chunk's own states).
+
+    Returns
+    -------
+    ChunkResult
+    """
+    if records not in RECORD_MODES:
+        raise ValueError(f"records must be one of {RECORD_MODES}, got {records!r}")
+    stats = ModelStats(rtol, n_poses=poses.n_poses)
+    ids = poses.ids
+    P = poses.n_poses
+    blocks: list[tuple[int, int, int, np.ndarray | None, np.ndarray, np.ndarray]] = []
+    engines = list(runs)
+    references = engines + [f"exact@{e}" for e in engines]
+    scopes: dict[str, int] = {"total": 0}
+    exact_totals: dict[str, np.ndarray] = {}
+    for s_code, (source, run) in enumerate(runs.items()):
+        shared = SharedStates(run.states)
+        angles = integrate_angular_velocity(run.states.omega, poses.times) if poses.times is not None else None
+        exact_seg = FORMULAS["exact"](shared)
+        exact_totals[source] = exact_seg.sum(axis=1)
+        seg_names = run.states.names
+        seg_codes = np.array([scopes.setdefault(n, len(scopes)) for n in seg_names], dtype=np.int64)
+        B = len(seg_names)
+        for f_code, name in enumerate(names):
+            try:
+                normal = (planar_normals or {}).get(source)
+                # exact is the segments' reference: evaluated once above, not again as a formula
+                per_segment = exact_seg if name == "exact" else _evaluate(name, run, shared, angles, normal, ids)
+            except NotPlaneParallelError as err:
+                stats.refusals[(name, source)] = str(err)
+                continue
+            except ValueError as err:  # only point_masses may refuse otherwise: a non-physical inertia
+                if name != "point_masses":
+                    raise
+                stats.refusals[(name, source)] = str(err)
+                continue
+            total = per_segment.sum(axis=1)
+            for r_code, (reference, ref_run) in enumerate(runs.items()):
+                stats.group((name, source, reference)).add(total, ref_run.rigid, rtol, ids)
+                if records != "none":
+                    blocks.append((f_code, s_code, r_code, None, total, ref_run.rigid))
+            err = np.abs(per_segment - exact_seg).ravel()
+            stats.worst_segments.setdefault((name, source), Extreme()).offer(
+                err, lambda k, seg_names=seg_names, B=B: f"{seg_names[k % B]} @ {ids[k // B]}"
+            )
+            if records == "segments":
+                blocks.append((f_code, s_code, len(engines) + s_code, seg_codes, per_segment, exact_seg))
+    if "mujoco" in runs and "pinocchio" in runs:
+        _parity_stats(stats, runs, ids, exact_totals)
+    table = None
+    if records != "none":
+        table = _chunk_table(label, ids, P, blocks, list(names), engines, references, list(scopes))
+    return ChunkResult(index, stats, table)
+
+
+def _parity_stats(
+    stats: ModelStats, runs: dict[str, EngineRun], ids: Sequence[str], exact_totals: dict[str, np.ndarray]
+) -> None:
+    mj, pn = runs["mujoco"], runs["pinocchio"]
+    parity = stats.parity
+    parity.rigid.offer(np.abs(relative_error(pn.rigid, mj.rigid)), ids, extra=(mj.rigid, pn.rigid))
+    arm = np.abs(pn.armature - mj.armature)
+    parity.armature.offer(arm, ids, extra=(mj.armature, pn.armature))
+    scale = np.maximum(np.abs(mj.rigid) + np.abs(mj.armature), 1e-300)
+    parity.armature_scaled = max(parity.armature_scaled, float((arm / scale).max()))
+    for name, run in runs.items():
+        parity.self_rel[name] = float(np.abs(relative_error(exact_totals[name], run.rigid)).max())
+
+
+def _chunk_table(
+    label: str,
+    ids: Sequence[str],
+    P: int,
+    blocks: list,
+    formulas: list[str],
+    sources: list[str],
+    references: list[str],
+    scopes: list[str],
+) -> pa.Table:
+    """The chunk's records, pose by pose: a (P, K) matrix of values, K records per pose."""
+    if not blocks:
+        return STORED_SCHEMA.empty_table()
+    values = np.concatenate([b[4].reshape(P, -1) for b in blocks], axis=1)
+    refs = np.concatenate([b[5].reshape(P, -1) for b in blocks], axis=1)
+    model, pose, f, s, r, sc = _record_codes(P, blocks)
+    arrays = [
+        categorical(model, [label], "model"),
+        categorical(pose, list(ids), "pose"),
+        categorical(f, formulas, "formula"),
+        categorical(s, sources, "source"),
+        categorical(r, references, "reference"),
+        categorical(sc, scopes, "scope"),
+        pa.array(values.ravel()),
+        pa.array(refs.ravel()),
+    ]
+    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+
+
+#: The code columns of the last chunk layouts (every chunk of a model but its last has the same).
+_CODES: dict[tuple, tuple[np.ndarray, ...]] = {}
+
+
+def _record_codes(P: int, blocks: list) -> tuple[np.ndarray, ...]:
+    """The model, pose, formula, source, reference and scope codes of a chunk's P × K records.
+
+    They depend only on the number of poses and the layout of the blocks, so they are built once
+    per layout and reused (read-only) by every chunk of that layout.
+    """
+    key = (P, tuple((b[0], b[1], b[2], None if b[3] is None else b[3].tobytes()) for b in blocks))
+    codes = _CODES.get(key)
+    if codes is not None:
+        return codes
+    widths = [1 if b[3] is None else len(b[3]) for b in blocks]
+    # Codes built in their stored widths (the columns' index types), so that no column is converted.
+    f = np.repeat(np.array([b[0] for b in blocks], dtype=np.int8), widths)
+    s = np.repeat(np.array([b[1] for b in blocks], dtype=np.int8), widths)
+    r = np.repeat(np.array([b[2] for b in blocks], dtype=np.int8), widths)
+    sc = np.concatenate([np.zeros(1, dtype=np.int16) if b[3] is None else b[3].astype(np.int16) for b in blocks])
+    K = len(sc)
+    codes = (
+        np.zeros(P * K, dtype=np.int16),
+        np.repeat(np.arange(P, dtype=np.int32), K),
+        np.tile(f, P),
+        np.tile(s, P),
+        np.tile(r, P),
+        np.tile(sc, P),
+    )
+    for c in codes:
+        c.setflags(write=False)
+    if len(_CODES) >= 4:  # a model's full chunks and its last one; a new model starts afresh
+        _CODES.clear()
+    _CODES[key] = codes
+    return codes
