@@ -10,7 +10,7 @@ import pytest
 from koenig_check.cli import build_parser, main
 from koenig_check.engines.load_options import LoadOptions
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 #: Sub-commands that load a model file.
 LOADING_COMMANDS = ("compare", "parity")
 

@@ -17,7 +17,7 @@ from koenig_check.cli import main
 from koenig_check.engines import load_model, random_states
 from koenig_check.testing import assert_energy_parity
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ from koenig_check.engines import load_model
 from koenig_check.formulas.angles import integrate_angular_velocity, rotvec_angles
 from koenig_check.run.poses import trajectory_poses
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 
 ONE_HINGE = """
 <mujoco>

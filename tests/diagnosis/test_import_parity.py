@@ -11,7 +11,7 @@ import pytest
 from koenig_check.diagnosis.import_parity import compiler_findings, format_parity, import_parity
 from koenig_check.engines import load_model
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 PROJECT_FILES = sorted(p.name for p in MODELS.glob("*.xml")) + sorted(p.name for p in MODELS.glob("*.urdf"))
 
 

@@ -13,7 +13,7 @@ from koenig_check.engines.errors import EngineUnavailableError as DrakeUnavailab
 from koenig_check.findings import Kind
 from koenig_check.testing import assert_energy_parity
 
-HERE = Path(__file__).parent
+HERE = Path(__file__).resolve().parents[1]
 TIEBREAK = HERE / "models" / "tiebreak"
 HAS_DRAKE = importlib.util.find_spec("pydrake") is not None
 needs_drake = pytest.mark.skipif(not HAS_DRAKE, reason="Drake (the optional extra [drake]) is not installed")

@@ -18,8 +18,8 @@ from koenig_check.run.poses import random_pose_range, random_poses
 from koenig_check.run.records import RECORD_FIELDS
 from koenig_check.run.summaries import summarize_records
 
-FREE_BALL_HINGE = Path(__file__).parent / "data" / "free_ball_hinge.xml"
-MODELS = Path(__file__).resolve().parents[1] / "models"
+FREE_BALL_HINGE = Path(__file__).resolve().parents[1] / "data" / "free_ball_hinge.xml"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 N_POSES = 40
 
 
@@ -138,7 +138,7 @@ def test_twenty_thousand_talos_poses_stay_under_a_gibibyte(tmp_path: Path) -> No
 
 
 def test_benchmark_smoke_run_does_not_crash() -> None:
-    script = Path(__file__).resolve().parents[1] / "comparisons" / "benchmark.py"
+    script = Path(__file__).resolve().parents[2] / "comparisons" / "benchmark.py"
     proc = subprocess.run(
         [sys.executable, str(script), "--smoke"], capture_output=True, text=True, check=False, timeout=600
     )

@@ -10,7 +10,7 @@ from koenig_check.engines import load_model
 from koenig_check.formulas.point_masses import equimomental_points
 from koenig_check.run.engine_runs import _points_for
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 
 
 def _direct(engine) -> np.ndarray:

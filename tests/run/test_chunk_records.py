@@ -64,7 +64,7 @@ def test_records_of_a_chunk_are_each_formula_evaluated_alone_on_the_engine_state
     from koenig_check.run.engine_runs import run_engine
     from koenig_check.run.poses import random_poses
 
-    pair = load_model(Path(__file__).resolve().parents[1] / "models" / "double_pendulum.xml")
+    pair = load_model(Path(__file__).resolve().parents[2] / "models" / "double_pendulum.xml")
     poses = random_poses(pair.mujoco.model, 6, seed=3)
     runs = {e.engine: run_engine(e, poses) for e in (pair.mujoco, pair.pinocchio)}
     names = [n for n in FORMULAS if "integrated" not in n]

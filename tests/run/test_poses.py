@@ -8,7 +8,7 @@ import pytest
 
 from koenig_check.run.poses import grid_poses, keyframe_poses, random_poses, trajectory_poses
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 
 BALL_FREE_SLIDE = """
 <mujoco>
