@@ -19,19 +19,13 @@ from enum import Enum
 from types import MappingProxyType
 from typing import Any
 
+from koenig_check.exceptions import KoenigCheckError as KoenigCheckError  # its old import path
 from koenig_check.roundoff import fmt
 
 #: The engines a finding can concern.  ``both`` is a finding about the pair (a joint mapping, a
 #: coupling both engines ignore); ``all`` is a three-engine verdict where every engine differs; ``file`` is a
 #: construct of the file itself.
 ENGINES = ("mujoco", "pinocchio", "drake", "both", "all", "file")
-
-
-class KoenigCheckError(Exception):
-    """Root of every exception koenig-check raises on purpose.
-
-    Messages are one line naming the file and the element concerned.
-    """
 
 
 class Kind(str, Enum):

@@ -28,16 +28,13 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.load_options import ENGINE_NAMES
-from koenig_check.findings import Finding, Kind, KoenigCheckError
+from koenig_check.exceptions import DrakeUnavailableError
+from koenig_check.findings import Finding, Kind
 
 #: How engines are named for people.
 LABEL = {"mujoco": "MuJoCo", "pinocchio": "Pinocchio", "drake": "Drake"}
 #: Default relative tolerance under which two engines "agree".
 TIEBREAK_RTOL = 1e-9
-
-
-class DrakeUnavailableError(KoenigCheckError, ValueError):
-    """Drake was asked for (``--engines …,drake``) but ``pydrake`` cannot be imported."""
 
 
 def check_engines(engines: Sequence[str] | None) -> None:

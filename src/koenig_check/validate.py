@@ -13,7 +13,7 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import ModelFileError
 
 #: Largest model file read (bytes).
 MAX_FILE_BYTES = 64 * 1024 * 1024
@@ -21,10 +21,6 @@ MAX_FILE_BYTES = 64 * 1024 * 1024
 MAX_DEPTH = 256
 
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.IGNORECASE)
-
-
-class ModelFileError(KoenigCheckError, ValueError):
-    """A model file cannot be read as MJCF or URDF; the message names the file and the element."""
 
 
 def preflight(path: str | Path) -> str:

@@ -42,17 +42,13 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from koenig_check.engines.errors import ModelLoadError
 from koenig_check.engines.sources import ModelSource
+from koenig_check.exceptions import DrakeLoadError
 from koenig_check.findings import Finding, Kind
 
 #: Drake's own sentence when an MJCF file has no model name.
 MODEL_NAME_REQUIRED = "must have a name attribute or a model name must be specified"
 _LOCATION = re.compile(r"^(?P<file>[^\s:]+):(?P<line>\d+): (?:warning|error): ")
-
-
-class DrakeLoadError(ModelLoadError):
-    """Drake cannot load a model file (or its joints cannot be paired with MuJoCo's); one line naming the file."""
 
 
 def drake_available() -> bool:
