@@ -14,7 +14,14 @@ import sys
 from types import ModuleType
 
 #: Old module name -> the module it moved to.
-MOVED: dict[str, str] = {}
+MOVED: dict[str, str] = {
+    "koenig_check.figures": "koenig_check.report.figures",
+    "koenig_check.output_dir": "koenig_check.report.output_dir",
+    "koenig_check.progress": "koenig_check.report.progress",
+    "koenig_check.report_content": "koenig_check.report.content",
+    "koenig_check.report_html": "koenig_check.report.html",
+    "koenig_check.verdict": "koenig_check.report.terminal",
+}
 
 
 class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):

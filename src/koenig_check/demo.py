@@ -7,7 +7,7 @@ from pathlib import Path
 
 from koenig_check.api import CrossCheck, compare_model, one_line
 from koenig_check.grid import DEFAULT_RTOL, ModelComparison
-from koenig_check.progress import Progress
+from koenig_check.report.progress import Progress
 
 #: Built-in models that are a single free body: loaded with a floating base.
 FLOATING_MODELS = frozenset({"free_body.urdf"})

@@ -8,10 +8,10 @@ import pytest
 
 import koenig_check
 from koenig_check.demo import run_demo
+from koenig_check.report.terminal import WIDTH, verdict_table
 from koenig_check.roundoff import ROUNDOFF, fmt, shown
-from koenig_check.verdict import WIDTH, verdict_table
 
-CAUSES = Path(__file__).parent / "models" / "causes"
+CAUSES = Path(__file__).parents[1] / "models" / "causes"
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from koenig_check.grid import FormulaSummary, ModelComparison
-from koenig_check.report_content import (
+from koenig_check.report.content import (
     COLUMNS,
     POSE_LABELS,
     glossary,

@@ -17,7 +17,7 @@ import pyarrow.parquet as pq
 
 from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
 from koenig_check.records import RECORD_FIELDS, REFUSED_KEY, STORED_SCHEMA, TEXT_FIELDS, RecordTable, without_refused
-from koenig_check.report_content import (
+from koenig_check.report.content import (
     COLUMNS,
     POSE_LABELS,
     glossary,
@@ -151,7 +151,7 @@ def summary_markdown(
     return "\n".join(lines)
 
 
-#: Column titles of the per-model tables (defined in :data:`koenig_check.report_content.COLUMNS`).
+#: Column titles of the per-model tables (defined in :data:`koenig_check.report.content.COLUMNS`).
 COLUMN_TITLES = ("formula", "verdict", "max rel. error", "median", "over / under", "worst pose", "worst segment")
 
 
@@ -444,8 +444,8 @@ def write_report(
     list of Path
         Every file written.
     """
-    from koenig_check.figures import error_distribution_figure, error_map_figure, trajectory_figure
-    from koenig_check.report_html import report_html
+    from koenig_check.report.figures import error_distribution_figure, error_map_figure, trajectory_figure
+    from koenig_check.report.html import report_html
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
