@@ -283,9 +283,9 @@ def _loads_in_both(name: str) -> str:
 
 
 def _finish(check, out: str | None, extra_figures: dict | None = None, records=None) -> int:
-    from koenig_check.report.terminal import verdict_table
+    from koenig_check.report.terminal import terminal_table
 
-    print(verdict_table(check))
+    print(terminal_table(check))
     if out:
         from koenig_check.report import write_report
         from koenig_check.report.output_dir import file_listing, finish_out_dir

@@ -8,7 +8,7 @@ import pytest
 
 import koenig_check
 from koenig_check.demo import run_demo
-from koenig_check.report.terminal import WIDTH, verdict_table
+from koenig_check.report.terminal import WIDTH, terminal_table
 from koenig_check.roundoff import ROUNDOFF, fmt, shown
 
 CAUSES = Path(__file__).parents[1] / "models" / "causes"
@@ -22,7 +22,7 @@ def demo_check():
 
 @pytest.fixture(scope="module")
 def demo_table(demo_check) -> str:
-    return verdict_table(demo_check)
+    return terminal_table(demo_check)
 
 
 def test_demo_verdict_fits_100_columns(demo_table: str) -> None:
@@ -50,7 +50,7 @@ def test_one_row_per_formula_with_worst_and_where(demo_check, demo_table: str) -
 
 def test_disagreeing_model_shows_its_root_cause_wrapped_within_100_columns() -> None:
     check = koenig_check.compare([CAUSES / "class_mass.xml", "gimbal.xml"], n_poses=3)
-    table = verdict_table(check)
+    table = terminal_table(check)
     assert "DISAGREE" in table and max(len(line) for line in table.splitlines()) <= WIDTH
     reason = check.reason().split(": ", 1)[1]
     words = reason.split()[:6]
@@ -59,7 +59,7 @@ def test_disagreeing_model_shows_its_root_cause_wrapped_within_100_columns() -> 
 
 def test_failed_model_is_a_row_with_its_reason() -> None:
     check = koenig_check.compare(["no_such_model_here", "gimbal.xml"], n_poses=2)
-    table = verdict_table(check)
+    table = terminal_table(check)
     assert any(line.startswith("no_such_model_here") and "FAILED" in line for line in table.splitlines())
 
 
@@ -90,3 +90,9 @@ def test_parity_report_prints_armature_round_off_as_zero(model: str) -> None:
     for row in rows:
         mj, pn = (float(x) for x in row.split()[1:3])
         assert all(v == 0 or abs(v) >= ROUNDOFF for v in (mj, pn)) and "e-16" not in row.split()[1]
+
+
+def test_the_former_name_and_module_give_the_same_table() -> None:
+    from koenig_check.verdict import verdict_table  # type: ignore[import-not-found]  # the module's old name
+
+    assert verdict_table is terminal_table

@@ -3,8 +3,11 @@
 Modules, one job each:
 
 ``write``
-    The report directory: :func:`write_report` (summary, JSON, record files, figures, HTML), the record
-    files a run streams into (:class:`RecordFiles`, :class:`RecordSink`).
+    The report directory: :func:`write_report` (summary, JSON, record files, figures, HTML).
+``record_files``
+    The record files a run streams into (:class:`RecordFiles`, :class:`RecordSink`).
+``markdown``
+    ``summary.md``.
 ``content``
     What ``summary.md`` and ``report.html`` both say (glossary, per-model findings and tables, notes).
 ``html``
@@ -24,17 +27,9 @@ The names of the former module ``koenig_check.report`` are imported from here as
 
 from __future__ import annotations
 
-from koenig_check.report.write import (
-    COLUMN_TITLES,
-    SMALL_RUN_ROWS,
-    RecordFiles,
-    RecordSink,
-    figure_name,
-    summary_markdown,
-    write_json,
-    write_records_csv,
-    write_report,
-)
+from koenig_check.report.markdown import COLUMN_TITLES, summary_markdown
+from koenig_check.report.record_files import SMALL_RUN_ROWS, RecordFiles, RecordSink, write_records_csv
+from koenig_check.report.write import figure_name, write_json, write_report
 
 __all__ = [
     "COLUMN_TITLES",
