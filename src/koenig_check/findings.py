@@ -156,21 +156,6 @@ def root_causes(findings: Iterable[Finding]) -> list[Finding]:
     return sorted(roots, key=lambda f: not f.affects_energy)
 
 
-def of_kind(findings: Iterable[Finding], *kinds: Kind) -> list[Finding]:
-    """The findings of the given kinds, in order.
-
-    Parameters
-    ----------
-    findings : iterable of Finding
-    *kinds : Kind
-
-    Returns
-    -------
-    list of Finding
-    """
-    return [f for f in findings if f.kind in kinds]
-
-
 #: A sequence value longer than this is shown by its first items and a count (the record keeps all).
 SHOWN_ITEMS = 6
 

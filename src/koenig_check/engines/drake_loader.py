@@ -46,8 +46,6 @@ from koenig_check.engines.sources import ModelSource
 from koenig_check.exceptions import DrakeLoadError
 from koenig_check.findings import Finding, Kind
 
-#: Drake's own sentence when an MJCF file has no model name.
-MODEL_NAME_REQUIRED = "must have a name attribute or a model name must be specified"
 _LOCATION = re.compile(r"^(?P<file>[^\s:]+):(?P<line>\d+): (?:warning|error): ")
 
 
@@ -327,18 +325,3 @@ def _fix_base(plant: Any, free_joints: dict[str, str], path: Path, findings: lis
             )
         )
 
-
-def drake_model_name_hint(reason: str) -> str:
-    """What to do about a Drake refusal whose cause is known (empty otherwise).
-
-    Parameters
-    ----------
-    reason : str
-
-    Returns
-    -------
-    str
-    """
-    if "cannot mimic joint" in reason:
-        return "Drake's URDF parser accepts a mimic joint only between joints with the same number of dofs"
-    return ""

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import numpy as np
-
 from koenig_check.grid import EngineParity, FormulaSummary, ModelComparison
 from koenig_check.report.content import (
     COLUMNS,
@@ -19,10 +17,6 @@ from koenig_check.report.content import (
     shared_notes,
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
-
-
-def _fmt(x: float) -> str:
-    return f"{x:.2e}" if np.isfinite(x) else str(x)
 
 
 def summary_markdown(

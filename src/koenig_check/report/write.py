@@ -20,10 +20,6 @@ from koenig_check.report.record_files import RecordFiles
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
 
-#: Smallest relative error drawn on a log axis (exact agreement is drawn here).
-LOG_FLOOR = 1e-17
-
-
 def _jsonable(x: Any) -> Any:
     if isinstance(x, float) and not np.isfinite(x):
         return str(x)
