@@ -170,8 +170,8 @@ def write_report(
             (path, f"{comp.model}: relative error of each formula's total energy. {caption}.")
         )
     if len(with_stats) > 1:
-        names = ", ".join(c.model for c in with_stats)
-        caption = f"pooled over {len(with_stats)} models ({names}); each model's own figure is in its section"
+        pooled = ", ".join(c.model for c in with_stats)
+        caption = f"pooled over {len(with_stats)} models ({pooled}); each model's own figure is in its section"
         # The figure's own title names the pooled models; its caption only points to the per-model figures.
         path = error_distribution_figure(
             with_stats, out / "error_distribution.png", check.rtol, "each model's own figure is in its section"
