@@ -31,6 +31,7 @@ from __future__ import annotations
 import os
 import xml.etree.ElementTree as ET
 from collections.abc import Callable
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from functools import wraps
 from pathlib import Path
@@ -610,7 +611,7 @@ def massless_causes(pair: Any) -> list[Finding]:
         names = sorted(n for n, m in have.items() if m > 0 and n in lack and lack[n] <= 0)
         if not names:
             continue
-        values = {"segments": tuple(names)}
+        values: dict[str, Any] = {"segments": tuple(names)}
         values["mujoco" if engine == "pinocchio" else "pinocchio"] = float(sum(have[n] for n in names))
         values[engine] = 0.0
         out.append(
@@ -794,7 +795,7 @@ def compiler_causes(pair: Any) -> list[Finding]:
     return out
 
 
-def mesh_causes(pair: Any, explained: set[str] = frozenset()) -> list[Finding]:
+def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Finding]:
     """Geoms with a mesh in segments whose mass differs between the engines.
 
     Pinocchio 4.1's MJCF parser does not compute mass and inertia from a mesh: verified, a geom of type

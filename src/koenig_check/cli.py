@@ -14,7 +14,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from koenig_check import __version__
 from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
@@ -43,9 +43,9 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
-def _usage_error(args: argparse.Namespace, message: str) -> None:
+def _usage_error(args: argparse.Namespace, message: str) -> NoReturn:
     """Exit with status 2, the command's usage and a one-line message (before any work)."""
-    parser = getattr(args, "parser", None)
+    parser: argparse.ArgumentParser | None = getattr(args, "parser", None)
     if parser is None:
         print(f"koenig-check: error: {message}", file=sys.stderr)
         raise SystemExit(2)
