@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import importlib
+import sys
+from pathlib import Path
 
 import pytest
 
@@ -26,3 +28,18 @@ def test_every_moved_name_imports(old: str) -> None:
 def test_an_unknown_name_is_still_an_import_error() -> None:
     with pytest.raises(ModuleNotFoundError):
         importlib.import_module("koenig_check._no_such_module")
+
+
+
+def test_the_moved_module_keeps_its_own_name_and_reloads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    (tmp_path / "_moved_reload_target.py").write_text("VALUE = 1\n", encoding="utf-8")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setitem(_moved.MOVED, "koenig_check._old_name_for_reload", "_moved_reload_target")
+    old = importlib.import_module("koenig_check._old_name_for_reload")
+    new = importlib.import_module("_moved_reload_target")
+    assert old is new and new.__spec__ is not None and new.__spec__.name == "_moved_reload_target"
+    new.VALUE = 2
+    importlib.reload(new)  # runs the module's file again: its own value is back
+    assert new.VALUE == 1
+    monkeypatch.delitem(sys.modules, "_moved_reload_target")
+    monkeypatch.delitem(sys.modules, "koenig_check._old_name_for_reload")

@@ -37,10 +37,17 @@ class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
         """The module the old name moved to."""
-        return importlib.import_module(MOVED[spec.name])
+        module = importlib.import_module(MOVED[spec.name])
+        # The import system next sets module.__spec__ to the old name's spec: keep the module's own, which
+        # exec_module puts back (else importlib.reload of the new module would be a silent no-op).
+        spec.loader_state = module.__spec__
+        return module
 
     def exec_module(self, module: ModuleType) -> None:
-        """Nothing: the new module was executed when it was imported."""
+        """Nothing to run (the new module ran when it was imported): give the module back its own spec."""
+        own = getattr(module.__spec__, "loader_state", None)
+        if isinstance(own, importlib.machinery.ModuleSpec):
+            module.__spec__ = own
 
 
 def install() -> None:
