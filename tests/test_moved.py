@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import importlib
+import sys
+from pathlib import Path
 
 import pytest
 
@@ -29,11 +31,27 @@ def test_an_unknown_name_is_still_an_import_error() -> None:
 
 
 def test_a_split_module_gives_each_name_from_its_new_home() -> None:
-    from koenig_check.grid import DEFAULT_RTOL, ModelComparison, evaluate_chunk, summarize  # type: ignore[attr-defined]
-
     from koenig_check.run import chunks, comparison, stats, summaries
+    from koenig_check.run.chunks import evaluate_chunk
+    from koenig_check.run.comparison import ModelComparison
+    from koenig_check.run.stats import DEFAULT_RTOL
+    from koenig_check.run.summaries import summarize  # type: ignore[attr-defined]
 
     assert (DEFAULT_RTOL, ModelComparison) == (stats.DEFAULT_RTOL, comparison.ModelComparison)
     assert (evaluate_chunk, summarize) == (chunks.evaluate_chunk, summaries.summarize)
     with pytest.raises(ImportError):
-        from koenig_check.grid import no_such_name  # type: ignore[attr-defined]  # noqa: F401
+        from koenig_check.run.summaries import no_such_name  # type: ignore[attr-defined]  # noqa: F401
+
+
+def test_the_moved_module_keeps_its_own_name_and_reloads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    (tmp_path / "_moved_reload_target.py").write_text("VALUE = 1\n", encoding="utf-8")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setitem(_moved.MOVED, "koenig_check._old_name_for_reload", "_moved_reload_target")
+    old = importlib.import_module("koenig_check._old_name_for_reload")
+    new = importlib.import_module("_moved_reload_target")
+    assert old is new and new.__spec__ is not None and new.__spec__.name == "_moved_reload_target"
+    new.VALUE = 2
+    importlib.reload(new)  # runs the module's file again: its own value is back
+    assert new.VALUE == 1
+    monkeypatch.delitem(sys.modules, "_moved_reload_target")
+    monkeypatch.delitem(sys.modules, "koenig_check._old_name_for_reload")

@@ -27,18 +27,30 @@ MOVED: dict[str, str] = {
     "koenig_check.engines.drake_loader": "koenig_check.engines.drake.loader",
     "koenig_check.engines.drake_state_map": "koenig_check.engines.drake.state_map",
     "koenig_check.engines.drake_inertia": "koenig_check.engines.drake.inertia",
-    "koenig_check.tiebreak": "koenig_check.diagnosis.three_way",
     "koenig_check.parity": "koenig_check.diagnosis.import_parity",
     "koenig_check.pipeline": "koenig_check.run.pipeline",
     "koenig_check.poses": "koenig_check.run.poses",
     "koenig_check.pose_file": "koenig_check.run.pose_file",
     "koenig_check.records": "koenig_check.run.records",
     "koenig_check.stats": "koenig_check.run.stats",
+    "koenig_check.figures": "koenig_check.report.figures",
+    "koenig_check.output_dir": "koenig_check.report.output_dir",
+    "koenig_check.progress": "koenig_check.report.progress",
+    "koenig_check.report_content": "koenig_check.report.content",
+    "koenig_check.report_html": "koenig_check.report.html",
+    "koenig_check.verdict": "koenig_check.report.terminal",
 }
 
 
 #: Old module name -> the modules it was split into.
 SPLIT: dict[str, tuple[str, ...]] = {
+    "koenig_check.tiebreak": (
+        "koenig_check.diagnosis.three_way",
+        "koenig_check.diagnosis.reason",
+        "koenig_check.engines.registry",
+        "koenig_check.engines.drake.attach",
+        "koenig_check.exceptions",
+    ),
     "koenig_check.grid": (
         "koenig_check.run.comparison",
         "koenig_check.run.chunks",
@@ -81,10 +93,17 @@ class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         """The module the old name moved to."""
         if spec.name in SPLIT:
             return _SplitModule(spec.name, SPLIT[spec.name])
-        return importlib.import_module(MOVED[spec.name])
+        module = importlib.import_module(MOVED[spec.name])
+        # The import system next sets module.__spec__ to the old name's spec: keep the module's own, which
+        # exec_module puts back (else importlib.reload of the new module would be a silent no-op).
+        spec.loader_state = module.__spec__
+        return module
 
     def exec_module(self, module: ModuleType) -> None:
-        """Nothing: the new module was executed when it was imported."""
+        """Nothing to run (the new module ran when it was imported): give the module back its own spec."""
+        own = getattr(module.__spec__, "loader_state", None)
+        if isinstance(own, importlib.machinery.ModuleSpec):
+            module.__spec__ = own
 
 
 def install() -> None:

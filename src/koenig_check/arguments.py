@@ -1,7 +1,7 @@
 """Argument checks shared by the API and the command line, run before any work starts.
 
 A bad argument is a usage error: :class:`ArgumentValueError` (a :class:`ValueError`) or
-:class:`ArgumentTypeError` (a :class:`TypeError`), both :class:`~koenig_check.findings.KoenigCheckError`.
+:class:`ArgumentTypeError` (a :class:`TypeError`), both :class:`~koenig_check.exceptions.KoenigCheckError`.
 The API raises them instead of recording a model failure; the command line exits with status 2.
 """
 
@@ -14,7 +14,7 @@ from collections.abc import Callable, Mapping, Sequence
 from numbers import Integral, Real
 from typing import Any
 
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import ArgumentTypeError, ArgumentValueError
 
 POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
 
@@ -25,14 +25,6 @@ POSE_KIND_HELP = {
     "grid": "an N x N sweep of the two --grid-joints over their range, unit rate on each, other joints at rest",
     "trajectory": "N samples of a torque-free MuJoCo simulation (gravity off) of --duration seconds",
 }
-
-
-class ArgumentValueError(KoenigCheckError, ValueError):
-    """An argument with a value the tool cannot use (a usage error)."""
-
-
-class ArgumentTypeError(KoenigCheckError, TypeError):
-    """A keyword the function does not take, or an argument of the wrong type (a usage error)."""
 
 
 def check_keywords(given: Mapping[str, Any], accepted: Sequence[str], where: str) -> None:

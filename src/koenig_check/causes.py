@@ -31,14 +31,22 @@ from __future__ import annotations
 import os
 import xml.etree.ElementTree as ET
 from collections.abc import Callable
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from functools import wraps
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 import mujoco
 import numpy as np
 
+from koenig_check.exceptions import (
+    CoupledJointsError,
+    InertiaError,
+    JointMismatch,
+    ModelLoadError,
+    NoMovingSegmentError,
+)
 from koenig_check.findings import Finding, Kind
 
 #: Attributes that Pinocchio 4.1's MJCF parser ignores when they come from a default class.
@@ -369,8 +377,9 @@ def nothing_moves(path: str | os.PathLike[str], has_body: bool = True) -> Findin
 def explain_load_failures(load: F) -> F:
     """Decorate a loader so that its load errors carry the file's root causes.
 
-    The error keeps its type; ``err.causes`` is the list of root causes (possibly empty) and, when there
-    are any, the one-line message ends with them.  A model without a joint gets :func:`nothing_moves`.
+    The error keeps its type; ``err.causes`` (:attr:`~koenig_check.exceptions.KoenigCheckError.causes`) is
+    the tuple of root causes (possibly empty) and, when there are any, the one-line message ends with them.
+    A model without a joint gets :func:`nothing_moves`.
 
     Parameters
     ----------
@@ -384,30 +393,19 @@ def explain_load_failures(load: F) -> F:
 
     @wraps(load)
     def wrapper(path_or_name: Any, *args: Any, **kwargs: Any) -> Any:
-        from koenig_check.engines.errors import (
-            CoupledJointsError,
-            InertiaError,
-            JointMismatch,
-            ModelLoadError,
-            NoMovingSegmentError,
-        )
-
         try:
             return load(path_or_name, *args, **kwargs)
         except NoMovingSegmentError as err:
-            err.causes = [nothing_moves(getattr(err, "path", path_or_name))]  # type: ignore[attr-defined]
+            err.attach_causes([nothing_moves(getattr(err, "path", path_or_name))], in_message=False)
             raise
         except (CoupledJointsError, InertiaError) as err:  # MuJoCo's refusal or the file's couplings
-            err.causes = []  # type: ignore[attr-defined]
+            err.attach_causes([])
             raise
         except (ModelLoadError, JointMismatch) as err:
-            causes = _file_causes_of(path_or_name, kwargs.get("fmt"))
-            err.causes = causes  # type: ignore[attr-defined]
-            if causes and err.args:
-                err.args = (f"{err.args[0]}; root cause: " + "; ".join(f.message() for f in causes), *err.args[1:])
+            err.attach_causes(_file_causes_of(path_or_name, kwargs.get("fmt")))
             raise
 
-    return wrapper  # type: ignore[return-value]
+    return cast("F", wrapper)
 
 
 def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
@@ -613,7 +611,7 @@ def massless_causes(pair: Any) -> list[Finding]:
         names = sorted(n for n, m in have.items() if m > 0 and n in lack and lack[n] <= 0)
         if not names:
             continue
-        values = {"segments": tuple(names)}
+        values: dict[str, Any] = {"segments": tuple(names)}
         values["mujoco" if engine == "pinocchio" else "pinocchio"] = float(sum(have[n] for n in names))
         values[engine] = 0.0
         out.append(
@@ -797,7 +795,7 @@ def compiler_causes(pair: Any) -> list[Finding]:
     return out
 
 
-def mesh_causes(pair: Any, explained: set[str] = frozenset()) -> list[Finding]:
+def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Finding]:
     """Geoms with a mesh in segments whose mass differs between the engines.
 
     Pinocchio 4.1's MJCF parser does not compute mass and inertia from a mesh: verified, a geom of type

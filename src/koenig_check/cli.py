@@ -14,7 +14,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from koenig_check import __version__
 from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
@@ -43,9 +43,9 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
-def _usage_error(args: argparse.Namespace, message: str) -> None:
+def _usage_error(args: argparse.Namespace, message: str) -> NoReturn:
     """Exit with status 2, the command's usage and a one-line message (before any work)."""
-    parser = getattr(args, "parser", None)
+    parser: argparse.ArgumentParser | None = getattr(args, "parser", None)
     if parser is None:
         print(f"koenig-check: error: {message}", file=sys.stderr)
         raise SystemExit(2)
@@ -55,7 +55,7 @@ def _usage_error(args: argparse.Namespace, message: str) -> None:
 def _check_out(args: argparse.Namespace) -> None:
     """Refuse an unusable ``--out`` before any work."""
     from koenig_check.arguments import ArgumentValueError
-    from koenig_check.output_dir import check_out_dir
+    from koenig_check.report.output_dir import check_out_dir
 
     if getattr(args, "out", None):
         try:
@@ -284,12 +284,12 @@ def _loads_in_both(name: str) -> str:
 
 
 def _finish(check, out: str | None, extra_figures: dict | None = None, records=None) -> int:
-    from koenig_check.verdict import verdict_table
+    from koenig_check.report.terminal import terminal_table
 
-    print(verdict_table(check))
+    print(terminal_table(check))
     if out:
-        from koenig_check.output_dir import file_listing, finish_out_dir
         from koenig_check.report import write_report
+        from koenig_check.report.output_dir import file_listing, finish_out_dir
 
         written = finish_out_dir(out, write_report(Path(out), check, **(extra_figures or {}), records=records))
         print("\n" + file_listing(out, written))
@@ -339,7 +339,7 @@ def _load_options(args: argparse.Namespace) -> LoadOptions:
 
 def _cmd_compare(args: argparse.Namespace) -> int:
     from koenig_check.api import compare
-    from koenig_check.progress import Progress
+    from koenig_check.report.progress import Progress
 
     _check_compare_usage(args)
     load_options = _load_options(args)
@@ -354,8 +354,8 @@ def _cmd_compare(args: argparse.Namespace) -> int:
         client = Client(args.scheduler)
     sink = None
     if args.out:
-        from koenig_check.output_dir import clean_out_dir
         from koenig_check.report import RecordFiles
+        from koenig_check.report.output_dir import clean_out_dir
 
         clean_out_dir(args.out)
         sink = RecordFiles(Path(args.out))
@@ -402,7 +402,7 @@ def _aborted_on_error(sink: Any) -> Iterator[None]:
 
 def _cmd_demo(args: argparse.Namespace) -> int:
     from koenig_check.demo import run_demo
-    from koenig_check.output_dir import clean_out_dir
+    from koenig_check.report.output_dir import clean_out_dir
 
     _check_compare_usage(args)
     check, figures = run_demo(n_poses=args.poses, seed=args.seed, rtol=args.rtol)
@@ -498,7 +498,7 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
     )
     print("\n".join(terminal_lines(result)))
     if args.out:
-        from koenig_check.output_dir import clean_out_dir, file_listing, finish_out_dir
+        from koenig_check.report.output_dir import clean_out_dir, file_listing, finish_out_dir
 
         clean_out_dir(args.out)
         written = finish_out_dir(args.out, write_dynamics(Path(args.out), result))

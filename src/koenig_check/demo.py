@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import importlib.resources
 from pathlib import Path
+from typing import Any
 
 from koenig_check.api import CrossCheck, compare_model, one_line
-from koenig_check.progress import Progress
+from koenig_check.report.progress import Progress
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.stats import DEFAULT_RTOL
 
@@ -57,7 +58,7 @@ def run_demo(
     models = builtin_models()
     by_name = {p.name: p for p in models}
     gimbal_path, gimbal_joints = by_name[GIMBAL[0]], GIMBAL[1]
-    jobs = [
+    jobs: list[tuple[str, dict[str, Any]]] = [
         (p.name, {"model": p, "n_poses": n_poses, "seed": seed, "floating": p.name in FLOATING_MODELS}) for p in models
     ]
     jobs.append(

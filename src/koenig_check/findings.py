@@ -19,19 +19,13 @@ from enum import Enum
 from types import MappingProxyType
 from typing import Any
 
+from koenig_check.exceptions import KoenigCheckError as KoenigCheckError  # its old import path
 from koenig_check.roundoff import fmt
 
 #: The engines a finding can concern.  ``both`` is a finding about the pair (a joint mapping, a
 #: coupling both engines ignore); ``all`` is a three-engine verdict where every engine differs; ``file`` is a
 #: construct of the file itself.
 ENGINES = ("mujoco", "pinocchio", "drake", "both", "all", "file")
-
-
-class KoenigCheckError(Exception):
-    """Root of every exception koenig-check raises on purpose.
-
-    Messages are one line naming the file and the element concerned.
-    """
 
 
 class Kind(str, Enum):
@@ -59,7 +53,7 @@ class Kind(str, Enum):
     IGNORED_CONSTRUCT = "ignored_construct"  # a file construct one engine's parser ignores
     # An engine disagreeing with itself (energy against ½ q̇ᵀ M q̇, RNEA against M q̈).
     SELF_CONSISTENCY = "self_consistency"
-    # Three engines compared: which one departs (koenig_check.tiebreak).
+    # Three engines compared: which one departs (koenig_check.diagnosis.three_way).
     VERDICT = "verdict"
     # Nothing to compare.
     NOTHING_MOVES = "nothing_moves"
@@ -161,21 +155,6 @@ def root_causes(findings: Iterable[Finding]) -> list[Finding]:
     """
     roots = [f for f in findings if f.root_cause]
     return sorted(roots, key=lambda f: not f.affects_energy)
-
-
-def of_kind(findings: Iterable[Finding], *kinds: Kind) -> list[Finding]:
-    """The findings of the given kinds, in order.
-
-    Parameters
-    ----------
-    findings : iterable of Finding
-    *kinds : Kind
-
-    Returns
-    -------
-    list of Finding
-    """
-    return [f for f in findings if f.kind in kinds]
 
 
 #: A sequence value longer than this is shown by its first items and a count (the record keeps all).

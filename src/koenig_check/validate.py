@@ -11,9 +11,11 @@ from __future__ import annotations
 
 import re
 import xml.etree.ElementTree as ET
+from collections.abc import Iterator
 from pathlib import Path
+from typing import cast
 
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import ModelFileError
 
 #: Largest model file read (bytes).
 MAX_FILE_BYTES = 64 * 1024 * 1024
@@ -21,10 +23,6 @@ MAX_FILE_BYTES = 64 * 1024 * 1024
 MAX_DEPTH = 256
 
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.IGNORECASE)
-
-
-class ModelFileError(KoenigCheckError, ValueError):
-    """A model file cannot be read as MJCF or URDF; the message names the file and the element."""
 
 
 def preflight(path: str | Path) -> str:
@@ -88,14 +86,15 @@ def _refuse_nan(path: Path, elem: ET.Element) -> None:
 
 
 def _root_format(path: Path, data: bytes) -> str:
-    parser = ET.XMLPullParser(events=("start", "end"))
+    parser: ET.XMLPullParser[ET.Element] = ET.XMLPullParser(events=("start", "end"))
     depth = 0
     root_tag = None
     try:
         # Feed in chunks so that a pathological depth is caught before the tree is built.
         for i in range(0, len(data), 1 << 16):
             parser.feed(data[i : i + (1 << 16)])
-            for event, elem in parser.read_events():
+            # Only "start" and "end" events were asked for: each is (event, element).
+            for event, elem in cast("Iterator[tuple[str, ET.Element]]", parser.read_events()):
                 if event == "start":
                     depth += 1
                     if root_tag is None:

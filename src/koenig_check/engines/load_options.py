@@ -43,7 +43,7 @@ class LoadOptions:
     engines : tuple of str, optional
         The engines to run on every model: ``("mujoco", "pinocchio")`` or ``("mujoco", "pinocchio",
         "drake")``.  ``None`` (default): MuJoCo and Pinocchio, and Drake as tie-breaker on a model where
-        they disagree, when Drake is installed (:mod:`koenig_check.tiebreak`).
+        they disagree, when Drake is installed (:mod:`koenig_check.diagnosis.policy`).
     """
 
     floating: bool = False

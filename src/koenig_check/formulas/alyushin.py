@@ -25,34 +25,12 @@ Recipe = Literal["current", "paper"]
 RECIPES: tuple[str, ...] = ("current", "paper")
 
 
-def rotational_energy_30(omega: np.ndarray, axial: np.ndarray, centrifugal: np.ndarray) -> np.ndarray:
-    """Evaluate the rotational part of eq. (30)/(34).
-
-    ``½(θ_z² J^z + θ_y² J^y + θ_x² J^x) − θ_y θ_z I_yz − θ_x θ_z I_xz − θ_y θ_x I_xy``.
-
-    Parameters
-    ----------
-    omega : ndarray, shape (..., 3)
-        ``(θ_x,t, θ_y,t, θ_z,t)``.
-    axial : ndarray, shape (..., 3)
-        ``(J^x, J^y, J^z)``.
-    centrifugal : ndarray, shape (..., 3)
-        ``(I_yz, I_zx, I_xy)``.
-
-    Returns
-    -------
-    ndarray, shape (...)
-    """
-    wx, wy, wz = omega[..., 0], omega[..., 1], omega[..., 2]
-    i_yz, i_zx, i_xy = centrifugal[..., 0], centrifugal[..., 1], centrifugal[..., 2]
-    axial_part = wx * wx * axial[..., 0] + wy * wy * axial[..., 1] + wz * wz * axial[..., 2]
-    return 0.5 * axial_part - wy * wz * i_yz - wx * wz * i_zx - wy * wx * i_xy
-
-
 def rotational_energy_30_planes(
     squares: np.ndarray, products: np.ndarray, axial: np.ndarray, centrifugal: np.ndarray
 ) -> np.ndarray:
-    """:func:`rotational_energy_30` on component planes, with ``θ_i²`` and ``θ_i θ_j`` given (shared).
+    """The rotational part of eq. (30)/(34) on component planes, with ``θ_i²`` and ``θ_i θ_j`` given (shared).
+
+    ``½(θ_z² J^z + θ_y² J^y + θ_x² J^x) − θ_y θ_z I_yz − θ_x θ_z I_xz − θ_y θ_x I_xy``.
 
     Parameters
     ----------
@@ -86,20 +64,6 @@ def _times(planes: np.ndarray, factor: np.ndarray, out: np.ndarray) -> np.ndarra
     if factor.ndim == 1 and planes.ndim > 1:
         return scale(planes, factor, out=out)
     return np.multiply(planes, factor, out=out)
-
-
-def centrifugal_of(S: np.ndarray) -> np.ndarray:
-    """Return ``(I_yz, I_zx, I_xy)`` of eq. (27) from second-moment matrices.
-
-    Parameters
-    ----------
-    S : ndarray, shape (..., 3, 3)
-
-    Returns
-    -------
-    ndarray, shape (..., 3)
-    """
-    return np.stack([S[..., 1, 2], S[..., 0, 2], S[..., 0, 1]], axis=-1)
 
 
 def centrifugal_update_33(
@@ -182,7 +146,7 @@ def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t, t2
 
 
-def _shared_trig(states, convention: str, angles: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+def _shared_trig(states, convention: Convention, angles: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
     """``(sin 2Δθ, cos 2Δθ)`` as planes (3, P, B), once per convention and shared state set."""
     dtheta = angle_components(states, convention, angles)
     if angles is None:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 
 from koenig_check.formulas import terms
-from koenig_check.formulas.cache import memo
 from koenig_check.segments import SegmentStates
 
 
@@ -21,20 +20,6 @@ def translational(states: SegmentStates) -> np.ndarray:
     ndarray, shape (P, B)
     """
     return terms.translational(states)
-
-
-def body_angular_velocity(states: SegmentStates) -> np.ndarray:
-    """Return the angular velocity in segment axes, ``R^T ω``.
-
-    Parameters
-    ----------
-    states : SegmentStates
-
-    Returns
-    -------
-    ndarray, shape (P, B, 3)
-    """
-    return memo(states, "body_omega", lambda: np.einsum("pbji,pbj->pbi", states.rotation, states.omega))
 
 
 def exact(states: SegmentStates) -> np.ndarray:

@@ -6,16 +6,12 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import NotPlaneParallelError
 from koenig_check.formulas.exact import translational
 from koenig_check.segments import SegmentStates
 
 #: Default relative tolerance for the plane-parallel test.
 PLANAR_RTOL = 1e-9
-
-
-class NotPlaneParallelError(KoenigCheckError, ValueError):
-    """Raised when eq. (16) is asked for a motion that is not plane-parallel."""
 
 
 def _infer_normals(states: SegmentStates) -> np.ndarray:

@@ -24,7 +24,8 @@ import numpy as np
 from koenig_check.engines import ModelPair, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
-from koenig_check.findings import Finding, Kind, KoenigCheckError
+from koenig_check.exceptions import KoenigCheckError
+from koenig_check.findings import Finding, Kind
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
 from koenig_check.implied_dynamics.drake_column import add_drake_column
 from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix

@@ -21,12 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import PathDependentError
 from koenig_check.formulas import FORMULAS
-
-
-class PathDependentError(KoenigCheckError):
-    """Raised when a formula's energy depends on the path, not on the state ``(q, q̇)``."""
 
 
 @dataclass(frozen=True)

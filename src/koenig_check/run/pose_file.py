@@ -20,15 +20,11 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.canonical import mujoco_coordinate_names
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import PoseFileError
 from koenig_check.run.poses import PoseSet
 
 #: Largest accepted deviation of a quaternion's norm from 1.
 QUAT_NORM_TOL = 1e-6
-
-
-class PoseFileError(KoenigCheckError, ValueError):
-    """A pose file cannot be used; the message names the file, the row and the column."""
 
 
 def _read(path: Path, nq: int, nv: int) -> tuple[np.ndarray, np.ndarray, tuple[str, ...] | None]:

@@ -18,13 +18,8 @@ from typing import Any
 import numpy as np
 import pyarrow as pa
 
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import RecordFileError
 from koenig_check.run.stats import absolute_relative_error
-
-
-class RecordFileError(KoenigCheckError, ValueError):
-    """A file read as records is not a record file."""
-
 
 #: The columns of every record, in order.
 RECORD_FIELDS = (

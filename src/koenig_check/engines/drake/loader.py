@@ -41,17 +41,11 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from koenig_check.engines.errors import ModelLoadError
 from koenig_check.engines.sources import ModelSource
+from koenig_check.exceptions import DrakeLoadError
 from koenig_check.findings import Finding, Kind
 
-#: Drake's own sentence when an MJCF file has no model name.
-MODEL_NAME_REQUIRED = "must have a name attribute or a model name must be specified"
 _LOCATION = re.compile(r"^(?P<file>[^\s:]+):(?P<line>\d+): (?:warning|error): ")
-
-
-class DrakeLoadError(ModelLoadError):
-    """Drake cannot load a model file (or its joints cannot be paired with MuJoCo's); one line naming the file."""
 
 
 def drake_available() -> bool:
@@ -262,7 +256,7 @@ def load_drake(source: ModelSource, free_joints: dict[str, str] | None = None) -
         with _drake_warnings(messages):
             if source.format == "mjcf" and _needs_model_name(path):
                 with _named_copy(path) as parsed:
-                    parser.AddModels(str(parsed))
+                    parser.AddModels(str(parsed))  # type: ignore[arg-type]  # the binding's path caster takes str
                 findings.append(
                     Finding(
                         Kind.LOAD,
@@ -274,13 +268,13 @@ def load_drake(source: ModelSource, free_joints: dict[str, str] | None = None) -
                     )
                 )
             else:
-                parser.AddModels(str(path))
+                parser.AddModels(str(path))  # type: ignore[arg-type]  # the binding's path caster takes str
     except RuntimeError as exc:
         reason = one_line_reason(str(exc).replace(str(parsed), str(path)), path)
         raise DrakeLoadError(f"{path}: Drake cannot load the file: {reason}") from exc
     findings += warning_findings([m.replace(str(parsed), str(path)) for m in messages], path)
     _fix_base(plant, dict(free_joints or {}), path, findings)
-    plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])
+    plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])  # type: ignore[arg-type]  # Eigen takes a list
     try:
         plant.Finalize()
     except RuntimeError as exc:
@@ -328,19 +322,3 @@ def _fix_base(plant: Any, free_joints: dict[str, str], path: Path, findings: lis
                 "root link welded to the world at the file's pose (Drake would give it a floating base)",
             )
         )
-
-
-def drake_model_name_hint(reason: str) -> str:
-    """What to do about a Drake refusal whose cause is known (empty otherwise).
-
-    Parameters
-    ----------
-    reason : str
-
-    Returns
-    -------
-    str
-    """
-    if "cannot mimic joint" in reason:
-        return "Drake's URDF parser accepts a mimic joint only between joints with the same number of dofs"
-    return ""

@@ -1,6 +1,6 @@
 """What the report says, independent of its format: findings in words, glossary, column definitions, notes.
 
-``summary.md`` (:mod:`koenig_check.report`) and ``report.html`` (:mod:`koenig_check.report_html`) render
+``summary.md`` (:mod:`koenig_check.report`) and ``report.html`` (:mod:`koenig_check.report.html`) render
 the same content from these functions.
 """
 

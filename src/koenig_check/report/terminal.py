@@ -1,4 +1,4 @@
-"""The verdict printed on the terminal, within 100 columns: one row per model, then one row per formula."""
+"""The table printed on the terminal, within 100 columns: one row per model, then one row per formula."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from koenig_check.api import CrossCheck
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.run.summaries import FormulaSummary
 
-#: Terminal width the verdict fits in.
+#: Terminal width the table fits in.
 WIDTH = 100
 
 
@@ -83,7 +83,7 @@ def formula_rows(summaries: Sequence[FormulaSummary], poses: dict[str, int]) -> 
     return out
 
 
-def verdict_table(check: CrossCheck) -> str:
+def terminal_table(check: CrossCheck) -> str:
     """Render a cross-check for a 100-column terminal.
 
     First one row per model: do MuJoCo and Pinocchio agree (the largest relative difference of their
@@ -138,3 +138,7 @@ def verdict_table(check: CrossCheck) -> str:
         "over/under: share of poses where the formula over- / under-estimates the engine's energy.",
     ]
     return "\n".join(lines)
+
+
+#: The former name of :func:`terminal_table` ("verdict" now means only the three-engine ``Kind.VERDICT``).
+verdict_table = terminal_table

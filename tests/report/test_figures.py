@@ -10,8 +10,8 @@ import pytest
 from matplotlib.figure import Figure
 
 import koenig_check
-from koenig_check import figures
 from koenig_check.api import compare_model
+from koenig_check.report import figures
 from koenig_check.roundoff import ROUNDOFF
 
 
@@ -63,7 +63,7 @@ def test_exact_formulas_are_dots_in_the_rounding_band_and_tolerance_is_drawn(two
 
 def test_error_map_panels_share_one_colour_scale_and_state_the_joint_rates(drawn, tmp_path: Path) -> None:
     comp = compare_model("gimbal.xml", pose_kind="grid", grid_joints=("outer_z", "inner_x"), n_poses=7)
-    from koenig_check.report_content import run_conditions
+    from koenig_check.report.content import run_conditions
 
     caption = run_conditions(comp)
     forms = ("koenig_world", "alyushin_paper:rotvec")

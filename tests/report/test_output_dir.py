@@ -8,7 +8,7 @@ import pytest
 
 from koenig_check import cli
 from koenig_check.arguments import ArgumentValueError
-from koenig_check.output_dir import MANIFEST, check_out_dir, clean_out_dir, finish_out_dir
+from koenig_check.report.output_dir import MANIFEST, check_out_dir, clean_out_dir, finish_out_dir
 
 
 def _listed(stdout: str) -> set[str]:

@@ -11,9 +11,9 @@ import pytest
 import koenig_check
 from koenig_check.formulas import FORMULAS
 from koenig_check.report import COLUMN_TITLES, summary_markdown
-from koenig_check.report_content import COLUMNS, POSE_LABELS
+from koenig_check.report.content import COLUMNS, POSE_LABELS
 
-CAUSES = Path(__file__).parent / "models" / "causes"
+CAUSES = Path(__file__).parents[1] / "models" / "causes"
 
 
 @pytest.fixture(scope="module")

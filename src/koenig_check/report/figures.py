@@ -52,7 +52,10 @@ def _draw_boxes(ax: Any, boxes: np.ndarray, color: str, height: float = 0.3) -> 
     y, lo, q1, med, q3, hi = boxes.T
     top, bottom = y - height / 2, y + height / 2
     rects = np.stack([np.c_[q1, top], np.c_[q3, top], np.c_[q3, bottom], np.c_[q1, bottom]], axis=1)
-    ax.add_collection(PolyCollection(rects, facecolors=color, alpha=0.6, edgecolors="black", linewidths=0.8))
+    # matplotlib's stubs ask for a Sequence; an (N, k, 2) array is what its collections take fastest.
+    ax.add_collection(
+        PolyCollection(rects, facecolors=color, alpha=0.6, edgecolors="black", linewidths=0.8)  # type: ignore[arg-type]
+    )
     caps = height / 4
     whiskers = np.concatenate(
         [
@@ -62,9 +65,9 @@ def _draw_boxes(ax: Any, boxes: np.ndarray, color: str, height: float = 0.3) -> 
             np.stack([np.c_[hi, y - caps], np.c_[hi, y + caps]], axis=1),
         ]
     )
-    ax.add_collection(LineCollection(whiskers, colors="black", linewidths=0.8))
+    ax.add_collection(LineCollection(whiskers, colors="black", linewidths=0.8))  # type: ignore[arg-type]  # as above
     medians = np.stack([np.c_[med, top], np.c_[med, bottom]], axis=1)
-    ax.add_collection(LineCollection(medians, colors="black", linewidths=1.2))
+    ax.add_collection(LineCollection(medians, colors="black", linewidths=1.2))  # type: ignore[arg-type]  # as above
 
 
 def error_distribution_figure(
@@ -163,7 +166,7 @@ def error_map_figure(
     -------
     Path
     """
-    grid = comparison.poses.grid
+    grid = comparison.poses.grid if comparison.poses is not None else None
     if grid is None:
         raise ValueError(f"{comparison.model}: the poses are not a grid sweep")
     shape = grid["shape"]
@@ -216,7 +219,7 @@ def trajectory_figure(
     -------
     Path
     """
-    times = comparison.poses.times
+    times = comparison.poses.times if comparison.poses is not None else None
     if times is None:
         raise ValueError(f"{comparison.model}: the poses are not a trajectory")
     fig = Figure(figsize=(10, 7), layout="constrained")

@@ -12,7 +12,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from koenig_check.report_content import (
+from koenig_check.report.content import (
     COLUMNS,
     POSE_LABELS,
     glossary,

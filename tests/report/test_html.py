@@ -12,7 +12,7 @@ import koenig_check
 from koenig_check.api import compare_model
 from koenig_check.report import figure_name, write_report
 
-CAUSES = Path(__file__).parent / "models" / "causes"
+CAUSES = Path(__file__).parents[1] / "models" / "causes"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 

@@ -1,0 +1,217 @@
+"""Every exception koenig-check raises on purpose: the root :class:`KoenigCheckError` and its subclasses.
+
+Each message is one line naming the file (or the argument) and the element concerned.  Values a caller
+needs are attributes, not text to parse: the root causes of a load failure are
+:attr:`KoenigCheckError.causes` (typed :class:`~koenig_check.findings.Finding` records), the joints
+that cannot be paired are :attr:`JointMismatch.only_in_mujoco` and its siblings.
+
+The modules that raise these errors import them from here and keep their old names
+(``koenig_check.engines.errors.ModelLoadError``, ``koenig_check.validate.ModelFileError``, …).
+
+Hierarchy::
+
+    KoenigCheckError
+    ├── ArgumentValueError (ValueError), ArgumentTypeError (TypeError)   usage errors
+    ├── ModelFileError (ValueError)                                      the file cannot be read as MJCF/URDF
+    ├── ModelLoadError (ValueError)                                      an engine cannot load the file
+    │   ├── InertiaError, CoupledJointsError, NoMovingSegmentError
+    │   └── DrakeLoadError
+    ├── JointMismatch (ValueError)                                       the engines' joints cannot be paired
+    ├── DrakeUnavailableError (ValueError)                               Drake asked for, not installed
+    ├── PoseFileError (ValueError), RecordFileError (ValueError)         input files of a run
+    ├── NotPlaneParallelError (ValueError)                               eq. (16) on a motion not in a plane
+    └── PathDependentError                                               a formula's energy needs the path
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from koenig_check.findings import Finding
+
+__all__ = [
+    "ArgumentTypeError",
+    "ArgumentValueError",
+    "CoupledJointsError",
+    "DrakeLoadError",
+    "DrakeUnavailableError",
+    "EngineUnavailableError",
+    "InertiaError",
+    "JointMismatch",
+    "KoenigCheckError",
+    "ModelFileError",
+    "ModelLoadError",
+    "NoMassError",
+    "NoMovingSegmentError",
+    "NotPlaneParallelError",
+    "PathDependentError",
+    "PoseFileError",
+    "RecordFileError",
+]
+
+
+class KoenigCheckError(Exception):
+    """Root of every exception koenig-check raises on purpose.
+
+    Messages are one line naming the file and the element concerned.
+
+    Attributes
+    ----------
+    causes : tuple of Finding
+        The root causes found for this error (a construct of the file one engine's parser reads
+        differently, a model without a joint), set by :meth:`attach_causes`; empty when none was found
+        or none was looked for.
+    """
+
+    causes: tuple[Finding, ...] = ()
+
+    def attach_causes(self, causes: Iterable[Finding], *, in_message: bool = True) -> None:
+        """Record the root causes of this error and, when asked and there are any, end the message with them.
+
+        Parameters
+        ----------
+        causes : iterable of Finding
+            The root causes (possibly none).
+        in_message : bool
+            Append ``"; root cause: <cause>; <cause>…"`` to the one-line message when there are causes.
+        """
+        self.causes = tuple(causes)
+        if in_message and self.causes and self.args:
+            found = "; ".join(c.message() for c in self.causes)
+            self.args = (f"{self.args[0]}; root cause: {found}", *self.args[1:])
+
+
+# ------------------------------------------------------------------------------------------ usage errors
+class ArgumentValueError(KoenigCheckError, ValueError):
+    """An argument with a value the tool cannot use (a usage error)."""
+
+
+class ArgumentTypeError(KoenigCheckError, TypeError):
+    """A keyword the function does not take, or an argument of the wrong type (a usage error)."""
+
+
+# --------------------------------------------------------------------------------- model files and loading
+class ModelFileError(KoenigCheckError, ValueError):
+    """A model file cannot be read as MJCF or URDF; the message names the file and the element."""
+
+
+class ModelLoadError(KoenigCheckError, ValueError):
+    """A model file cannot be loaded by one engine; the message names the file and the element."""
+
+
+class InertiaError(ModelLoadError):
+    """MuJoCo rejects a link's mass or inertia; the message names the link and the reason."""
+
+
+class CoupledJointsError(ModelLoadError):
+    """The model couples joints (mimic, equality constraints) or closes loops; the message names them."""
+
+
+class NoMovingSegmentError(ModelLoadError):
+    """The model has no joint: nothing moves, there is no kinetic energy to compare."""
+
+
+class NoMassError(ModelLoadError):
+    """Nothing that moves has mass (at most round-off, e.g. MuJoCo's minimum masses of a repair).
+
+    Parameters
+    ----------
+    message : str
+        One line naming the file and the massless moving links.
+    links : tuple of str
+        The moving links (bodies) without mass.
+    """
+
+    def __init__(self, message: str, links: tuple[str, ...] = ()) -> None:
+        super().__init__(message)
+        self.links = tuple(links)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.args[0] if self.args else "", self.links))
+
+
+class DrakeLoadError(ModelLoadError):
+    """Drake cannot load a model file (or its joints cannot be paired with MuJoCo's); one line naming the file."""
+
+
+class JointMismatch(KoenigCheckError, ValueError):  # noqa: N818 - the name the design uses
+    """The joints of the MuJoCo model and the Pinocchio model cannot be paired by name.
+
+    Parameters
+    ----------
+    path : str
+        The model file.
+    only_in_mujoco : list of str
+        Canonical (MuJoCo) joint names with no Pinocchio counterpart.
+    only_in_pinocchio : list of str
+        Pinocchio joint names with no MuJoCo counterpart.
+    kind_mismatch : list of str
+        Joints present in both engines whose types are incompatible, as ``"name: mujoco-kind vs pin-kind"``.
+    """
+
+    def __init__(
+        self,
+        path: str,
+        only_in_mujoco: list[str],
+        only_in_pinocchio: list[str],
+        kind_mismatch: list[str] | None = None,
+    ) -> None:
+        self.path = path
+        self.only_in_mujoco = list(only_in_mujoco)
+        self.only_in_pinocchio = list(only_in_pinocchio)
+        self.kind_mismatch = list(kind_mismatch or [])
+        parts = []
+        if self.only_in_mujoco:
+            parts.append(f"only in MuJoCo: {self.only_in_mujoco}")
+        if self.only_in_pinocchio:
+            parts.append(f"only in Pinocchio: {self.only_in_pinocchio}")
+        if self.kind_mismatch:
+            parts.append(f"incompatible types: {self.kind_mismatch}")
+        super().__init__(f"{path}: joints do not match between the engines ({'; '.join(parts)})")
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Rebuild from the fields, not from the message (a worker process sends the error back pickled)."""
+        return (type(self), (self.path, self.only_in_mujoco, self.only_in_pinocchio, self.kind_mismatch), self.__dict__)
+
+
+class EngineUnavailableError(KoenigCheckError, ValueError):
+    """An engine was asked for but cannot run: not installed, or it cannot check the model.
+
+    Parameters
+    ----------
+    message : str
+        One line naming the engine (and the file, when the engine refused it) with the engine's own reason.
+    engine : str
+        The engine's name.
+    """
+
+    def __init__(self, message: str, engine: str = "") -> None:
+        super().__init__(message)
+        self.engine = engine
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.args[0] if self.args else "", self.engine))
+
+
+#: The former name of :class:`EngineUnavailableError` (Drake was the only optional engine).
+DrakeUnavailableError = EngineUnavailableError
+
+
+# ------------------------------------------------------------------------------------------ inputs of a run
+class PoseFileError(KoenigCheckError, ValueError):
+    """A pose file cannot be used; the message names the file, the row and the column."""
+
+
+class RecordFileError(KoenigCheckError, ValueError):
+    """A file read as records is not a record file."""
+
+
+# ---------------------------------------------------------------------------------------------- formulas
+class NotPlaneParallelError(KoenigCheckError, ValueError):
+    """Raised when eq. (16) is asked for a motion that is not plane-parallel."""
+
+
+class PathDependentError(KoenigCheckError):
+    """Raised when a formula's energy depends on the path, not on the state ``(q, q̇)``."""
