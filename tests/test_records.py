@@ -155,7 +155,7 @@ def test_a_formula_refused_on_one_engines_states_keeps_the_other_engines_rows(tm
     expected = [("exact", "mujoco"), ("exact", "mujoco"), ("exact", "pinocchio"), ("exact", "pinocchio")]
     expected += [("planar", "pinocchio"), ("planar", "pinocchio")]
     back = koenig_check.read_records(tmp_path / "records.parquet")
-    assert list(zip(back["formula"], back["source"])) == expected
+    assert list(zip(back["formula"], back["source"], strict=True)) == expected
     np.testing.assert_array_equal(back["value"], [1.0, 2.0, 3.0, 4.0, 3.0, 4.0])
     small = files.small
-    assert small is not None and list(zip(small["formula"], small["source"])) == expected
+    assert small is not None and list(zip(small["formula"], small["source"], strict=True)) == expected
