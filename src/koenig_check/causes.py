@@ -40,6 +40,7 @@ import mujoco
 import numpy as np
 
 from koenig_check.findings import Finding, Kind
+from koenig_check.validate import parse_xml
 
 #: Attributes that Pinocchio 4.1's MJCF parser ignores when they come from a default class.
 CLASS_ATTRIBUTES_IGNORED = (("geom", "mass"), ("geom", "pos"), ("joint", "pos"))
@@ -55,7 +56,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 def _read_mjcf(path: Path) -> ET.Element | None:
     """The root ``<mujoco>`` element of a file, or ``None`` when it is not a readable MJCF file."""
     try:
-        root = ET.parse(path).getroot()
+        root = parse_xml(path).getroot()
     except (ET.ParseError, OSError):
         return None
     return root if root.tag == "mujoco" else None
