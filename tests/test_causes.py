@@ -226,3 +226,46 @@ def test_geoms_inside_a_frame_are_named_with_the_segment_they_weigh_on() -> None
     # MuJoCo's segment carries the frame's 2 kg sphere, Pinocchio's does not.
     masses = {e.engine: e.segment_states(pair.mujoco.model.qpos0[None], np.zeros((1, 1))).mass[0] for e in pair.engines}
     assert masses == pytest.approx({"mujoco": 3.0, "pinocchio": 1.0})
+
+
+def test_geoms_of_a_body_with_its_own_inertial_are_not_causes() -> None:
+    """Menagerie robotiq_2f85's construct: pad_box's class mass and position change nothing (its body has an
+    <inertial>); the same class on pad_bare_box (no <inertial>) and class 'link' on finger_box are causes."""
+    pair = load_model(CAUSES / "class_geom_inertial.xml")
+    assert engines_agree(pair) is False
+    causes = import_parity(pair).causes
+    named = {(c.kind, c.values["class"]): c for c in causes}
+    assert set(named) == {(Kind.MASS, "link"), (Kind.MASS, "pad"), (Kind.COM, "pad")}, [c.message() for c in causes]
+    for cause in causes:
+        assert "pad_box" not in cause.values["geoms"] and "pad_box" not in cause.element.split(", ")
+    assert named[(Kind.MASS, "pad")].values["geoms"] == ("pad_bare_box",)
+    # by hand: 0.02 kg from the class in MuJoCo, density 1000 × (0.02 m)³ in Pinocchio
+    assert named[(Kind.MASS, "pad")].values["mujoco"] == pytest.approx(0.02)
+    assert named[(Kind.MASS, "pad")].values["pinocchio"] == pytest.approx(1000 * 0.02**3)
+    assert named[(Kind.COM, "pad")].values["geoms"] == ("pad_bare_box",)
+    assert named[(Kind.MASS, "link")].values["geoms"] == ("finger_box",)
+
+
+def test_geom_position_from_a_default_class_is_named() -> None:
+    """MuJoCo puts the body's centre of mass at the class's geom position; Pinocchio at the body origin."""
+    pair = load_model(CAUSES / "class_geom_pos.xml")
+    assert engines_agree(pair) is False
+    cause = _only(import_parity(pair).causes, Kind.COM)
+    assert (cause.engine, cause.element, cause.affects_energy) == ("pinocchio", "geom arm_box", True)
+    assert cause.values["class"] == "offset" and cause.segments == ("hinge",)
+    assert cause.values["mujoco"] == pytest.approx((0.1, 0.0, 0.05))
+    assert cause.values["pinocchio"] == pytest.approx((0.0, 0.0, 0.0))
+    check = _compare("class_geom_pos.xml")
+    assert not check.ok and cause.message() in check.reason()
+
+
+def test_geoms_are_causes_again_when_the_compiler_takes_inertia_from_geoms(tmp_path: Path) -> None:
+    """``inertiafromgeom="true"`` makes both engines use the geoms even where an <inertial> is written."""
+    path = tmp_path / "class_geom_inertial_from_geoms.xml"
+    text = (CAUSES / "class_geom_inertial.xml").read_text()
+    path.write_text(text.replace("<mujoco>", '<mujoco>\n  <compiler inertiafromgeom="true"/>', 1))
+    pair = load_model(path)
+    mass = {c.values["class"]: c for c in import_parity(pair).causes if c.kind is Kind.MASS}
+    assert mass["pad"].values["geoms"] == ("pad_box", "pad_bare_box")
+    assert mass["pad"].values["mujoco"] == pytest.approx(2 * 0.02)
+    assert mass["pad"].values["pinocchio"] == pytest.approx(2 * 1000 * 0.02**3)

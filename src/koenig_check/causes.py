@@ -147,8 +147,11 @@ def _class_values(root: ET.Element) -> list[_ClassValue]:
     """Attributes in :data:`CLASS_ATTRIBUTES_IGNORED` that the main file's elements get from a class.
 
     Geoms and joints of the main file's body tree only (not those inside ``<frame>`` or included files).
+    The geoms of a body with its own ``<inertial>`` are left out: neither engine takes the body's mass
+    properties from them (unless ``<compiler inertiafromgeom="true">``), so their class values change nothing.
     """
     defaults = _Defaults(root)
+    from_geoms = any(c.get("inertiafromgeom") == "true" for c in root.iter("compiler"))
     wanted = {tag: [a for t, a in CLASS_ATTRIBUTES_IGNORED if t == tag] for tag, _ in CLASS_ATTRIBUTES_IGNORED}
     out: list[_ClassValue] = []
 
@@ -161,6 +164,9 @@ def _class_values(root: ET.Element) -> list[_ClassValue]:
                 continue
             if child.tag not in wanted:
                 continue
+            if child.tag == "geom" and body.find("inertial") is not None and not from_geoms:
+                counts["geom"] = counts.get("geom", 0) + 1
+                continue  # the body's <inertial> is its mass, COM and inertia: its geoms are not causes
             index = counts.get(child.tag, 0)
             counts[child.tag] = index + 1
             cls = child.get("class", own)
