@@ -269,3 +269,21 @@ def test_geoms_are_causes_again_when_the_compiler_takes_inertia_from_geoms(tmp_p
     assert mass["pad"].values["geoms"] == ("pad_box", "pad_bare_box")
     assert mass["pad"].values["mujoco"] == pytest.approx(2 * 0.02)
     assert mass["pad"].values["pinocchio"] == pytest.approx(2 * 1000 * 0.02**3)
+
+
+def test_an_include_in_a_body_and_further_root_bodies_are_both_named() -> None:
+    """gymnasium-robotics kitchen's construct: the included file's top element is <mujocoinclude>, the first
+    root body has no name. Both root causes are named, each body by something the reader can find."""
+    err = _load_error("include_and_roots.xml")
+    found = {c.element: c for c in err.causes}
+    assert set(found) == {"include arm_part_mujocoinclude.xml", "body kettle"}, [c.message() for c in err.causes]
+    include = found["include arm_part_mujocoinclude.xml"]
+    assert include.values["joints"] == ("elbow",) and include.values["bodies"] == ("forearm",)
+    assert include.root_cause and include.affects_energy
+    assert found["body kettle"].values["joints"] == ("lid",)
+    text = str(err)
+    assert "?" not in text and "\n" not in text
+    assert "first root body, unnamed, with joint 'shoulder'" in include.values["in"]
+    assert "first root body, unnamed, with joint 'shoulder'" in found["body kettle"].message()
+    check = _compare("include_and_roots.xml")
+    assert not check.ok and all(c.message() in check.reason() for c in err.causes)
