@@ -237,22 +237,25 @@ def compare_model(
             grid_joints=grid_joints,
             duration=duration,
         )
-    comp = pipeline.run_model(
-        pair,
-        source,
-        label or _label(model, options.floating),
-        formulas,
-        pose_set=pose_set,
-        random=random,
-        records=records,
-        rtol=rtol,
-        jobs=jobs,
-        client=client,
-        sink=sink,
-        keep_records=keep_records,
-        chunk_poses=chunk_poses,
-        extra_engines=extra,
-    )
+    try:
+        comp = pipeline.run_model(
+            pair,
+            source,
+            label or _label(model, options.floating),
+            formulas,
+            pose_set=pose_set,
+            random=random,
+            records=records,
+            rtol=rtol,
+            jobs=jobs,
+            client=client,
+            sink=sink,
+            keep_records=keep_records,
+            chunk_poses=chunk_poses,
+            extra_engines=extra,
+        )
+    finally:
+        pipeline.forget()  # the run is over: the process keeps no model (only this call's `pair`)
     disagree = comp.stats is not None and comp.stats.parity.rigid.value > rtol
     if drake is None:  # by default Drake is the tie-breaker, consulted only where the two disagree
         drake = tiebreak.consult_drake(pair, options.engines, disagree)

@@ -128,6 +128,11 @@ def remember(source: ModelSource, pair: Any, extra: dict[str, Any] | None = None
     _PAIRS[source] = (pair, dict(extra or {}))
 
 
+def forget() -> None:
+    """Drop the model this process remembered: once its run is over, its engines are memory held for nothing."""
+    _PAIRS.clear()
+
+
 def loaded(source: ModelSource) -> Any:
     """The model pair of a source, loaded once per process.
 
