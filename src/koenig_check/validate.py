@@ -131,7 +131,7 @@ def as_engines_read(data: bytes) -> bytes:
     return data.lstrip(b" \t\r\n").split(b"\0", 1)[0]
 
 
-def parse_xml(path: str | Path) -> ET.ElementTree:
+def parse_xml(path: str | Path) -> ET.ElementTree[ET.Element[str]]:
     """Parse a model file as written, accepting what the engines accept (see :func:`as_engines_read`).
 
     Parameters
