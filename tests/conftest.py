@@ -10,6 +10,7 @@ import pytest
 
 from koenig_check.analytic import random_states
 from koenig_check.segments import SegmentStates
+from process_memory import peak_memory, release_memory
 
 #: The comparison scripts live in ``comparisons/`` (scripts, not a package): their shared corpus
 #: definitions (``common``) are importable from the tests.
@@ -34,3 +35,25 @@ def rng() -> np.random.Generator:
 @pytest.fixture
 def random_batch(rng: np.random.Generator) -> SegmentStates:
     return random_states(rng, n_poses=64, n_segments=7)
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _release_memory_after_each_module():
+    yield
+    release_memory()
+
+
+#: The suite's peak memory in one process (the project's standard); the session fails above it.
+PEAK_MEMORY_LIMIT = 2 * 2**30
+
+
+def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
+    """Fail a session whose process peaked above :data:`PEAK_MEMORY_LIMIT` (a test that holds memory again)."""
+    peak = peak_memory()
+    if peak > PEAK_MEMORY_LIMIT and exitstatus == pytest.ExitCode.OK:
+        print(
+            f"\nFAILED: the tests' process peaked at {peak / 2**30:.2f} GiB, above {PEAK_MEMORY_LIMIT / 2**30:g} GiB "
+            "(find the test with /usr/bin/time -v per file)",
+            file=sys.stderr,
+        )
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED

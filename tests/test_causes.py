@@ -227,3 +227,64 @@ def test_geoms_inside_a_frame_are_named_with_the_segment_they_weigh_on() -> None
     q0, zero = pair.mujoco.model.qpos0[None], np.zeros((1, 1))
     masses = {name: e.segment_states(q0, zero).mass[0] for name, e in pair.engines.items()}
     assert masses == pytest.approx({"mujoco": 3.0, "pinocchio": 1.0})
+
+
+def test_geoms_of_a_body_with_its_own_inertial_are_not_causes() -> None:
+    """Menagerie robotiq_2f85's construct: pad_box's class mass and position change nothing (its body has an
+    <inertial>); the same class on pad_bare_box (no <inertial>) and class 'link' on finger_box are causes."""
+    pair = load_model(CAUSES / "class_geom_inertial.xml")
+    assert engines_agree(pair) is False
+    causes = import_parity(pair).causes
+    named = {(c.kind, c.values["class"]): c for c in causes}
+    assert set(named) == {(Kind.MASS, "link"), (Kind.MASS, "pad"), (Kind.COM, "pad")}, [c.message() for c in causes]
+    for cause in causes:
+        assert "pad_box" not in cause.values["geoms"] and "pad_box" not in cause.element.split(", ")
+    assert named[(Kind.MASS, "pad")].values["geoms"] == ("pad_bare_box",)
+    # by hand: 0.02 kg from the class in MuJoCo, density 1000 × (0.02 m)³ in Pinocchio
+    assert named[(Kind.MASS, "pad")].values["mujoco"] == pytest.approx(0.02)
+    assert named[(Kind.MASS, "pad")].values["pinocchio"] == pytest.approx(1000 * 0.02**3)
+    assert named[(Kind.COM, "pad")].values["geoms"] == ("pad_bare_box",)
+    assert named[(Kind.MASS, "link")].values["geoms"] == ("finger_box",)
+
+
+def test_geom_position_from_a_default_class_is_named() -> None:
+    """MuJoCo puts the body's centre of mass at the class's geom position; Pinocchio at the body origin."""
+    pair = load_model(CAUSES / "class_geom_pos.xml")
+    assert engines_agree(pair) is False
+    cause = _only(import_parity(pair).causes, Kind.COM)
+    assert (cause.engine, cause.element, cause.affects_energy) == ("pinocchio", "geom arm_box", True)
+    assert cause.values["class"] == "offset" and cause.segments == ("hinge",)
+    assert cause.values["mujoco"] == pytest.approx((0.1, 0.0, 0.05))
+    assert cause.values["pinocchio"] == pytest.approx((0.0, 0.0, 0.0))
+    check = _compare("class_geom_pos.xml")
+    assert not check.ok and cause.message() in check.reason()
+
+
+def test_geoms_are_causes_again_when_the_compiler_takes_inertia_from_geoms(tmp_path: Path) -> None:
+    """``inertiafromgeom="true"`` makes both engines use the geoms even where an <inertial> is written."""
+    path = tmp_path / "class_geom_inertial_from_geoms.xml"
+    text = (CAUSES / "class_geom_inertial.xml").read_text()
+    path.write_text(text.replace("<mujoco>", '<mujoco>\n  <compiler inertiafromgeom="true"/>', 1))
+    pair = load_model(path)
+    mass = {c.values["class"]: c for c in import_parity(pair).causes if c.kind is Kind.MASS}
+    assert mass["pad"].values["geoms"] == ("pad_box", "pad_bare_box")
+    assert mass["pad"].values["mujoco"] == pytest.approx(2 * 0.02)
+    assert mass["pad"].values["pinocchio"] == pytest.approx(2 * 1000 * 0.02**3)
+
+
+def test_an_include_in_a_body_and_further_root_bodies_are_both_named() -> None:
+    """gymnasium-robotics kitchen's construct: the included file's top element is <mujocoinclude>, the first
+    root body has no name. Both root causes are named, each body by something the reader can find."""
+    err = _load_error("include_and_roots.xml")
+    found = {c.element: c for c in err.causes}
+    assert set(found) == {"include arm_part_mujocoinclude.xml", "body kettle"}, [c.message() for c in err.causes]
+    include = found["include arm_part_mujocoinclude.xml"]
+    assert include.values["joints"] == ("elbow",) and include.values["bodies"] == ("forearm",)
+    assert include.root_cause and include.affects_energy
+    assert found["body kettle"].values["joints"] == ("lid",)
+    text = str(err)
+    assert "?" not in text and "\n" not in text
+    assert "first root body, unnamed, with joint 'shoulder'" in include.values["in"]
+    assert "first root body, unnamed, with joint 'shoulder'" in found["body kettle"].message()
+    check = _compare("include_and_roots.xml")
+    assert not check.ok and all(c.message() in check.reason() for c in err.causes)

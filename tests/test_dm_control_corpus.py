@@ -14,10 +14,18 @@ from independent_energy import engines_agree
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.engines import load_model
 from koenig_check.findings import Kind, KoenigCheckError
+from process_memory import release_memory
 
 pytest.importorskip("dm_control")
 ROOT = dm_control_root()
 CORPUS = dm_control_corpus()
+
+
+@pytest.fixture(autouse=True)
+def _release_memory_after_each_model():
+    """The corpus's largest models (fruitfly, dog: thousands of meshes) one after the other would hold GBs."""
+    yield
+    release_memory()
 
 
 def test_corpus_is_found() -> None:

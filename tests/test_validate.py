@@ -94,3 +94,52 @@ def test_nesting_depth_limit_is_exact(tmp_path: Path) -> None:
     path.write_text("<robot>" + "<a>" * (inner + 1) + "</a>" * (inner + 1) + "</robot>")
     with pytest.raises(ModelFileError, match=f"nested deeper than {MAX_DEPTH}"):
         preflight(path)
+
+
+# What Expat refuses and both engines read (TinyXML2 skips white space before the declaration and stops at NUL).
+_READ_BY_THE_ENGINES = {
+    "blank-line-before-declaration": lambda text: b'\n<?xml version="1.0"?>\n' + text,
+    "trailing-nul-byte": lambda text: b'<?xml version="1.0"?>\n' + text + b"\0",
+}
+
+
+@pytest.mark.parametrize("model", ["serial7.urdf", "gimbal.xml"])
+@pytest.mark.parametrize("case", sorted(_READ_BY_THE_ENGINES))
+def test_a_file_both_engines_read_is_not_refused_and_checks_like_the_original(
+    tmp_path: Path, model: str, case: str
+) -> None:
+    import koenig_check
+    from koenig_check.engines import load_model
+
+    path = tmp_path / model
+    path.write_bytes(_READ_BY_THE_ENGINES[case]((MODELS / model).read_bytes()))
+    assert preflight(path) == ("urdf" if model.endswith(".urdf") else "mjcf")
+    pair = load_model(path)
+    original = load_model(MODELS / model)
+    assert pair.mujoco.model.nv == original.mujoco.model.nv and pair.pinocchio.model.nv == original.pinocchio.model.nv
+    check = koenig_check.compare([path], n_poses=5, seed=1)
+    assert check.ok, check.reason()
+
+
+@pytest.mark.parametrize(
+    ("content", "where"),
+    [
+        (b"<robot name='r'><link name='a'>\0</link></robot>", "line 1"),  # a NUL inside: TinyXML2 stops there too
+        (b"\n<robot name='r'><link name='a'></robot>", "line 2"),
+    ],
+    ids=["nul-inside", "blank-line-then-truncated"],
+)
+def test_malformed_xml_the_engines_refuse_too_is_one_line_with_mujocos_own_reason(
+    tmp_path: Path, content: bytes, where: str
+) -> None:
+    import mujoco
+
+    path = tmp_path / "bad.urdf"
+    path.write_bytes(content)
+    with pytest.raises(ModelFileError) as info:
+        preflight(path)
+    with pytest.raises(ValueError) as engine:
+        mujoco.MjSpec.from_file(str(path))
+    text = str(info.value)
+    assert text.startswith(f"{path}: not well-formed XML at {where}") and "\n" not in text
+    assert " ".join(str(engine.value).split()) in text  # MuJoCo's reason, whole

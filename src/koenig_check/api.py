@@ -234,21 +234,24 @@ def compare_model(
             grid_joints=grid_joints,
             duration=duration,
         )
-    comp = pipeline.run_model(
-        loaded,
-        source,
-        label or unique_labels([model], options.floating)[0],
-        formulas,
-        pose_set=pose_set,
-        random=random,
-        records=records,
-        rtol=rtol,
-        jobs=jobs,
-        client=client,
-        sink=sink,
-        keep_records=keep_records,
-        chunk_poses=chunk_poses,
-    )
+    try:
+        comp = pipeline.run_model(
+            loaded,
+            source,
+            label or unique_labels([model], options.floating)[0],
+            formulas,
+            pose_set=pose_set,
+            random=random,
+            records=records,
+            rtol=rtol,
+            jobs=jobs,
+            client=client,
+            sink=sink,
+            keep_records=keep_records,
+            chunk_poses=chunk_poses,
+        )
+    finally:
+        pipeline.forget()  # the run is over: the process keeps no model (only this call's `loaded`)
     disagree = comp.stats is not None and comp.stats.parity.rigid.value > rtol
     sample = _verdict_sample(loaded, pose_set, random)
     diagnosis = diagnose(loaded, disagree=disagree, qpos=sample.qpos, qvel=sample.qvel, rtol=rtol)

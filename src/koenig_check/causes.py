@@ -48,6 +48,7 @@ from koenig_check.exceptions import (
     NoMovingSegmentError,
 )
 from koenig_check.findings import Finding, Kind
+from koenig_check.validate import parse_xml
 
 #: Attributes that Pinocchio 4.1's MJCF parser ignores when they come from a default class.
 CLASS_ATTRIBUTES_IGNORED = (("geom", "mass"), ("geom", "pos"), ("joint", "pos"))
@@ -60,13 +61,48 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 
 # ------------------------------------------------------------------------------------------- XML reading
-def _read_mjcf(path: Path) -> ET.Element | None:
-    """The root ``<mujoco>`` element of a file, or ``None`` when it is not a readable MJCF file."""
+def _read_mjcf(path: Path, included: bool = False) -> ET.Element | None:
+    """The root ``<mujoco>`` element of a file, or ``None`` when it is not a readable MJCF file.
+
+    An included file's top element may have any name (``<mujocoinclude>`` is common): MuJoCo drops it.
+    """
     try:
-        root = ET.parse(path).getroot()
+        root = parse_xml(path).getroot()
     except (ET.ParseError, OSError):
         return None
-    return root if root.tag == "mujoco" else None
+    return root if included or root.tag == "mujoco" else None
+
+
+_ORDINALS = ("first", "second", "third")
+
+
+def body_label(body: ET.Element, roots: list[ET.Element]) -> str:
+    """A body as a reader can find it: its name, or where it is and its first joint (or position).
+
+    Parameters
+    ----------
+    body : xml.etree.ElementTree.Element
+    roots : list of Element
+        The root bodies (direct ``<body>`` children of ``<worldbody>``), in file order.
+
+    Returns
+    -------
+    str
+        ``"kettle"``, or e.g. ``"first root body, unnamed, with joint 'shoulder'"``.
+    """
+    if body.get("name"):
+        return str(body.get("name"))
+    index = next((i for i, b in enumerate(roots) if b is body), None)
+    if index is None:
+        place = "body"
+    elif index < len(_ORDINALS):
+        place = f"{_ORDINALS[index]} root body"
+    else:
+        place = f"root body {index + 1}"
+    joints = [j.get("name") for j in body.findall("joint") + list(body.iter("joint")) if j.get("name")]
+    if joints:
+        return f"{place}, unnamed, with joint '{joints[0]}'"
+    return f"{place}, unnamed, at pos '{body.get('pos', '0 0 0')}'"
 
 
 def _names(items: list[str]) -> str:
@@ -93,13 +129,14 @@ def _included(root: ET.Element, directory: Path) -> list[_Included]:
     """Every ``<include>`` of the main file with the bodies, joints and defaults it brings in."""
     out = []
     parents = {child: parent for parent in root.iter() for child in parent}
+    roots = [b for w in root.findall("worldbody") for b in w.findall("body")]
     for inc in root.iter("include"):
         name = inc.get("file", "")
         parent = parents.get(inc)
         where = "mujoco" if parent is None or parent.tag == "mujoco" else parent.tag
         if parent is not None and parent.tag == "body":
-            where = f"body {parent.get('name', '?')}"
-        sub = _read_mjcf(directory / name)
+            where = f"body {parent.get('name')}" if parent.get("name") else body_label(parent, roots)
+        sub = _read_mjcf(directory / name, included=True)
         if sub is None:
             out.append(_Included(name, where, (), (), False))
             continue
@@ -154,8 +191,11 @@ def _class_values(root: ET.Element) -> list[_ClassValue]:
     """Attributes in :data:`CLASS_ATTRIBUTES_IGNORED` that the main file's elements get from a class.
 
     Geoms and joints of the main file's body tree only (not those inside ``<frame>`` or included files).
+    The geoms of a body with its own ``<inertial>`` are left out: neither engine takes the body's mass
+    properties from them (unless ``<compiler inertiafromgeom="true">``), so their class values change nothing.
     """
     defaults = _Defaults(root)
+    from_geoms = any(c.get("inertiafromgeom") == "true" for c in root.iter("compiler"))
     wanted = {tag: [a for t, a in CLASS_ATTRIBUTES_IGNORED if t == tag] for tag, _ in CLASS_ATTRIBUTES_IGNORED}
     out: list[_ClassValue] = []
 
@@ -168,6 +208,9 @@ def _class_values(root: ET.Element) -> list[_ClassValue]:
                 continue
             if child.tag not in wanted:
                 continue
+            if child.tag == "geom" and body.find("inertial") is not None and not from_geoms:
+                counts["geom"] = counts.get("geom", 0) + 1
+                continue  # the body's <inertial> is its mass, COM and inertia: its geoms are not causes
             index = counts.get(child.tag, 0)
             counts[child.tag] = index + 1
             cls = child.get("class", own)
@@ -337,8 +380,8 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
             Finding(
                 Kind.IGNORED_CONSTRUCT,
                 "pinocchio",
-                f"body {body.get('name', '?')}",
-                f"root body after the first ({world_bodies[0].get('name', '?')}) under <worldbody>: "
+                f"body {body_label(body, world_bodies)}",
+                f"root body after the first ({body_label(world_bodies[0], world_bodies)}) under <worldbody>: "
                 "Pinocchio's MJCF parser reads only the first",
                 values={"joints": joints, "mujoco": "loaded", "pinocchio": "not read"},
                 affects_energy=bool(joints),

@@ -86,7 +86,101 @@ def _refuse_nan(path: Path, elem: ET.Element) -> None:
 
 
 def _root_format(path: Path, data: bytes) -> str:
-    parser: ET.XMLPullParser[ET.Element] = ET.XMLPullParser(events=("start", "end"))
+    """The format by the root element; not well-formed XML is refused only if MuJoCo's own parser refuses it too.
+
+    Expat is stricter than TinyXML2, the parser of MuJoCo and of Pinocchio's URDF reader: a blank line
+    before ``<?xml ...?>`` and a NUL byte after the last element are refused by Expat and read by both
+    engines.  A pre-flight check never refuses what the engines accept: the file is checked again as
+    TinyXML2 reads it (leading white space skipped, the text ending at the first NUL byte), and when that
+    fails as well, MuJoCo's parser decides; its refusal is given whole after the line and column.
+    """
+    try:
+        return _parse(path, data)
+    except _NotWellFormedError as err:
+        engines_read = as_engines_read(data)
+        if engines_read != data:
+            try:
+                return _parse(path, engines_read)
+            except _NotWellFormedError:
+                pass
+        refusal = _mujoco_refusal(path)
+        if refusal is None and err.root_tag in _FORMATS:
+            return _FORMATS[err.root_tag]  # MuJoCo reads it: the engines decide
+        because = f"; MuJoCo: {refusal}" if refusal else ""
+        raise ModelFileError(f"{path}: {err}{because}") from None
+
+
+_FORMATS = {"mujoco": "mjcf", "robot": "urdf"}
+
+
+def as_engines_read(data: bytes) -> bytes:
+    """The bytes of a model file as TinyXML2 (MuJoCo, Pinocchio's URDF reader) reads them.
+
+    White space before the first markup is skipped and the text ends at the first NUL byte.
+
+    Parameters
+    ----------
+    data : bytes
+
+    Returns
+    -------
+    bytes
+    """
+    return data.lstrip(b" \t\r\n").split(b"\0", 1)[0]
+
+
+def parse_xml(path: str | Path) -> ET.ElementTree[ET.Element[str]]:
+    """Parse a model file as written, accepting what the engines accept (see :func:`as_engines_read`).
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    xml.etree.ElementTree.ElementTree
+
+    Raises
+    ------
+    xml.etree.ElementTree.ParseError
+        Expat's error on the file as written, when the file as the engines read it does not parse either.
+    OSError
+        When the file cannot be read.
+    """
+    data = Path(path).read_bytes()
+    try:
+        return ET.ElementTree(ET.fromstring(data))
+    except ET.ParseError as err:
+        engines_read = as_engines_read(data)
+        if engines_read != data:
+            try:
+                return ET.ElementTree(ET.fromstring(engines_read))
+            except ET.ParseError:
+                pass
+        raise err from None
+
+
+class _NotWellFormedError(Exception):
+    """Expat's refusal (line, column, reason) and the root element read before it, if any."""
+
+    def __init__(self, message: str, root_tag: str | None) -> None:
+        super().__init__(message)
+        self.root_tag = root_tag
+
+
+def _mujoco_refusal(path: Path) -> str | None:
+    """MuJoCo's own reason for not parsing the file (one line), or None when it parses it."""
+    import mujoco
+
+    try:
+        mujoco.MjSpec.from_file(str(path))
+    except Exception as err:  # MuJoCo raises ValueError with its parser's multi-line message
+        return " ".join(str(err).split())
+    return None
+
+
+def _parse(path: Path, data: bytes) -> str:
+    parser = ET.XMLPullParser(events=("start", "end"))
     depth = 0
     root_tag = None
     try:
@@ -109,9 +203,7 @@ def _root_format(path: Path, data: bytes) -> str:
     except ET.ParseError as err:
         line, col = err.position
         reason = str(err).split(":")[0]
-        raise ModelFileError(f"{path}: not well-formed XML at line {line}, column {col} ({reason})") from None
-    if root_tag == "mujoco":
-        return "mjcf"
-    if root_tag == "robot":
-        return "urdf"
+        raise _NotWellFormedError(f"not well-formed XML at line {line}, column {col} ({reason})", root_tag) from None
+    if root_tag in _FORMATS:
+        return _FORMATS[root_tag]
     raise ModelFileError(f"{path}: root element <{root_tag}> is neither <mujoco> (MJCF) nor <robot> (URDF)")

@@ -1,8 +1,11 @@
-"""Fixtures of the engine tests: every case is loaded once per session, posed at seeded random states."""
+"""Fixtures of the engine tests: every case is loaded once, posed at seeded random states.
+
+``case`` is a module-scoped parameter, so pytest runs a module's tests case by case, and ``pair`` holds the
+one case's engines while they run: memory holds one model, not the whole corpus (about 2.7 GB when every
+loaded pair was cached for the session).
+"""
 
 from __future__ import annotations
-
-from functools import cache
 
 import numpy as np
 import pytest
@@ -13,10 +16,9 @@ from koenig_check.engines import ModelPair, load_model, random_states
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
     if "case" in metafunc.fixturenames:
-        metafunc.parametrize("case", CASES, ids=[c.id for c in CASES])
+        metafunc.parametrize("case", CASES, ids=[c.id for c in CASES], scope="module")
 
 
-@cache
 def _load(case: Case) -> ModelPair:
     return load_model(
         case.model,
@@ -31,7 +33,7 @@ def load_pair():
     return _load
 
 
-@pytest.fixture
+@pytest.fixture(scope="module")
 def pair(case: Case, load_pair) -> ModelPair:
     return load_pair(case)
 

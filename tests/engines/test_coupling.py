@@ -81,3 +81,38 @@ def test_allow_coupled_is_accepted_as_a_deprecated_no_op() -> None:
     with pytest.warns(DeprecationWarning, match="deprecated"):
         check = compare(MODELS / "mimic_chain.urdf", n_poses=3, allow_coupled=True)
     assert check.ok, check.reason()
+
+
+def test_keyframe_poses_satisfy_the_joint_relation_through_the_keyframe_path(tmp_path: Path) -> None:
+    """The keyframe path (``--pose-kind keyframes``) imposes the relation as the other pose kinds do.
+
+    Keyframe ``bent`` (shoulder 0.5, elbow -1.0, rates 0.3, 0.7) by hand: elbow = 0.3 + 0.5·0.4 − 0.8·0.4²
+    = 0.372, elbow rate = (0.5 − 1.6·0.4)·0.3 = −0.042.  The CLI's records hold MuJoCo's own energy at
+    that state, which MuJoCo computes again here from the hand state.
+    """
+    import mujoco
+
+    from koenig_check.cli import main
+    from koenig_check.run.records import read_records
+
+    path = MODELS / "joint_equality_keyframe.xml"
+    model = load_model(path).mujoco.model
+    poses = make_poses(model, "keyframes", seed=4)
+    assert poses.ids == ("key:bent", "key:still")
+    np.testing.assert_allclose(poses.qpos[0], [0.5, 0.372], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(poses.qvel[0], [0.3, -0.042], rtol=1e-12, atol=1e-12)
+    y, yd = _poly(poses.qpos[:, 0], poses.qvel[:, 0])
+    np.testing.assert_allclose(poses.qpos[:, 1], y, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(poses.qvel[:, 1], yd, rtol=1e-12, atol=1e-12)
+    assert any("elbow_follows" in n for n in poses.notes)
+
+    out = tmp_path / "r"
+    assert main(["compare", str(path), "--pose-kind", "keyframes", "--formulas", "exact", "--out", str(out)]) == 0
+    records = read_records(out / "records.parquet")
+    row = (records["pose"] == "key:bent") & (records["reference"] == "mujoco") & (records["scope"] == "total")
+    assert row.sum() >= 1
+    data = mujoco.MjData(model)
+    data.qpos[:], data.qvel[:] = [0.5, 0.372], [0.3, -0.042]
+    mujoco.mj_forward(model, data)
+    mujoco.mj_energyVel(model, data)
+    np.testing.assert_allclose(records["reference_value"][row], data.energy[1], rtol=1e-12)

@@ -127,3 +127,35 @@ def test_rows_of_a_formula_refused_in_a_later_chunk_are_listed_and_left_out_when
     assert "planar" not in set(chunked["formula"]) and chunked.rows() == whole.rows()
     small = json.loads((tmp_path / "chunked" / "records.json").read_text())["records"]
     assert len(small) == len(whole) and not any(r[2] == "planar" for r in small)
+
+
+def _two_sources(formula: str) -> pa.Table:
+    """Rows of ``formula`` on MuJoCo's and on Pinocchio's states, two poses each."""
+    codes = np.zeros(4, dtype=np.int8)
+    arrays = [
+        categorical(np.zeros(4, dtype=np.int16), ["m"], "model"),
+        categorical(np.array([0, 1, 0, 1], dtype=np.int32), ["p0", "p1"], "pose"),
+        categorical(codes, [formula], "formula"),
+        categorical(np.array([0, 0, 1, 1], dtype=np.int8), ["mujoco", "pinocchio"], "source"),
+        categorical(np.array([1, 1, 0, 0], dtype=np.int8), ["mujoco", "pinocchio"], "reference"),
+        categorical(np.zeros(4, dtype=np.int16), ["total"], "scope"),
+        pa.array([1.0, 2.0, 3.0, 4.0], pa.float64()),
+        pa.array([1.0, 2.0, 3.0, 4.0], pa.float64()),
+    ]
+    return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
+
+
+def test_a_formula_refused_on_one_engines_states_keeps_the_other_engines_rows(tmp_path: Path) -> None:
+    """planar refused on MuJoCo's states only: its rows on Pinocchio's states are results and stay."""
+    files = RecordFiles(tmp_path, csv_rows=100)
+    files.write(_two_sources("exact"))
+    files.write(_two_sources("planar"))
+    files.refuse("m", "planar", "mujoco", "not plane-parallel")
+    files.close()
+    expected = [("exact", "mujoco"), ("exact", "mujoco"), ("exact", "pinocchio"), ("exact", "pinocchio")]
+    expected += [("planar", "pinocchio"), ("planar", "pinocchio")]
+    back = koenig_check.read_records(tmp_path / "records.parquet")
+    assert list(zip(back["formula"], back["source"], strict=True)) == expected
+    np.testing.assert_array_equal(back["value"], [1.0, 2.0, 3.0, 4.0, 3.0, 4.0])
+    small = files.small
+    assert small is not None and list(zip(small["formula"], small["source"], strict=True)) == expected

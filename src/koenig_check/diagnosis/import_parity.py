@@ -29,6 +29,7 @@ from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.findings import Finding, Kind
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.segments import SegmentStates
+from koenig_check.validate import parse_xml
 
 #: Default relative tolerance of parity comparisons.
 PARITY_RTOL = 1e-9
@@ -330,7 +331,7 @@ def compiler_findings(path: Path, mj_model: Any = None) -> list[str]:
     list of str
     """
     try:
-        root = ET.parse(path).getroot()
+        root = parse_xml(path).getroot()
     except (ET.ParseError, OSError):
         return []
     if root.tag != "mujoco":

@@ -15,7 +15,6 @@ connect, weld) are not projected onto.
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 
 import mujoco
@@ -23,6 +22,7 @@ import numpy as np
 
 from koenig_check.engines.sources import ModelSource
 from koenig_check.findings import Finding, Kind
+from koenig_check.validate import parse_xml
 
 _LOOP = (mujoco.mjtEq.mjEQ_CONNECT, mujoco.mjtEq.mjEQ_WELD)
 #: Number of polynomial coefficients of a MuJoCo joint equality.
@@ -192,7 +192,7 @@ def _equality_findings(model: mujoco.MjModel) -> list[Finding]:
 
 def _mimic_findings(source: ModelSource, model: mujoco.MjModel) -> list[Finding]:
     out = []
-    for joint in ET.parse(source.path).getroot().findall("joint"):
+    for joint in parse_xml(source.path).getroot().findall("joint"):
         mimic = joint.find("mimic")
         if mimic is None:
             continue

@@ -120,6 +120,11 @@ def remember(source: ModelSource, model: Any) -> None:
     _MODELS[source] = model
 
 
+def forget() -> None:
+    """Drop the model this process remembered: once its run is over, its engines are memory held for nothing."""
+    _MODELS.clear()
+
+
 def loaded(source: ModelSource) -> Any:
     """The model of a source, loaded once per process (its optional engines are attached on first use).
 

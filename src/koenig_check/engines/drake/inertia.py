@@ -20,6 +20,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from koenig_check.findings import Finding, Kind
+from koenig_check.validate import parse_xml
 
 #: Relative difference above which Drake is said to have replaced a link's mass or inertia.
 REPLACED_RTOL = 1e-9
@@ -28,7 +29,7 @@ REPLACED_RTOL = 1e-9
 def _file_inertials(path: Path) -> dict[str, tuple[float, np.ndarray, np.ndarray]]:
     """Link -> (mass, COM, central inertia in link axes) as the URDF file writes them."""
     try:
-        robot = ET.parse(path).getroot()
+        robot = parse_xml(path).getroot()
     except (ET.ParseError, OSError):
         return {}
     out = {}

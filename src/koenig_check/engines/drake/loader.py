@@ -44,6 +44,7 @@ from typing import Any
 from koenig_check.engines.sources import ModelSource
 from koenig_check.exceptions import DrakeLoadError
 from koenig_check.findings import Finding, Kind
+from koenig_check.validate import parse_xml
 
 _LOCATION = re.compile(r"^(?P<file>[^\s:]+):(?P<line>\d+): (?:warning|error): ")
 
@@ -174,7 +175,7 @@ def warning_findings(messages: list[str], path: Path) -> list[Finding]:
 
 def _needs_model_name(path: Path) -> bool:
     try:
-        root = ET.parse(path).getroot()
+        root = parse_xml(path).getroot()
     except ET.ParseError:
         return False
     return root.tag == "mujoco" and not root.get("model")
@@ -183,7 +184,7 @@ def _needs_model_name(path: Path) -> bool:
 @contextmanager
 def _named_copy(path: Path) -> Iterator[Path]:
     """A copy of an MJCF file whose ``<mujoco>`` has ``model="<stem>"``, next to the original (removed after)."""
-    tree = ET.parse(path)
+    tree = parse_xml(path)
     tree.getroot().set("model", path.stem)
     try:
         handle = tempfile.NamedTemporaryFile(

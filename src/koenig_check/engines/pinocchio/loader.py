@@ -26,6 +26,7 @@ import pinocchio as pin
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.engines.sources import ModelSource
 from koenig_check.findings import Finding, Kind
+from koenig_check.validate import parse_xml
 
 #: Lines of Pinocchio's C++ exception text that say where in Pinocchio's sources it was raised, not why.
 _SOURCE_LOCATION = ("From file:", "in function:", "at line:", "message:")
@@ -141,7 +142,7 @@ def limitation_hint(source: ModelSource, reason: str) -> str:
         )
     if "No such node (body)" in reason and source.format == "mjcf":
         try:
-            world = ET.parse(source.path).getroot().find("worldbody")
+            world = parse_xml(source.path).getroot().find("worldbody")
         except ET.ParseError:
             world = None
         included = [e.get("file", "?") for e in world.findall("include")] if world is not None else []
@@ -164,7 +165,7 @@ def _without_keyframes(path: os.PathLike[str] | str) -> Iterator[Path]:
     directory is not writable.
     """
     original = Path(path)
-    tree = ET.parse(original)
+    tree = parse_xml(original)
     root = tree.getroot()
     for parent in list(root.iter()):
         for child in list(parent):
@@ -246,7 +247,7 @@ def _link_of(joint: ET.Element, end: str) -> str | None:
 
 def _strip_world_link(source: ModelSource) -> str | None:
     """Return the URDF text without a root link named ``world`` and its fixed joint, or ``None``."""
-    tree = ET.parse(source.path)
+    tree = parse_xml(source.path)
     robot = tree.getroot()
     links = {link.get("name") for link in robot.findall("link")}
     children = {_link_of(j, "child") for j in robot.findall("joint")}
