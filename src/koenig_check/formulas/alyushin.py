@@ -182,7 +182,7 @@ def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t, t2
 
 
-def _shared_trig(states, convention: str, angles: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+def _shared_trig(states, convention: Convention, angles: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
     """``(sin 2Δθ, cos 2Δθ)`` as planes (3, P, B), once per convention and shared state set."""
     dtheta = angle_components(states, convention, angles)
     if angles is None:
