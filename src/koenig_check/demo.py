@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import importlib.resources
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TypedDict
 
 from koenig_check.api import CrossCheck, compare_model, one_line
 from koenig_check.report.progress import Progress
@@ -15,6 +16,22 @@ from koenig_check.run.stats import DEFAULT_RTOL
 FLOATING_MODELS = frozenset({"free_body.urdf"})
 #: The paper's section-3 gimbal and its two joints.
 GIMBAL = ("gimbal.xml", ("outer_z", "inner_x"))
+
+
+class _DemoModel(TypedDict):
+    model: Path
+
+
+class _DemoRun(_DemoModel, total=False):
+    """The keyword arguments of :func:`compare_model` for one demo run (``floating`` goes to the loader)."""
+
+    pose_kind: str
+    n_poses: int
+    seed: int
+    floating: bool
+    grid_joints: Sequence[str]
+    duration: float
+    velocity_scale: float
 
 
 def builtin_models() -> list[Path]:
@@ -58,7 +75,7 @@ def run_demo(
     models = builtin_models()
     by_name = {p.name: p for p in models}
     gimbal_path, gimbal_joints = by_name[GIMBAL[0]], GIMBAL[1]
-    jobs: list[tuple[str, dict[str, Any]]] = [
+    jobs: list[tuple[str, _DemoRun]] = [
         (p.name, {"model": p, "n_poses": n_poses, "seed": seed, "floating": p.name in FLOATING_MODELS}) for p in models
     ]
     jobs.append(

@@ -72,7 +72,9 @@ def analytic_cases(seed: int = 0) -> list[Case]:
         _path_case(
             "cylinder_translate",
             "solid cylinder translating without rotation (½mv²)",
-            constant_rotation_states(2.0, cylinder_inertia(2.0, 0.1, 0.5), np.zeros(3), t, v_com=[0.3, -1.2, 2.0]),
+            constant_rotation_states(
+                2.0, cylinder_inertia(2.0, 0.1, 0.5), np.zeros(3), t, v_com=np.array([0.3, -1.2, 2.0])
+            ),
             t,
         ),
         _path_case(
@@ -153,6 +155,7 @@ def format_table(results: list[CaseResult], rtol: float = 1e-9) -> str:
     def text(r: CaseResult) -> str:
         if r.refused is not None:
             return "refused"
+        assert r.max_rel_error is not None  # set on every result that is not a refusal
         mark = "=" if r.max_rel_error <= rtol else "≠"
         return f"{mark} {r.max_rel_error:8.1e}"
 

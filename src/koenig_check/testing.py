@@ -86,7 +86,7 @@ def assert_energy_parity(
     scale = np.maximum(np.abs(ea).sum(axis=1, keepdims=True), 1e-300)  # per pose: total energy
     err = np.abs(eb - ea) / scale
     p, b = np.unravel_index(int(np.argmax(err)), err.shape)
-    problems = []
+    problems: list[str] = []
     worst_segment = None
     if err[p, b] > rtol:
         worst_segment = len(problems)

@@ -269,7 +269,7 @@ class ParityReport:
         parts = [f"root cause: {c.message()}" for c in self.causes if c.affects_energy]
         for label, items in (("segment", self.differing_segments), ("dof", self.differing_dofs)):
             for item in items:
-                name = item.name if label == "segment" else item.joint
+                name = item.name if isinstance(item, SegmentParity) else item.joint
                 rest = [c for c in item.causes if c not in self.explained(name)]
                 if rest:
                     parts.append(f"{label} {name}: {', '.join(rest)}")
@@ -452,12 +452,12 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     arm_b = np.diag(Mb[0]) - np.diag(_rigid_mass_matrix(sb))
     m_scale = max(float(np.abs(np.diag(Ma[0])).max(initial=0.0)), 1e-300)
     for d, joint in enumerate(mujoco_coordinate_names(mj_model)[1]):
-        k = own.get(dof_segment[d])
-        if k is None:  # the dof's segment exists in one engine only: reported with the segments
+        seg = own.get(dof_segment[d])
+        if seg is None:  # the dof's segment exists in one engine only: reported with the segments
             diff = float("nan")
         else:
             diff = float(
-                max(np.abs(A.omega[d, k] - B.omega[d, k]).max(), np.abs(A.v_pole[d, k] - B.v_pole[d, k]).max())
+                max(np.abs(A.omega[d, seg] - B.omega[d, seg]).max(), np.abs(A.v_pole[d, seg] - B.v_pole[d, seg]).max())
             )
         causes = []
         if diff > rtol * jac_scale * size:  # nan (segment missing) is not an axis difference

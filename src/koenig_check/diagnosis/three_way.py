@@ -35,7 +35,7 @@ def _close(a: np.ndarray, b: np.ndarray, rtol: float, scale: np.ndarray | float 
 def _odd_one_out(values: dict[str, np.ndarray], rtol: float, scale: Any = None) -> str | None:
     """``None`` when all agree, the engine that departs when two agree, ``"all"`` when all differ."""
     names = list(values)
-    agree = {
+    agree: dict[tuple[str, ...], bool] = {
         (a, b): bool(np.all(_close(values[a], values[b], rtol, scale)))
         for i, a in enumerate(names)
         for b in names[i + 1 :]
@@ -84,9 +84,10 @@ def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence
 def _shared_cause(engines: Sequence[str], findings: Sequence[Finding], segments: Sequence[str]) -> Finding | None:
     """A construct every one of ``engines`` skips (the same element named as a cause of each), or None."""
     causes = [departure_cause(findings, e, segments) for e in engines]
-    if any(c is None for c in causes) or len({c.element for c in causes}) != 1:
+    found = [c for c in causes if c is not None]
+    if len(found) != len(causes) or len({c.element for c in found}) != 1:
         return None
-    return causes[0]
+    return found[0]
 
 
 def _construct(cause: Finding) -> str:

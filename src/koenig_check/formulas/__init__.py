@@ -15,11 +15,11 @@ import numpy as np
 
 from koenig_check.formulas.alyushin import alyushin_current, alyushin_paper, alyushin_pole
 from koenig_check.formulas.angles import CONVENTIONS, integrate_angular_velocity
+from koenig_check.formulas.cache import States
 from koenig_check.formulas.exact import exact
 from koenig_check.formulas.koenig import koenig_principal, koenig_world
 from koenig_check.formulas.planar import NotPlaneParallelError, planar
 from koenig_check.formulas.point_masses import equimomental_points, point_masses
-from koenig_check.segments import SegmentStates
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,7 @@ class Formula:
     func: Callable[..., np.ndarray] = field(repr=False)
     needs_path: bool = False
 
-    def __call__(self, states: SegmentStates, angles: np.ndarray | None = None) -> np.ndarray:
+    def __call__(self, states: States, angles: np.ndarray | None = None) -> np.ndarray:
         """Evaluate on ``states``; ``angles`` is passed only to path-dependent variants."""
         if self.needs_path:
             return self.func(states, angles=angles)

@@ -19,15 +19,12 @@ from typing import Literal
 
 import numpy as np
 
-from koenig_check.formulas.cache import SharedStates, memo, memo_of
+from koenig_check.formulas.cache import States, memo, memo_of
 from koenig_check.formulas.terms import delta_rotation_components
 from koenig_check.kernels import components, times_transpose
-from koenig_check.segments import SegmentStates
-
-States = SegmentStates | SharedStates
 
 Convention = Literal["rotvec", "euler_xyz", "integrated"]
-CONVENTIONS: tuple[str, ...] = ("rotvec", "euler_xyz", "integrated")
+CONVENTIONS: tuple[Convention, ...] = ("rotvec", "euler_xyz", "integrated")
 
 
 def delta_rotation(states: States) -> np.ndarray:

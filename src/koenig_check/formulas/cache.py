@@ -66,6 +66,10 @@ class SharedStates:
         return self.memo("inertia_world_ref", self.states.inertia_world_ref)
 
 
+#: What a formula accepts: plain states, or states wrapped with the shared cache.
+States = SegmentStates | SharedStates
+
+
 def memo(states: SegmentStates | SharedStates, key: str, compute: Callable[[], Any]) -> Any:
     """Compute ``compute()`` once per shared state set, or every time for plain states.
 

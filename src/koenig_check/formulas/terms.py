@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from koenig_check.formulas.cache import memo
+from koenig_check.formulas.cache import States, memo
 from koenig_check.kernels import (
     components,
     dot3,
@@ -56,7 +56,7 @@ def omega_products(states: SegmentStates) -> np.ndarray:
     return memo(states, "omega_prod", compute)
 
 
-def rotation_components(states: SegmentStates) -> np.ndarray:
+def rotation_components(states: States) -> np.ndarray:
     """Rotation matrices ``R`` (world ← segment) as (9, P, B), row-major entries."""
     return memo(states, "rotation_c", lambda: matrix_components(states.rotation))
 
@@ -95,7 +95,7 @@ def axial_part_world(states: SegmentStates) -> np.ndarray:
     return memo(states, "axial_part_world", compute)
 
 
-def delta_rotation_components(states: SegmentStates) -> np.ndarray:
+def delta_rotation_components(states: States) -> np.ndarray:
     """``ΔR = R R_refᵀ`` as (9, P, B), row-major entries."""
     return memo(
         states, "delta_rotation_c", lambda: times_transpose_components(rotation_components(states), states.rotation_ref)

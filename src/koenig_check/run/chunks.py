@@ -9,7 +9,7 @@ and, when asked, records.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -37,12 +37,12 @@ def _evaluate(name: str, run: EngineRun, states: Any, angles: np.ndarray | None,
     return FORMULAS[name](states, angles=angles)
 
 
-def formula_names(formulas: Sequence[str] | None, path: bool) -> tuple[list[str], list[str]]:
+def formula_names(formulas: Iterable[str] | None, path: bool) -> tuple[list[str], list[str]]:
     """The formulas to evaluate and the notes on those skipped.
 
     Parameters
     ----------
-    formulas : sequence of str, optional
+    formulas : iterable of str, optional
         Formula names (default: all).
     path : bool
         Whether the poses form a path (path-dependent variants are skipped otherwise).
@@ -143,9 +143,9 @@ def evaluate_chunk(
                 stats.group((name, source, reference)).add(total, ref_run.rigid, rtol, ids)
                 if records != "none":
                     blocks.append((f_code, s_code, r_code, None, total, ref_run.rigid))
-            err = np.abs(per_segment - exact_seg).ravel()
+            seg_err = np.abs(per_segment - exact_seg).ravel()
             stats.worst_segments.setdefault((name, source), Extreme()).offer(
-                err, lambda k, seg_names=seg_names, B=B: f"{seg_names[k % B]} @ {ids[k // B]}"
+                seg_err, lambda k, seg_names=seg_names, B=B: f"{seg_names[k % B]} @ {ids[k // B]}"
             )
             if records == "segments":
                 blocks.append((f_code, s_code, len(engines) + s_code, seg_codes, per_segment, exact_seg))

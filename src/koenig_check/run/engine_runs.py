@@ -54,11 +54,12 @@ def _points_for(engine: Engine) -> np.ndarray | None:
     if key in _POINTS:
         return _POINTS[key]
     try:
-        offsets, _ = equimomental_points(mass, inertia, engine.segment_names)
+        points, _ = equimomental_points(mass, inertia, engine.segment_names)
     except ValueError:  # a non-physical inertia: point_masses will refuse, with the reason
         offsets = None
     else:
-        offsets.setflags(write=False)
+        points.setflags(write=False)
+        offsets = points
     if len(_POINTS) >= 8:  # a few engines of a few models; a long run over many models starts afresh
         _POINTS.clear()
     _POINTS[key] = offsets

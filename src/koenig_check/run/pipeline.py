@@ -219,6 +219,8 @@ def probe_normals(pair: Any, poses: PoseSet | None, random: RandomRange | None) 
 
     if poses is not None:
         probe = poses.slice(0, min(poses.n_poses, PROBE_POSES))
+    elif random is None:
+        raise ValueError("probe_normals needs poses or a random range")
     else:
         stop = min(random.stop, random.start + PROBE_POSES)
         probe = random_pose_range(pair.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
@@ -412,6 +414,8 @@ def run_model(
         # A failed write of this model's last chunk is this model's failure, not the next one's; and no
         # writing thread is alive when the next model's --jobs workers are forked.
         sink.flush()
+    if stats is None:
+        raise ValueError(f"{label}: no poses to compare (empty pose range)")
     stats.compact()
     # A refusal holds for the whole model: rows of the chunks that accepted the formula do not count.
     refused = [{"model": label, "formula": f, "source": e, "reason": r} for (f, e), r in stats.refusals.items()]

@@ -141,6 +141,8 @@ class QuantileSketch:
             dense = np.zeros(_NBINS + 2, dtype=np.int64)
             dense[self._counts[0]] = self._counts[1]
             self._counts = dense
+        if self._counts is None:
+            raise RuntimeError("QuantileSketch: no bin counts while every value is still kept")
         return self._counts
 
     def merge(self, other: QuantileSketch) -> None:
@@ -366,11 +368,11 @@ class ModelStats:
         self.n_poses += other.n_poses
         for key, g in other.groups.items():
             self.group(key).merge(g)
-        for key, w in other.worst_segments.items():
-            self.worst_segments.setdefault(key, Extreme()).merge(w)
+        for segment_key, w in other.worst_segments.items():
+            self.worst_segments.setdefault(segment_key, Extreme()).merge(w)
         self.parity.merge(other.parity)
-        for key, reason in other.refusals.items():
-            self.refusals.setdefault(key, reason)
+        for refusal_key, reason in other.refusals.items():
+            self.refusals.setdefault(refusal_key, reason)
 
     def compact(self) -> None:
         """Shrink the binned sketches of a finished model to their occupied bins."""

@@ -110,9 +110,9 @@ class DrakeEngine(Engine):
         plant.SetPositions(ctx, self.state_map.positions(qpos0[None])[0])
         heads: dict[int, list[int]] = {}
         for b in range(1, plant.num_bodies()):
-            c = carrier(b)
-            if c != world:
-                heads.setdefault(c, []).append(b)
+            carrier_b = carrier(b)
+            if carrier_b != world:
+                heads.setdefault(carrier_b, []).append(b)
         order = {p.name: k for k, p in enumerate(self.state_map.pairs)}
         items = sorted(heads.items(), key=lambda kv: order[names[inboard[kv[0]].name()]])
         seg_names, bodies, mass, com, inertia, anchor, massless = [], [], [], [], [], [], []

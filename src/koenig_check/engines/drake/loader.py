@@ -257,7 +257,7 @@ def load_drake(source: ModelSource, free_joints: dict[str, str] | None = None) -
         with _drake_warnings(messages):
             if source.format == "mjcf" and _needs_model_name(path):
                 with _named_copy(path) as parsed:
-                    parser.AddModels(str(parsed))  # type: ignore[arg-type]  # the binding's path caster takes str
+                    parser.AddModels(parsed)
                 findings.append(
                     Finding(
                         Kind.LOAD,
@@ -269,13 +269,14 @@ def load_drake(source: ModelSource, free_joints: dict[str, str] | None = None) -
                     )
                 )
             else:
-                parser.AddModels(str(path))  # type: ignore[arg-type]  # the binding's path caster takes str
+                parser.AddModels(path)
     except RuntimeError as exc:
         reason = one_line_reason(str(exc).replace(str(parsed), str(path)), path)
         raise DrakeLoadError(f"{path}: Drake cannot load the file: {reason}") from exc
     findings += warning_findings([m.replace(str(parsed), str(path)) for m in messages], path)
     _fix_base(plant, dict(free_joints or {}), path, findings)
-    plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])  # type: ignore[arg-type]  # Eigen takes a list
+    # pydrake's stub spells the Eigen vector as ndarray[float64[3, 1]], which no numpy type matches
+    plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])  # type: ignore[arg-type]
     try:
         plant.Finalize()
     except RuntimeError as exc:

@@ -118,6 +118,7 @@ class PinocchioEngine(Engine):
                 pin.forwardKinematics(m, d, q[p])
             else:
                 pin.forwardKinematics(m, d, q[p], v[p])
+                assert V is not None  # allocated above whenever v is given
                 V[p] = [x.vector for x in d.v.tolist()]
             H[p] = [M.homogeneous for M in d.oMi.tolist()]
         return H[:, idx], None if V is None else V[:, idx]
@@ -139,7 +140,7 @@ class PinocchioEngine(Engine):
         m = self.model
         P = q.shape[0]
         J = np.empty((P, 6, m.nv))
-        rigid = np.empty(P) if energies else None
+        rigid: np.ndarray | None = None
         jacobians, kinetic, kinematics = pin.computeJointJacobians, pin.computeKineticEnergy, pin.forwardKinematics
         m_rigid, d_rigid, d = self._m_rigid, self._d_rigid, self._data
         Jp = J if m.nv > 1 else J[..., 0]  # the bindings hand a 6 x 1 Jacobian out as a vector
@@ -149,6 +150,7 @@ class PinocchioEngine(Engine):
         view = self._placement_views[0 if energies else 1]
         raw = np.empty((P, m.njoints, 12)) if view is not None else np.empty((P, m.njoints, 4, 4))
         if energies:
+            rigid = np.empty(P)
             # One kinematic pass on the armature-free copy (the same tree, so the same placements and
             # Jacobian, bit for bit): forwardKinematics with v, then the energy and the Jacobians from it.
             for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
@@ -210,6 +212,7 @@ class PinocchioEngine(Engine):
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         R, origin, T, rigid = self._sweep_world(q, v, energies=True)
+        assert rigid is not None  # energies=True always evaluates the energies
         states = self._states(R, origin, T, trusted=True)
         pv = None
         if points is not None:
@@ -253,6 +256,7 @@ class PinocchioEngine(Engine):
         pts = check_points(points, len(self.segment_names))
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         H, V = self._sweep(q, v)
+        assert V is not None  # _sweep returns the twists whenever v is given
         r = self._lever[:, None, :] + pts  # (B, K, 3) from the joint origin, joint axes
         local = V[:, :, None, :3] + np.cross(V[:, :, None, 3:], r[None])
         return np.einsum("pbij,pbkj->pbki", H[..., :3, :3], local)

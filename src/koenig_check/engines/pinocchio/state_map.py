@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass, replace
+from typing import overload
 
 import mujoco
 import numpy as np
@@ -294,6 +295,10 @@ class StateMap(VelocityMapped):
         return mats.reshape(P, F, 3, 3)
 
     # ------------------------------------------------------------- positions
+    @overload
+    def to_pinocchio(self, qpos: np.ndarray, qvel: None = None) -> np.ndarray: ...
+    @overload
+    def to_pinocchio(self, qpos: np.ndarray, qvel: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
     def to_pinocchio(
         self, qpos: np.ndarray, qvel: np.ndarray | None = None
     ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
