@@ -90,8 +90,10 @@ class CrossCheck:
         return "; ".join(parts)
 
 
-def _label(model: str | Path, floating: bool) -> str:
-    text = Path(model).name if Path(str(model)).suffix else str(model)
+def _label(model: str | Path, floating: bool, xacro_args: tuple[tuple[str, str], ...] = ()) -> str:
+    from koenig_check.sources.external import source_label
+
+    text = source_label(model, xacro_args) or (Path(model).name if Path(str(model)).suffix else str(model))
     return f"{text} (floating)" if floating else text
 
 
@@ -240,7 +242,7 @@ def compare_model(
     comp = pipeline.run_model(
         pair,
         source,
-        label or _label(model, options.floating),
+        label or _label(model, options.floating, options.xacro_args),
         formulas,
         pose_set=pose_set,
         random=random,
@@ -329,7 +331,9 @@ def compare(
         (:class:`koenig_check.arguments.ArgumentTypeError`), before any model is loaded.
     ValueError
         An argument out of range (``rtol <= 0``, ``n_poses < 1``, an unknown formula, a grid without its
-        two joints: :class:`koenig_check.arguments.ArgumentValueError`), before any model is loaded.
+        two joints: :class:`koenig_check.arguments.ArgumentValueError`), before any model is loaded; or a
+        model named by its source that cannot be had (:class:`koenig_check.sources.ModelSourceError`: extra
+        missing, unknown name, download impossible), before any model is loaded.
     """
     if isinstance(models, str | Path):
         models = [models]
@@ -339,9 +343,13 @@ def compare(
     options = dict(options)
     load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
     tiebreak.check_engines(load.engines)
+    from koenig_check.sources.external import prepare
+
+    models = list(models)
+    prepare([*models, *([load.pinocchio_model] if load.pinocchio_model else [])])  # extras, names, downloads
     result = CrossCheck(rtol=rtol)
     for model in models:
-        label = _label(model, load.floating)
+        label = _label(model, load.floating, load.xacro_args)
         if progress:
             progress(label)
         result.settings[label] = {k: options[k] for k in _SETTINGS if k in options}
