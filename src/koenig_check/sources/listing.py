@@ -27,9 +27,9 @@ def menagerie_lines(paths: bool = False) -> list[str]:
     koenig_check.sources.ModelSourceError
         If ``mujoco-menagerie`` is not installed.
     """
+    robots = menagerie_robots()  # first: the one-line error when the extra is missing
     import mujoco_menagerie as mm
 
-    robots = menagerie_robots()
     local = sum(r.local for r in robots)
     head = (
         f"{len(robots)} MuJoCo Menagerie robots (mujoco-menagerie {mm.__version__}, Menagerie commit "
