@@ -57,8 +57,11 @@ def assert_energy_parity(
     ------
     AssertionError
         Naming the segment, the pose and the size of the largest difference, with the
-        import-parity causes found for that segment.
+        import-parity causes found for that segment.  The message reads like the command line's verdict:
+        the engine that departs (three engines) and the root cause first, then the symptoms; pytest shows
+        no line of this function (``__tracebackhide__``).
     """
+    __tracebackhide__ = True
     from koenig_check.engines import load_model
     from koenig_check.parity import import_parity
     from koenig_check.poses import random_poses
@@ -114,6 +117,7 @@ def assert_energy_parity(
     from koenig_check import tiebreak
 
     drake = tiebreak.consult_drake(pair, pair.options.engines, bool(problems))
+    lead = 0  # where the root cause goes: after the three-engine verdict when there is one
     if drake.used:
         findings = pair.findings + import_parity(pair, rtol=rtol).as_findings() + drake.findings
         energies = {"mujoco": ka, "pinocchio": kb, "drake": drake.engine.kinetic_energy(poses.qpos, poses.qvel)}
@@ -124,10 +128,11 @@ def assert_energy_parity(
         verdicts = tiebreak.energy_verdicts(energies, findings, rtol) + tiebreak.import_verdicts(states, findings, rtol)
         if verdicts:
             problems.insert(0, tiebreak.lead_line(verdicts))
+            lead = 1
     if problems:
         from koenig_check.grid import disagreement_cause
 
         cause = disagreement_cause(pair.findings + import_parity(pair, rtol=rtol).as_findings())
         if cause:
-            problems.append(f"cause: {cause}")
+            problems.insert(lead, f"root cause: {cause}")
         raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))
