@@ -12,6 +12,9 @@ from koenig_check.analytic import random_states
 from koenig_check.segments import SegmentStates
 from process_memory import peak_memory, release_memory
 
+#: ``pytester`` runs pytest on small projects (the ``--koenig-check`` plugin's tests, in subprocesses).
+pytest_plugins = ["pytester"]
+
 #: The comparison scripts live in ``comparisons/`` (scripts, not a package): their shared corpus
 #: definitions (``common``) are importable from the tests.
 COMPARISONS = Path(__file__).resolve().parents[1] / "comparisons"

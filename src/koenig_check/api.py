@@ -314,7 +314,9 @@ def compare(
         (:class:`koenig_check.arguments.ArgumentTypeError`), before any model is loaded.
     ValueError
         An argument out of range (``rtol <= 0``, ``n_poses < 1``, an unknown formula, a grid without its
-        two joints: :class:`koenig_check.arguments.ArgumentValueError`), before any model is loaded.
+        two joints: :class:`koenig_check.arguments.ArgumentValueError`), before any model is loaded; or a
+        model named by its source that cannot be had (:class:`koenig_check.sources.ModelSourceError`: extra
+        missing, unknown name, download impossible), before any model is loaded.
     """
     if isinstance(models, str | Path):
         models = [models]
@@ -324,8 +326,12 @@ def compare(
     options = dict(options)
     load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
     check_engines(load.engines)
+    from koenig_check.sources.external import prepare
+
+    models = list(models)
+    prepare([*models, *([load.pinocchio_model] if load.pinocchio_model else [])])  # extras, names, downloads
     result = CrossCheck(rtol=rtol)
-    for model, label in zip(models, unique_labels(models, load.floating), strict=True):
+    for model, label in zip(models, unique_labels(models, load.floating, load.xacro_args), strict=True):
         if progress:
             progress(label)
         result.settings[label] = {k: options[k] for k in _SETTINGS if k in options}

@@ -19,9 +19,10 @@ from typing import Any, NoReturn
 from koenig_check import __version__
 from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions, add_load_arguments
+from koenig_check.sources.errors import ModelSourceError
 
 DEFAULT_OUT = "koenig-check-report"
-KoenigCheckUsageErrors = (ArgumentValueError, ArgumentTypeError)
+KoenigCheckUsageErrors = (ArgumentValueError, ArgumentTypeError, ModelSourceError)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -210,6 +211,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--check", action="store_true", help="load each model in both engines and say why not (slow)")
     p.add_argument("--paths", action="store_true", help="show each model's file")
+    p.add_argument(
+        "--menagerie",
+        action="store_true",
+        help="list MuJoCo Menagerie's robots instead (menagerie:NAME; extra [menagerie])",
+    )
     p.set_defaults(func=_cmd_models)
 
     p = _add(
@@ -237,6 +243,11 @@ def _cmd_selfcheck(args: argparse.Namespace) -> int:
 def _cmd_models(args: argparse.Namespace) -> int:
     from koenig_check.engines.sources import DEFAULT_FORMAT, model_names
 
+    if args.menagerie:
+        from koenig_check.sources.listing import menagerie_lines
+
+        print("\n".join(menagerie_lines(paths=args.paths)))
+        return 0
     names = model_names()
     print(f"{len(names)} models. Type the NAME or any ALIAS, or a file path. A project model in both formats")
     print(f"is name.xml or name.urdf; its bare name means the {DEFAULT_FORMAT.upper()} file.")
@@ -343,6 +354,9 @@ def _cmd_compare(args: argparse.Namespace) -> int:
 
     _check_compare_usage(args)
     load_options = _load_options(args)
+    from koenig_check.sources.external import prepare
+
+    prepare([*args.models, *([load_options.pinocchio_model] if load_options.pinocchio_model else [])])
     client = None
     if args.scheduler:
         try:

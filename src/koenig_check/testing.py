@@ -57,8 +57,11 @@ def assert_energy_parity(
     ------
     AssertionError
         Naming the segment, the pose and the size of the largest difference, with the
-        import-parity causes found for that segment.
+        import-parity causes found for that segment.  The message reads like the command line's verdict:
+        the engine that departs (three engines) and the root cause first, then the symptoms; pytest shows
+        no line of this function (``__tracebackhide__``).
     """
+    __tracebackhide__ = True
     from koenig_check.diagnosis.diagnose import diagnose
     from koenig_check.diagnosis.reason import disagreement_cause, lead_line
     from koenig_check.engines import load_model
@@ -130,6 +133,6 @@ def assert_energy_parity(
         problems.insert(0, lead)
     if problems:
         cause = disagreement_cause(diagnosis.findings)
-        if cause:
-            problems.append(f"cause: {cause}")
+        if cause:  # right after the three-engine verdict, before the symptoms
+            problems.insert(1 if lead else 0, f"root cause: {cause}")
         raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))

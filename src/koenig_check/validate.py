@@ -180,7 +180,7 @@ def _mujoco_refusal(path: Path) -> str | None:
 
 
 def _parse(path: Path, data: bytes) -> str:
-    parser = ET.XMLPullParser(events=("start", "end"))
+    parser: ET.XMLPullParser[ET.Element] = ET.XMLPullParser(events=("start", "end"))
     depth = 0
     root_tag = None
     try:

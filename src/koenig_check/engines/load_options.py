@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import os
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -44,6 +45,9 @@ class LoadOptions:
         The engines to run on every model: ``("mujoco", "pinocchio")`` or ``("mujoco", "pinocchio",
         "drake")``.  ``None`` (default): MuJoCo and Pinocchio, and Drake as tie-breaker on a model where
         they disagree, when Drake is installed (:mod:`koenig_check.diagnosis.policy`).
+    xacro_args : mapping or pairs, optional
+        ``$(arg NAME)`` values for a ``.xacro`` model (``{"length": "0.7"}``, ``["length=0.7"]``); the file's
+        defaults apply to the others.  Stored as sorted ``(name, value)`` pairs.
     """
 
     floating: bool = False
@@ -52,8 +56,10 @@ class LoadOptions:
     pinocchio_model: str | os.PathLike[str] | None = None
     allow_coupled: bool = False
     engines: tuple[str, ...] | None = None
+    xacro_args: tuple[tuple[str, str], ...] = ()
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "xacro_args", parse_xacro_args(self.xacro_args))
         if self.engines is not None:
             names = (self.engines,) if isinstance(self.engines, str) else tuple(self.engines)
             object.__setattr__(self, "engines", parse_engines(",".join(names)))
@@ -139,6 +145,55 @@ def parse_engines(text: str) -> tuple[str, ...]:
     return tuple(n for n in ENGINE_NAMES if n in names)
 
 
+def parse_xacro_args(value: Mapping[str, Any] | Iterable[Any] | None) -> tuple[tuple[str, str], ...]:
+    """Read xacro arguments: a mapping, ``"NAME=VALUE"`` strings or ``(name, value)`` pairs.
+
+    Parameters
+    ----------
+    value : mapping, iterable or None
+
+    Returns
+    -------
+    tuple of (str, str)
+        Sorted by name; numbers written as text, booleans as ``true``/``false`` (xacro's spelling).
+
+    Raises
+    ------
+    TypeError
+        On a value that is none of these.
+    ValueError
+        On a string without ``=`` or an empty name.
+    """
+    if value is None:
+        return ()
+    if isinstance(value, str):
+        value = [value]
+    items = value.items() if isinstance(value, Mapping) else value
+    pairs: dict[str, str] = {}
+    for item in items:
+        if isinstance(item, str):
+            name, sep, text = item.partition("=")
+            if not sep:
+                raise ValueError(f"xacro_args: expected NAME=VALUE, got {item!r}")
+        elif isinstance(item, tuple | list) and len(item) == 2:
+            name, raw = item
+            text = ("true" if raw else "false") if isinstance(raw, bool) else str(raw)
+        else:
+            raise TypeError(f"xacro_args: expected NAME=VALUE strings, (name, value) pairs or a mapping, got {item!r}")
+        name = str(name).strip()
+        if not name:
+            raise ValueError(f"xacro_args: empty argument name in {item!r}")
+        pairs[name] = text
+    return tuple(sorted(pairs.items()))
+
+
+def _xacro_argument(text: str) -> tuple[str, str]:
+    try:
+        return parse_xacro_args([text])[0]
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err).replace("xacro_args: ", "")) from None
+
+
 def _engines_argument(text: str) -> tuple[str, ...]:
     try:
         return parse_engines(text)
@@ -175,4 +230,13 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="LIST",
         help="engines to run on every model, e.g. mujoco,pinocchio,drake (default: Drake only as tie-breaker "
         "where MuJoCo and Pinocchio disagree, when installed)",
+    )
+    group.add_argument(
+        "--xacro-arg",
+        dest="xacro_args",
+        action="append",
+        type=_xacro_argument,
+        default=None,
+        metavar="NAME=VALUE",
+        help="set $(arg NAME) of a .xacro model (repeat for several; the file's defaults apply to the others)",
     )

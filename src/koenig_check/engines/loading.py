@@ -297,8 +297,10 @@ def load_model(
         opts = replace(opts, **legacy)
     if opts.allow_coupled:
         warnings.warn(ALLOW_COUPLED_DEPRECATION, DeprecationWarning, stacklevel=2)
-    source = resolve_model(path_or_name, fmt)
-    pin_source = source if opts.pinocchio_model is None else resolve_model(opts.pinocchio_model)
+    source = resolve_model(path_or_name, fmt, xacro_args=opts.xacro_args)
+    pin_source = (
+        source if opts.pinocchio_model is None else resolve_model(opts.pinocchio_model, xacro_args=opts.xacro_args)
+    )
     for s in {source.path: source, pin_source.path: pin_source}.values():
         preflight(s.path)
     mj_model, mj_findings, body_findings = load_mujoco(

@@ -50,7 +50,8 @@ class ModelSource:
     format : str
         ``"mjcf"`` or ``"urdf"``.
     origin : str
-        ``"project"``, ``"example-robot-data"`` or ``"file"``.
+        ``"project"``, ``"example-robot-data"``, ``"file"``, or where an external model came from
+        (``"menagerie"``, ``"robot_descriptions"``, ``"xacro"``: :mod:`koenig_check.sources`).
     aliases : tuple of str
         Other names that resolve to this file.
     package_dirs : tuple of Path
@@ -201,16 +202,21 @@ def list_models(origin: str | None = None) -> list[ModelSource]:
     return sorted(items, key=lambda s: (s.origin != "project", s.name, s.format))
 
 
-def resolve_model(name_or_path: str | os.PathLike[str], fmt: str | None = None) -> ModelSource:
+def resolve_model(
+    name_or_path: str | os.PathLike[str], fmt: str | None = None, *, xacro_args: tuple[tuple[str, str], ...] = ()
+) -> ModelSource:
     """Turn a short name or a path into a :class:`ModelSource`.
 
     Parameters
     ----------
     name_or_path : str or path
         An existing file, a name from :func:`list_models`, an alias, or ``"name.urdf"`` /
-        ``"name.xml"`` to pick the format of a project model.
+        ``"name.xml"`` to pick the format of a project model; or a model named by its source,
+        ``menagerie:NAME[:ENTRY]``, ``rd:NAME`` or a ``.xacro`` file (:mod:`koenig_check.sources`).
     fmt : str, optional
         ``"mjcf"`` or ``"urdf"`` to disambiguate a name.
+    xacro_args : tuple of (str, str)
+        ``$(arg)`` values of a xacro model (:attr:`LoadOptions.xacro_args`).
 
     Returns
     -------
@@ -219,11 +225,19 @@ def resolve_model(name_or_path: str | os.PathLike[str], fmt: str | None = None) 
     Raises
     ------
     ModelLoadError
-        If the name is unknown or ambiguous.
+        If the name is unknown or ambiguous, or a xacro file does not expand.
+    koenig_check.sources.ModelSourceError
+        If a source's extra is missing, its name unknown, or its download cannot happen.
     """
     if fmt not in (None, "mjcf", "urdf"):
         raise ValueError(f"fmt must be 'mjcf', 'urdf' or None, got {fmt!r}")
     text = os.fspath(name_or_path)
+    from koenig_check.sources.external import resolve_external
+
+    external = resolve_external(text, xacro_args)
+    if external is not None:
+        kind = preflight(external.path)
+        return ModelSource(external.label, external.path, kind, external.origin, (), external.package_dirs)
     path = Path(text).expanduser()
     if not (path.is_file() or path.is_absolute() or path.is_dir()):
         path = _project_relative(path) or path

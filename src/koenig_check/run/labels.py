@@ -8,21 +8,26 @@ from pathlib import Path
 
 
 def _is_file(model: str | os.PathLike[str]) -> bool:
-    return bool(Path(str(model)).suffix)
+    return bool(Path(str(model)).suffix) and not str(model).startswith(("menagerie:", "rd:"))
 
 
-def unique_labels(models: Sequence[str | os.PathLike[str]], floating: bool = False) -> list[str]:
+def unique_labels(
+    models: Sequence[str | os.PathLike[str]], floating: bool = False, xacro_args: Sequence[tuple[str, str]] = ()
+) -> list[str]:
     """One label per model of a run: the file name, or the shortest path suffix that tells it apart.
 
     ``a/robot.xml`` and ``b/robot.xml`` are labelled ``a/robot.xml`` and ``b/robot.xml``; a file given alone
-    is labelled by its name; a model name (``ur5``) is its own label.  The same file given twice gets
-    ``#2``, ``#3``... after its label.  ``(floating)`` follows the label of a floating-base run.
+    is labelled by its name; a model name (``ur5``, ``menagerie:unitree_g1``, ``rd:ur5e``) is its own label.
+    The arguments of a xacro file follow its label (``arm.urdf.xacro [length=0.8]``).  The same file given
+    twice gets ``#2``, ``#3``... after its label.  ``(floating)`` follows the label of a floating-base run.
 
     Parameters
     ----------
     models : sequence of str or path
         Model files or names, as the user gave them.
     floating : bool
+    xacro_args : sequence of (str, str)
+        The ``$(arg)`` values given for xacro files.
 
     Returns
     -------
@@ -36,7 +41,10 @@ def unique_labels(models: Sequence[str | os.PathLike[str]], floating: bool = Fal
         depth = 1
         while depth < len(mine) and any(p[-depth:] == mine[-depth:] for p in others):
             depth += 1
-        labels.append("/".join(mine[-depth:]))
+        label = "/".join(mine[-depth:])
+        if xacro_args and label.endswith(".xacro"):  # the arguments make another robot of the same file
+            label += " [" + ", ".join(f"{k}={v}" for k, v in xacro_args) + "]"
+        labels.append(label)
     seen: dict[str, int] = {}
     out = []
     for label in labels:

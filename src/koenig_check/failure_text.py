@@ -1,0 +1,39 @@
+"""What a failing check says, as the command line's verdict does: the root causes first, then the symptoms."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from koenig_check.findings import Kind
+
+if TYPE_CHECKING:
+    from koenig_check.api import CrossCheck
+
+
+def verdict_lines(check: CrossCheck) -> list[str]:
+    """Why ``koenig-check compare`` would exit 1, model by model: root cause, three-engine verdicts, the gap.
+
+    Parameters
+    ----------
+    check : CrossCheck
+
+    Returns
+    -------
+    list of str
+        Empty when :attr:`CrossCheck.ok`.
+    """
+    from koenig_check.diagnosis.reason import disagreement_cause
+
+    lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
+    for comparison, parity in zip(check.comparisons, check.parities, strict=True):
+        verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
+        if parity.agrees and not verdicts:
+            continue
+        cause = disagreement_cause(comparison.findings)
+        lines.append(f"{parity.model}: MuJoCo and Pinocchio {'agree' if parity.agrees else 'disagree'}")
+        if cause:
+            lines.append(f"  root cause: {cause}")
+        lines += [f"  three engines: {f.message()}" for f in verdicts]
+        if not parity.agrees:
+            lines.append(f"  engines: {parity.reason.split('; cause: ')[0]}")
+    return lines
