@@ -87,6 +87,8 @@ def print_proof(proof: Proof) -> None:
             print(f"  {e.engine}: mass matrix {e.mass_matrix:.2g}, rigid energy {e.energy:.2g} ({e.poses} poses)")
     for line in proof.skipped():
         print(f"  not compared: {line}")
+    for line in proof.notes():
+        print(f"  note: {line}")
     print(proof.summary())
 
 

@@ -2,12 +2,14 @@
 
 No ``<include>``, no default classes, no ``<frame>``: every body's pose and explicit ``<inertial>`` (mass,
 centre of mass, principal moments and their orientation), every joint's position, axis, range, armature,
-damping, stiffness and friction loss written out, and ``inertiafromgeom="false"`` so that no reader
-derives a mass from geometry.  A joint's ``ref`` is folded into its body's pose where the body has that
+damping, stiffness and friction loss written out.  Every body with mass gets an explicit ``<inertial>``;
+a massless body gets none and its geoms ``mass="0"`` under ``inertiafromgeom="auto"``, so that every
+reader derives a zero mass (Drake refuses a zero-mass ``<inertial>``), and no reader derives a mass from
+geometry elsewhere.  A joint's ``ref`` is folded into its body's pose where the body has that
 one joint, so that a reader ignoring ``ref`` still puts every body where MuJoCo does at the same ``q``.
 Mesh geoms are written for ``.obj`` files only (Drake's MJCF parser refuses the whole file otherwise);
 the others are listed as not carried.  Several root bodies are wrapped under one jointless root at the
-identity (unless one of them is free: MuJoCo holds free joints only at the top level).  Numbers are
+identity (unless one is free or mocap: MuJoCo holds those only at the top level).  Numbers are
 written at full precision (Python's shortest repr, which parses back to the same double).  Joint
 equalities and keyframes are kept; tendons, actuators, sensors and other equalities are listed as not
 carried.
@@ -55,6 +57,13 @@ def _body_pose(model: mujoco.MjModel, b: int) -> tuple[Pose, bool]:
     return compose(compose(compose(pose, translation(anchor)), motion), translation(-anchor)), True
 
 
+def _unused(name: str, names: list[str]) -> str:
+    """``name``, prefixed with underscores until no body has it."""
+    while name in names:
+        name = "_" + name
+    return name
+
+
 def _why(geom: Geom) -> str:
     if geom.shape != "mesh":
         return f"no {geom.shape} shape written"
@@ -76,6 +85,7 @@ def _geom(parent: ET.Element, geom: Geom, meshes: dict[str, str], out_file: str 
     else:
         attrib["size"] = numbers(geom.size)
     attrib["rgba"] = numbers(geom.rgba)
+    attrib["mass"] = "0"
     attrib["contype"] = "1" if geom.collides else "0"
     attrib["conaffinity"] = "1" if geom.collides else "0"
     ET.SubElement(parent, "geom", attrib)
@@ -143,7 +153,7 @@ def write_portable_mjcf(
     joints = mujoco_joint_names(model)
     names = ["world"] + [model.body(b).name or f"body{b}" for b in range(1, model.nbody)]
     root = ET.Element("mujoco", {"model": model_name})
-    ET.SubElement(root, "compiler", {"angle": "radian", "inertiafromgeom": "false", "autolimits": "false"})
+    ET.SubElement(root, "compiler", {"angle": "radian", "inertiafromgeom": "auto", "autolimits": "false"})
     ET.SubElement(root, "option", {"timestep": number(model.opt.timestep), "gravity": numbers(model.opt.gravity)})
     asset = ET.SubElement(root, "asset")
     world = ET.SubElement(root, "worldbody")
@@ -158,34 +168,45 @@ def write_portable_mjcf(
             skipped.append(g)
     tops = [b for b in range(1, model.nbody) if model.body_parentid[b] == 0]
     free_top = any(model.jnt_type[model.body_jntadr[b]] == 0 for b in tops if model.body_jntnum[b])
+    free_top = free_top or any(model.body_mocapid[b] >= 0 for b in tops)
     elements: dict[int, ET.Element] = {0: world}
+    posed: list[str] = []
     if len(tops) > 1 and not free_top:
-        wrapper = "root"
-        while wrapper in names:
-            wrapper = "_" + wrapper
+        wrapper = _unused("root", names)
         elements[0] = ET.SubElement(world, "body", {"name": wrapper, "pos": "0 0 0", "quat": "1 0 0 0"})
-        ET.SubElement(elements[0], "inertial", {"pos": "0 0 0", "mass": "0", "diaginertia": "0 0 0"})
     elif len(tops) > 1:
         not_carried.append(
             NotCarried(
                 "several root bodies",
                 "bodies " + ", ".join(names[b] for b in tops),
-                "kept at the top level: MuJoCo holds free joints only on root bodies",
+                "kept at the top level: MuJoCo holds free joints and mocap bodies only as root bodies",
             )
         )
     for g in by_body.get(0, []):
         _geom(world, g, meshes, out_file)
     for b in range(1, model.nbody):
         pose, folded = _body_pose(model, b)
+        parent = elements[int(model.body_parentid[b])]
+        if model.body_jntnum[b] > 1 and np.any(pose[0]):
+            parent = ET.SubElement(
+                parent,
+                "body",
+                {
+                    "name": _unused(f"{names[b]}_pose", names),
+                    "pos": numbers(pose[0]),
+                    "quat": numbers(matrix_to_quat(pose[1])),
+                },
+            )
+            pose = translation(np.zeros(3))
+            posed.append(names[b])
         body = ET.SubElement(
-            elements[int(model.body_parentid[b])],
-            "body",
-            {"name": names[b], "pos": numbers(pose[0]), "quat": numbers(matrix_to_quat(pose[1]))},
+            parent, "body", {"name": names[b], "pos": numbers(pose[0]), "quat": numbers(matrix_to_quat(pose[1]))}
         )
         if model.body_mocapid[b] >= 0:
             body.set("mocap", "true")
         elements[b] = body
-        _inertial(body, model, b)
+        if model.body_mass[b] > 0 or np.any(model.body_inertia[b] > 0):
+            _inertial(body, model, b)
         for j in range(int(model.body_jntadr[b]), int(model.body_jntadr[b]) + int(model.body_jntnum[b])):
             _joint(body, model, j, joints[j], folded)
         for g in by_body.get(b, []):
@@ -193,6 +214,15 @@ def write_portable_mjcf(
     for key, name in meshes.items():
         file, scale = key.split("|")
         ET.SubElement(asset, "mesh", {"name": name, "file": file, "scale": scale})
+    if posed:
+        not_carried.append(
+            NotCarried(
+                "body pose of a multi-joint body",
+                "bodies " + ", ".join(posed),
+                "the pose is written on a massless parent body '<name>_pose' welded to the parent: Drake's MJCF "
+                "parser drops the body's pos for the first of several joints",
+            )
+        )
     _equalities(root, model, joints)
     _keyframes(root, model)
     if skipped:

@@ -3,7 +3,9 @@
 The independent route: every engine loads the original and the export separately; the original's random
 canonical states are written in the export's layout by joint name (:mod:`~koenig_check.export.joint_pairing`);
 per engine, the joint-space mass matrix with the armature removed and the rigid-body kinetic energy of the
-two files are compared at the same states.  Per moving segment, mass, the centre of mass's distance from the
+export are compared at the same states with MuJoCo's reading of the original (the reference: the robot
+MuJoCo simulates, which the export is written from) and with the engine's own reading of the original
+(an engine that misreads the original is told apart from an export that differs).  Per moving segment, mass, the centre of mass's distance from the
 joint and the principal moments of inertia (quantities no choice of world frame changes) are compared as
 well, so that a difference names the link at fault.
 """
@@ -40,6 +42,24 @@ def _rigid_mass_matrix(adapter: object, qpos: np.ndarray) -> np.ndarray:
     return np.asarray(adapter.mass_matrix(qpos)) - np.asarray(adapter.armature_matrix(qpos))  # type: ignore[attr-defined]
 
 
+def _differences(
+    a: object,
+    b: object,
+    pairing: JointPairing,
+    states: tuple[np.ndarray, np.ndarray],
+    export_states: tuple[np.ndarray, np.ndarray],
+) -> tuple[float, float]:
+    """Max relative differences of the rigid mass matrix and the rigid energy: adapter a (original) vs b (export)."""
+    (qpos, qvel), (qx, vx) = states, export_states
+    od, xd = pairing.dof_original, pairing.dof_export
+    m_a = _rigid_mass_matrix(a, qpos)[:, od][:, :, od]
+    m_b = _rigid_mass_matrix(b, qx)[:, xd][:, :, xd]
+    t_a = np.asarray(a.kinetic_energy(qpos, qvel).rigid)  # type: ignore[attr-defined]
+    t_b = np.asarray(b.kinetic_energy(qx, vx).rigid)  # type: ignore[attr-defined]
+    de = np.abs(t_a - t_b) / np.where(np.abs(t_a) > 0, np.abs(t_a), 1.0)
+    return float(_relative(m_a, m_b, (1, 2)).max()), float(de.max())
+
+
 def compare_engine(
     engine: str,
     original: EngineSide,
@@ -48,7 +68,11 @@ def compare_engine(
     states: tuple[np.ndarray, np.ndarray],
     rtol: float,
 ) -> tuple[EngineProof, list[SegmentDifference]]:
-    """One engine's mass matrix, rigid energy and segments on both files at the same states.
+    """One engine's reading of the export against MuJoCo's reading of the original, at the same states.
+
+    MuJoCo's reading of the original is the reference (the robot MuJoCo simulates, which the export is
+    written from); the engine's own reading of the original is compared too (``own_reading``), so that an
+    engine that reads the original differently from MuJoCo is told apart from an export that differs.
 
     Parameters
     ----------
@@ -63,21 +87,17 @@ def compare_engine(
     EngineProof, list of SegmentDifference
     """
     qpos, qvel = states
-    for side, what in ((original, "original"), (export, "export")):
-        if engine in side.refused:
-            return EngineProof(engine, np.nan, np.nan, 0, False, f"cannot load the {what}: {side.refused[engine]}"), []
-    a, b = original.adapters[engine], export.adapters[engine]
+    if engine in export.refused:
+        return EngineProof(engine, np.nan, np.nan, 0, False, f"cannot load the export: {export.refused[engine]}"), []
+    reference, b = original.adapters["mujoco"], export.adapters[engine]
     qx, vx = pairing.export_states(qpos, qvel, export.mj_model)
-    od, xd = pairing.dof_original, pairing.dof_export
-    m_a = _rigid_mass_matrix(a, qpos)[:, od][:, :, od]
-    m_b = _rigid_mass_matrix(b, qx)[:, xd][:, :, xd]
-    dm = float(_relative(m_a, m_b, (1, 2)).max())
-    t_a = np.asarray(a.kinetic_energy(qpos, qvel).rigid)
-    t_b = np.asarray(b.kinetic_energy(qx, vx).rigid)
-    de = float((np.abs(t_a - t_b) / np.where(np.abs(t_a) > 0, np.abs(t_a), 1.0)).max())
-    ok = dm <= rtol and de <= rtol
-    proof = EngineProof(engine, dm, de, int(qpos.shape[0]), ok)
-    return proof, _segments(engine, a, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, rtol)
+    dm, de = _differences(reference, b, pairing, states, (qx, vx))
+    own = np.nan
+    if engine in original.adapters:
+        own = max(_differences(original.adapters[engine], b, pairing, states, (qx, vx)))
+    proof = EngineProof(engine, dm, de, int(qpos.shape[0]), dm <= rtol and de <= rtol, own_reading=own)
+    segments = _segments(engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, rtol)
+    return proof, segments
 
 
 def _segments(
@@ -179,6 +199,10 @@ def prove(
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)
     pairing = pair_joints(side_a.mj_model, side_b.mj_model)
+    if side_a.mj_model.nv == 0:
+        problem = f"{side_a.path}: nothing moves (no joint), so there is no mass matrix to compare (--floating gives the root body a free joint)"
+        skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "nothing moves") for e in engines)
+        return Proof(skipped, (), poses, seed, rtol, (problem,))
     if pairing.problems:
         skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "joints do not pair") for e in engines)
         return Proof(skipped, (), poses, seed, rtol, pairing.problems)

@@ -10,7 +10,7 @@ from koenig_check.export.carried import NotCarried
 
 @dataclass(frozen=True)
 class EngineProof:
-    """One engine's comparison of the export with the original (the same engine on both files).
+    """One engine's reading of the export against MuJoCo's reading of the original.
 
     Parameters
     ----------
@@ -18,14 +18,19 @@ class EngineProof:
         ``"mujoco"``, ``"pinocchio"`` or ``"drake"``.
     mass_matrix : float
         Max over poses of ``max|M_export - M_original| / max|M_original|``, armature removed (NaN when
-        not compared).
+        not compared); ``M_export`` from this engine, ``M_original`` from MuJoCo.
     energy : float
         Max over poses of ``|T_export - T_original| / |T_original|`` (rigid-body energy).
     poses : int
     equivalent : bool
         Both within the tolerance.
     reason : str
-        Why the engine was not compared (it refused a file, joints unpaired), or empty.
+        Why the engine was not compared (it refused the export, joints unpaired), or empty.
+    own_reading : float
+        The largest relative difference (mass matrix or energy) between this engine's readings of the
+        export and of the original; NaN when it cannot load the original.  Large while ``mass_matrix``
+        is small: the engine reads the original differently from MuJoCo, and reads the export as MuJoCo
+        reads the original.
     """
 
     engine: str
@@ -34,6 +39,7 @@ class EngineProof:
     poses: int
     equivalent: bool
     reason: str = ""
+    own_reading: float = float("nan")
 
     @property
     def compared(self) -> bool:
@@ -147,8 +153,22 @@ class Proof:
                     f"(tolerance {self.rtol:g}, {e.poses} poses)"
                 )
         if not any(e.compared for e in self.engines):
-            out.append("no engine loaded both files")
+            out.append("no engine loaded the export")
         return out
+
+    def notes(self) -> list[str]:
+        """Engines that read the original differently from MuJoCo (the export reads as MuJoCo's original).
+
+        Returns
+        -------
+        list of str
+        """
+        return [
+            f"{e.engine} reads the original differently from MuJoCo (relative difference {e.own_reading:.2g}); "
+            "it reads the export as MuJoCo reads the original"
+            for e in self.engines
+            if e.compared and e.equivalent and e.own_reading > self.rtol
+        ]
 
     def skipped(self) -> list[str]:
         """Engines not compared, with the reason.
