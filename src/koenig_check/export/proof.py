@@ -5,9 +5,9 @@ canonical states are written in the export's layout by joint name (:mod:`~koenig
 per engine, the joint-space mass matrix with the armature removed and the rigid-body kinetic energy of the
 export are compared at the same states with MuJoCo's reading of the original (the reference: the robot
 MuJoCo simulates, which the export is written from) and with the engine's own reading of the original
-(an engine that misreads the original is told apart from an export that differs).  Per moving segment, mass, the centre of mass's distance from the
-joint and the principal moments of inertia (quantities no choice of world frame changes) are compared as
-well, so that a difference names the link at fault.
+(an engine that misreads the original is told apart from an export that differs).  Per moving segment,
+mass, the centre of mass's distance from the joint and the principal moments of inertia (quantities no
+choice of world frame changes) are compared as well, so that a difference names the link at fault.
 """
 
 from __future__ import annotations
@@ -200,7 +200,10 @@ def prove(
     side_b = load_side(export, export_options(opts, side_a, export), engines)
     pairing = pair_joints(side_a.mj_model, side_b.mj_model)
     if side_a.mj_model.nv == 0:
-        problem = f"{side_a.path}: nothing moves (no joint), so there is no mass matrix to compare (--floating gives the root body a free joint)"
+        problem = (
+            f"{side_a.path}: nothing moves (no joint), so there is no mass matrix to compare "
+            "(--floating gives the root body a free joint)"
+        )
         skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "nothing moves") for e in engines)
         return Proof(skipped, (), poses, seed, rtol, (problem,))
     if pairing.problems:
