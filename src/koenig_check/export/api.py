@@ -33,6 +33,9 @@ def check_export_arguments(
     if to not in TARGETS:
         raise ArgumentValueError(f"to must be one of {', '.join(TARGETS)}, got {to!r}")
     target = Path(out)
+    suffix = {"urdf": ".urdf", "mjcf": ".xml"}[to]
+    if target.suffix.lower() != suffix:
+        raise ArgumentValueError(f"out {str(out)!r}: a {to.upper()} file is read by its suffix; name it *{suffix}")
     if target.is_dir():
         raise ArgumentValueError(f"out {str(out)!r} is a directory; give the file to write")
     if not target.resolve().parent.is_dir():

@@ -117,6 +117,9 @@ def _segments(
     names_x = mujoco_joint_names(export.mj_model)
     out = []
     extent = max(float(original.mj_model.stat.extent), 1e-9)
+    # inertia differences are relative to the segment's largest moment, floored at a millionth of the model's
+    # largest: a link with moments of 1e-15 kg m² (a massless frame) is round-off, not a difference
+    floor = 1e-6 * max((float(np.linalg.eigvalsh(i).max()) for i in sa.inertia_body), default=0.0)
     for i, name in enumerate(sa.names):
         j = ib.get(root_b if name == root_a and root_b else name)
         if j is None:
@@ -136,7 +139,7 @@ def _segments(
             ("COM distance from the joint", abs(arm_a - arm_b) / extent, arm_a, arm_b),
             (
                 "principal moments of inertia",
-                float(np.abs(moments_a - moments_b).max() / max(np.abs(moments_a).max(), 1e-300)),
+                float(np.abs(moments_a - moments_b).max() / max(np.abs(moments_a).max(), floor, 1e-300)),
                 float(moments_a.max()),
                 float(moments_b.max()),
             ),
