@@ -83,7 +83,7 @@ class SegmentDifference:
         str
         """
         return (
-            f"{self.engine}: link {self.link} (joint {self.segment}): {self.quantity} differs by "
+            f"{self.engine}: link {self.link} (joint {self.segment}): {self.quantity} off by "
             f"{self.relative:.3g} relative (original {self.original:.9g}, export {self.export:.9g})"
         )
 
