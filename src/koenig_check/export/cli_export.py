@@ -58,14 +58,27 @@ def add_export_arguments(p: argparse.ArgumentParser) -> None:
     add_load_arguments(p)
 
 
+def _exists(name: str) -> bool:
+    """A file, or a name ``koenig-check models`` accepts."""
+    from koenig_check.engines.sources import resolve_model
+
+    if Path(name).is_file():
+        return True
+    try:
+        resolve_model(name)
+    except Exception:
+        return False
+    return True
+
+
 def _usage(args: argparse.Namespace) -> str:
     """The usage error of an export command line, or empty."""
     if args.check_only:
         extra = [f for f, v in (("MODEL", args.model), ("--to", args.to), ("--out", args.out)) if v]
         if extra:
             return f"--check-only takes ORIGINAL EXPORT and no {', '.join(extra)}"
-        missing = [f for f in args.check_only if not Path(f).is_file()]
-        return f"--check-only: no such file {missing[0]!r}" if missing else ""
+        missing = [f for f in args.check_only if not _exists(f)]
+        return f"--check-only: no such file or model name {missing[0]!r}" if missing else ""
     if not args.model:
         return "give MODEL (with --to and --out) or --check-only ORIGINAL EXPORT"
     if not args.to or not args.out:
