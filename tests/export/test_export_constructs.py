@@ -40,8 +40,9 @@ CONSTRUCTS = {
     "free_root.xml": "a free root",
     "armature.xml": "armature",
     "equality.xml": "a joint equality (mimic)",
+    "multi_joint.xml": "a body with two joints, posed off its parent's origin (refused for URDF)",
 }
-URDF_REFUSED = {"ball.xml"}
+URDF_REFUSED = {"ball.xml", "multi_joint.xml"}
 POSES = 4
 
 
