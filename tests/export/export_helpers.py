@@ -84,13 +84,39 @@ def mujoco_matrix(model: mujoco.MjModel, values: dict[str, np.ndarray]) -> tuple
     return matrix - np.diag(model.dof_armature), labels
 
 
-def pinocchio_matrix(model: pin.Model, values: dict[str, np.ndarray]) -> tuple[np.ndarray, list[str]]:
-    """Pinocchio's rigid mass matrix (armature removed) at the named joint values, and each row's label."""
+def sibling_joints(path: Path) -> dict[str, list[str]]:
+    """MJCF: the first joint of each body with several joints -> all its joints in file order.
+
+    Pinocchio's MJCF parser turns such a body's joints into one composite joint named after the first one.
+    """
+    import xml.etree.ElementTree as ET
+
+    out = {}
+    for body in ET.parse(path).getroot().iter("body"):
+        names = [j.get("name", "") for j in body.findall("joint")]
+        if len(names) > 1:
+            out[names[0]] = names
+    return out
+
+
+def pinocchio_matrix(
+    model: pin.Model, values: dict[str, np.ndarray], siblings: dict[str, list[str]] | None = None
+) -> tuple[np.ndarray, list[str]]:
+    """Pinocchio's rigid mass matrix (armature removed) at the named joint values, and each row's label.
+
+    ``siblings`` (:func:`sibling_joints`) names the one-dof joints inside a composite joint.
+    """
     q = pin.neutral(model)
     labels: list[str] = [""] * model.nv
     for j in range(1, model.njoints):
         joint, name = model.joints[j], model.names[j]
         iq, iv, nq, nv = joint.idx_q, joint.idx_v, joint.nq, joint.nv
+        if joint.shortname() == "JointModelComposite":
+            parts = (siblings or {})[name.removeprefix("Composite_")]
+            assert nq == nv == len(parts), (name, parts)
+            q[iq : iq + nq] = [values[p][0] for p in parts]
+            labels[iv : iv + nv] = parts
+            continue
         if nq == 7 and nv == 6:
             q[iq : iq + 7] = [0, 0, 0, 0, 0, 0, 1]
         elif nq == 4 and nv == 3:
