@@ -55,6 +55,23 @@ def test_corrupted_export_fails_naming_the_link(
     assert "link a " not in text
 
 
+def test_corrupted_joint_axis_fails_on_the_mass_matrix(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A kinematic change (no link's mass properties touched) is caught by the mass matrices themselves."""
+    exported = tmp_path / "hinge_ref.urdf"
+    assert main(["export", str(MODELS / "hinge_ref.xml"), "--to", "urdf", "--out", str(exported)]) == 0
+    tree = ET.parse(exported)
+    axis = tree.getroot().find("joint[@name='twist']/axis")
+    assert axis is not None
+    axis.set("xyz", "0 0 1")
+    corrupted = tmp_path / "corrupted.urdf"
+    tree.write(corrupted)
+    capsys.readouterr()
+    assert main(["export", "--check-only", str(MODELS / "hinge_ref.xml"), str(corrupted)]) == 1
+    text = capsys.readouterr().out
+    for engine in ("mujoco", "pinocchio"):
+        assert f"{engine}: mass matrix differs by" in text
+
+
 @pytest.mark.parametrize(
     "argv",
     [
