@@ -171,6 +171,7 @@ def write_portable_mjcf(
     free_top = free_top or any(model.body_mocapid[b] >= 0 for b in tops)
     elements: dict[int, ET.Element] = {0: world}
     posed: list[str] = []
+    massless: list[str] = []
     if len(tops) > 1 and not free_top:
         wrapper = _unused("root", names)
         elements[0] = ET.SubElement(world, "body", {"name": wrapper, "pos": "0 0 0", "quat": "1 0 0 0"})
@@ -205,8 +206,10 @@ def write_portable_mjcf(
         if model.body_mocapid[b] >= 0:
             body.set("mocap", "true")
         elements[b] = body
-        if model.body_mass[b] > 0 or np.any(model.body_inertia[b] > 0):
+        if model.body_mass[b] > 0:
             _inertial(body, model, b)
+        elif np.any(model.body_inertia[b] > 0):
+            massless.append(names[b])
         for j in range(int(model.body_jntadr[b]), int(model.body_jntadr[b]) + int(model.body_jntnum[b])):
             _joint(body, model, j, joints[j], folded)
         for g in by_body.get(b, []):
@@ -214,6 +217,15 @@ def write_portable_mjcf(
     for key, name in meshes.items():
         file, scale = key.split("|")
         ET.SubElement(asset, "mesh", {"name": name, "file": file, "scale": scale})
+    if massless:
+        not_carried.append(
+            NotCarried(
+                "rotational inertia of a massless body",
+                "bodies " + ", ".join(massless),
+                "not written: Drake's MJCF parser aborts on an <inertial> of mass 0",
+                True,
+            )
+        )
     if posed:
         not_carried.append(
             NotCarried(
