@@ -50,3 +50,15 @@ def test_a_missing_joint_is_a_problem_naming_it(tmp_path: Path) -> None:
     proof = prove(MODELS / "slide.xml", stripped, poses=2)
     assert not proof.equivalent
     assert proof.problems == ("joints missing in the export: tilt",)
+
+
+def test_inverse_dynamics_is_compared_too(tmp_path: Path) -> None:
+    """A mass moved from one link to another changes M, the energy and the inverse dynamics in every engine."""
+    text = (MODELS / "slide.xml").read_text()
+    heavier = tmp_path / "slide_heavier_pole.xml"
+    heavier.write_text(text.replace('size="0.03" mass="0.5"', 'size="0.03" mass="0.6"'))
+    proof = prove(MODELS / "slide.xml", heavier, poses=3)
+    compared = [e for e in proof.engines if e.compared]
+    assert compared and all(e.inverse_dynamics > 1e-3 and not e.equivalent for e in compared)
+    clean = prove(MODELS / "slide.xml", MODELS / "slide.xml", poses=3)
+    assert all(e.inverse_dynamics < 1e-12 for e in clean.engines if e.compared)

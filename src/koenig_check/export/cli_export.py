@@ -97,7 +97,10 @@ def print_proof(proof: Proof) -> None:
     """
     for e in proof.engines:
         if e.compared:
-            print(f"  {e.engine}: mass matrix {e.mass_matrix:.2g}, rigid energy {e.energy:.2g} ({e.poses} poses)")
+            print(
+                f"  {e.engine}: mass matrix {e.mass_matrix:.2g}, rigid energy {e.energy:.2g}, "
+                f"inverse dynamics {e.inverse_dynamics:.2g} ({e.poses} poses)"
+            )
     for line in proof.skipped():
         print(f"  not compared: {line}")
     for line in proof.notes():

@@ -2,12 +2,13 @@
 
 The independent route: every engine loads the original and the export separately; the original's random
 canonical states are written in the export's layout by joint name (:mod:`~koenig_check.export.joint_pairing`);
-per engine, the joint-space mass matrix with the armature removed and the rigid-body kinetic energy of the
-export are compared at the same states with MuJoCo's reading of the original (the reference: the robot
-MuJoCo simulates, which the export is written from) and with the engine's own reading of the original
-(an engine that misreads the original is told apart from an export that differs).  Per moving segment,
-mass, the centre of mass's distance from the joint and the principal moments of inertia (quantities no
-choice of world frame changes) are compared as well, so that a difference names the link at fault.
+per engine, the joint-space mass matrix with the armature removed, the rigid-body kinetic energy and the
+inverse dynamics (gravity off, armature forces removed) of the export are compared at the same states with
+MuJoCo's reading of the original (the reference: the robot MuJoCo simulates, which the export is written
+from) and with the engine's own reading of the original (an engine that misreads the original is told apart
+from an export that differs).  Per moving segment, mass, the centre of mass's distance from the joint and
+the principal moments of inertia (quantities no choice of world frame changes) are compared as well, so
+that a difference names the link at fault.
 """
 
 from __future__ import annotations
@@ -48,8 +49,12 @@ def _differences(
     pairing: JointPairing,
     states: tuple[np.ndarray, np.ndarray],
     export_states: tuple[np.ndarray, np.ndarray],
-) -> tuple[float, float]:
-    """Max relative differences of the rigid mass matrix and the rigid energy: adapter a (original) vs b (export)."""
+) -> tuple[float, float, float]:
+    """Max relative differences of the rigid mass matrix, the rigid energy and the rigid inverse dynamics.
+
+    Adapter ``a`` reads the original, ``b`` the export; the inverse dynamics (gravity and passive forces
+    off, armature forces removed) is evaluated at each state with the acceleration equal to the velocity.
+    """
     (qpos, qvel), (qx, vx) = states, export_states
     od, xd = pairing.dof_original, pairing.dof_export
     m_a = _rigid_mass_matrix(a, qpos)[:, od][:, :, od]
@@ -57,7 +62,10 @@ def _differences(
     t_a = np.asarray(a.kinetic_energy(qpos, qvel).rigid)  # type: ignore[attr-defined]
     t_b = np.asarray(b.kinetic_energy(qx, vx).rigid)  # type: ignore[attr-defined]
     de = np.abs(t_a - t_b) / np.where(np.abs(t_a) > 0, np.abs(t_a), 1.0)
-    return float(_relative(m_a, m_b, (1, 2)).max()), float(de.max())
+    f_a = np.asarray(a.inverse_dynamics(qpos, qvel, qvel)) - np.asarray(a.armature_forces(qpos, qvel, qvel))  # type: ignore[attr-defined]
+    f_b = np.asarray(b.inverse_dynamics(qx, vx, vx)) - np.asarray(b.armature_forces(qx, vx, vx))  # type: ignore[attr-defined]
+    di = _relative(f_a[:, od], f_b[:, xd], (1,))
+    return float(_relative(m_a, m_b, (1, 2)).max()), float(de.max()), float(di.max())
 
 
 def compare_engine(
@@ -91,11 +99,12 @@ def compare_engine(
         return EngineProof(engine, np.nan, np.nan, 0, False, f"cannot load the export: {export.refused[engine]}"), []
     reference, b = original.adapters["mujoco"], export.adapters[engine]
     qx, vx = pairing.export_states(qpos, qvel, export.mj_model)
-    dm, de = _differences(reference, b, pairing, states, (qx, vx))
+    dm, de, di = _differences(reference, b, pairing, states, (qx, vx))
     own = np.nan
     if engine in original.adapters:
         own = max(_differences(original.adapters[engine], b, pairing, states, (qx, vx)))
-    proof = EngineProof(engine, dm, de, int(qpos.shape[0]), dm <= rtol and de <= rtol, own_reading=own)
+    ok = max(dm, de, di) <= rtol
+    proof = EngineProof(engine, dm, de, int(qpos.shape[0]), ok, own_reading=own, inverse_dynamics=di)
     segments = _segments(engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, rtol)
     return proof, segments
 

@@ -26,8 +26,11 @@ class EngineProof:
         Both within the tolerance.
     reason : str
         Why the engine was not compared (it refused the export, joints unpaired), or empty.
+    inverse_dynamics : float
+        Max over poses of ``max|τ_export - τ_original| / max|τ_original|``: the inverse dynamics with gravity and
+        passive forces off and the armature's forces removed, at q̈ = q̇.
     own_reading : float
-        The largest relative difference (mass matrix or energy) between this engine's readings of the
+        The largest relative difference (mass matrix, energy or inverse dynamics) between this engine's readings of the
         export and of the original; NaN when it cannot load the original.  Large while ``mass_matrix``
         is small: the engine reads the original differently from MuJoCo, and reads the export as MuJoCo
         reads the original.
@@ -40,6 +43,7 @@ class EngineProof:
     equivalent: bool
     reason: str = ""
     own_reading: float = float("nan")
+    inverse_dynamics: float = float("nan")
 
     @property
     def compared(self) -> bool:
@@ -120,7 +124,7 @@ class Proof:
     @property
     def max_relative_difference(self) -> float:
         """The largest relative difference of any compared engine (mass matrix or energy)."""
-        values = [max(e.mass_matrix, e.energy) for e in self.engines if e.compared]
+        values = [max(e.mass_matrix, e.energy, e.inverse_dynamics) for e in self.engines if e.compared]
         return max(values) if values else float("nan")
 
     def summary(self) -> str:
@@ -149,7 +153,8 @@ class Proof:
         for e in self.engines:
             if e.compared and not e.equivalent:
                 out.append(
-                    f"{e.engine}: mass matrix differs by {e.mass_matrix:.3g}, rigid energy by {e.energy:.3g} "
+                    f"{e.engine}: mass matrix differs by {e.mass_matrix:.3g}, rigid energy by {e.energy:.3g}, "
+                    f"inverse dynamics by {e.inverse_dynamics:.3g} "
                     f"(tolerance {self.rtol:g}, {e.poses} poses)"
                 )
         if not any(e.compared for e in self.engines):
