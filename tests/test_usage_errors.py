@@ -11,7 +11,7 @@ import pytest
 import koenig_check
 from koenig_check import cli
 from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import KoenigCheckError
 
 USAGE_ERRORS = {
     "zero poses": ["compare", "gimbal.xml", "--poses", "0"],

@@ -229,6 +229,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_selfcheck)
 
     _add_dynamics_command(sub)
+    _add_export_command(sub)
     return parser
 
 
@@ -521,6 +522,25 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         return 0
     print(f"koenig-check: exact disagrees with an engine: {result.reason()}", file=sys.stderr)
     return 1
+
+
+def _add_export_command(sub: argparse._SubParsersAction) -> None:
+    """The ``export`` sub-command: write a model as URDF or portable MJCF and prove it is the same robot."""
+    from koenig_check.export.cli_export import add_export_arguments, run_export
+
+    p = _add(
+        sub,
+        "export",
+        "write a model as URDF or portable MJCF and prove, in every engine, that it is the same robot",
+        "koenig-check export cartpole.xml --to urdf --out cartpole.urdf",
+        "or check a conversion made by another tool:\n  koenig-check export --check-only robot.xml robot.urdf",
+    )
+    add_export_arguments(p)
+    p.set_defaults(func=_cmd_export, export_runner=run_export)
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    return int(args.export_runner(args, _load_options(args), _usage_error))
 
 
 def main(argv: Sequence[str] | None = None) -> int:

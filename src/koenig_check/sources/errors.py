@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from koenig_check.findings import KoenigCheckError
+from koenig_check.exceptions import KoenigCheckError
 
 
 class ModelSourceError(KoenigCheckError, ValueError):

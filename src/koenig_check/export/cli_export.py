@@ -1,0 +1,174 @@
+"""The ``koenig-check export`` command's arguments, usage checks and printed result."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable
+from pathlib import Path
+
+from koenig_check.engines.load_options import LoadOptions, add_load_arguments
+from koenig_check.export.proof import PROOF_POSES, PROOF_RTOL
+from koenig_check.export.result import Proof
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
+    return value
+
+
+def _rtol(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not 0 < value < 1:
+        raise argparse.ArgumentTypeError(f"must be in (0, 1), got {text}")
+    return value
+
+
+def add_export_arguments(p: argparse.ArgumentParser) -> None:
+    """Put the export options on a parser.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+    """
+    p.add_argument("model", nargs="?", metavar="MODEL", help="model file or name to export")
+    p.add_argument("--to", choices=("urdf", "mjcf"), help="target format (mjcf of an MJCF: the portable form)")
+    p.add_argument("--out", metavar="FILE", help="file to write")
+    p.add_argument(
+        "--check-only",
+        nargs=2,
+        metavar=("ORIGINAL", "EXPORT"),
+        help="write nothing: prove that EXPORT (made by any tool) is the same robot as ORIGINAL",
+    )
+    p.add_argument(
+        "--drake-extensions", action="store_true", help="URDF: write armature as Drake's drake:rotor_inertia"
+    )
+    p.add_argument(
+        "--poses", type=_count, default=PROOF_POSES, help=f"random poses of the proof (default {PROOF_POSES})"
+    )
+    p.add_argument("--seed", type=int, default=0, help="seed of the proof's poses (default 0)")
+    p.add_argument("--rtol", type=_rtol, default=PROOF_RTOL, help=f"relative tolerance (default {PROOF_RTOL:g})")
+    add_load_arguments(p)
+
+
+def _exists(name: str) -> bool:
+    """A file, or a name ``koenig-check models`` accepts."""
+    from koenig_check.engines.sources import resolve_model
+
+    if Path(name).is_file():
+        return True
+    try:
+        resolve_model(name)
+    except Exception:
+        return False
+    return True
+
+
+def _usage(args: argparse.Namespace) -> str:
+    """The usage error of an export command line, or empty."""
+    if args.check_only:
+        extra = [f for f, v in (("MODEL", args.model), ("--to", args.to), ("--out", args.out)) if v]
+        if extra:
+            return f"--check-only takes ORIGINAL EXPORT and no {', '.join(extra)}"
+        missing = [f for f in args.check_only if not _exists(f)]
+        return f"--check-only: no such file or model name {missing[0]!r}" if missing else ""
+    if not args.model:
+        return "give MODEL (with --to and --out) or --check-only ORIGINAL EXPORT"
+    if not args.to or not args.out:
+        return "export needs --to {urdf,mjcf} and --out FILE"
+    if args.pinocchio_model:
+        return "--pinocchio-model does not apply to export (the export is loaded by every engine)"
+    return ""
+
+
+def print_proof(proof: Proof) -> None:
+    """Print the proof: per engine, the skipped engines, and the verdict last.
+
+    Parameters
+    ----------
+    proof : Proof
+    """
+    for e in proof.engines:
+        if e.compared:
+            print(
+                f"  {e.engine}: mass matrix {e.mass_matrix:.2g}, rigid energy {e.energy:.2g}, "
+                f"inverse dynamics {e.inverse_dynamics:.2g} ({e.poses} poses)"
+            )
+    for line in proof.skipped():
+        print(f"  not compared: {line}")
+    for line in proof.notes():
+        print(f"  note: {line}")
+    print(proof.summary())
+
+
+def run_export(
+    args: argparse.Namespace, options: LoadOptions, usage_error: Callable[[argparse.Namespace, str], None]
+) -> int:
+    """Run ``koenig-check export``; return the exit status.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    options : LoadOptions
+        The command's load options.
+    usage_error : callable
+        Exits with status 2 and the usage line.
+
+    Returns
+    -------
+    int
+        0 when the export is proved equivalent, 1 when it differs, is refused or fails to load.
+    """
+    from koenig_check.arguments import ArgumentValueError
+    from koenig_check.export.api import check_export_arguments, export_model
+    from koenig_check.export.carried import ExportRefusedError
+    from koenig_check.export.proof import prove
+
+    problem = _usage(args)
+    if not problem and not args.check_only:
+        try:
+            check_export_arguments(args.model, args.to, args.out, args.poses, args.rtol)
+        except ArgumentValueError as err:
+            problem = str(err)
+    if problem:
+        usage_error(args, problem)
+    engines = options.engines or ("mujoco", "pinocchio", "drake")
+    if args.check_only:
+        original, export = args.check_only
+        proof = prove(original, export, options, poses=args.poses, seed=args.seed, rtol=args.rtol, engines=engines)
+        print(f"{export} against {original}:")
+        print_proof(proof)
+        return 0 if proof.equivalent else 1
+    try:
+        result = export_model(
+            args.model,
+            to=args.to,
+            out=args.out,
+            floating=options.floating,
+            repair_inertia=options.repair_inertia,
+            balance_inertia=options.balance_inertia,
+            drake_extensions=args.drake_extensions,
+            poses=args.poses,
+            seed=args.seed,
+            rtol=args.rtol,
+            engines=engines,
+        )
+    except ExportRefusedError as err:
+        print(f"refused: {err}")
+        return 1
+    print(f"wrote {result.path} ({result.target})")
+    if result.not_carried:
+        print("not carried:")
+        for n in result.not_carried:
+            print(f"  - {n.message()}")
+    if result.floating_base:
+        print(f"load {result.path} with a floating base (--floating): the original's root joint is free")
+    print_proof(result.proof)
+    return 0 if result.equivalent else 1

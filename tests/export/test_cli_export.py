@@ -1,0 +1,101 @@
+"""``koenig-check export``: exit 0 equivalent, 1 naming what differs (a corrupted export names the link), 2 usage."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+from export_helpers import MODELS
+
+from koenig_check.cli import main
+
+
+def test_export_prints_equivalent(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "slide.urdf"
+    assert main(["export", str(MODELS / "slide.xml"), "--to", "urdf", "--out", str(out), "--poses", "3"]) == 0
+    text = capsys.readouterr().out
+    assert "equivalent: max relative difference" in text and "over 3 poses" in text
+    assert out.is_file()
+
+
+def _corrupt(path: Path, link: str, element: str, attribute: str, factor: float) -> Path:
+    tree = ET.parse(path)
+    node = tree.getroot().find(f"link[@name='{link}']/inertial/{element}")
+    assert node is not None
+    if attribute == "xyz":
+        x, y, z = (float(v) for v in node.get("xyz", "0 0 0").split())
+        node.set("xyz", f"{x + factor} {y} {z}")
+    else:
+        node.set(attribute, repr(float(node.get(attribute, "0")) * factor))
+    corrupted = path.with_name("corrupted.urdf")
+    tree.write(corrupted)
+    return corrupted
+
+
+@pytest.mark.parametrize(
+    ("element", "attribute", "factor", "quantity"),
+    [
+        ("inertia", "ixx", 1.3, "principal moments"),
+        ("mass", "value", 1.1, "mass"),
+        ("origin", "xyz", 0.05, "COM distance"),
+    ],
+)
+def test_corrupted_export_fails_naming_the_link(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], element: str, attribute: str, factor: float, quantity: str
+) -> None:
+    exported = tmp_path / "hinge_ref.urdf"
+    assert main(["export", str(MODELS / "hinge_ref.xml"), "--to", "urdf", "--out", str(exported)]) == 0
+    corrupted = _corrupt(exported, "b", element, attribute, factor)
+    capsys.readouterr()
+    assert main(["export", "--check-only", str(MODELS / "hinge_ref.xml"), str(corrupted)]) == 1
+    text = capsys.readouterr().out
+    assert "not equivalent" in text
+    assert f"link b (joint twist): {quantity}" in text
+    assert "link a " not in text
+
+
+def test_corrupted_joint_axis_fails_on_the_mass_matrix(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A kinematic change (no link's mass properties touched) is caught by the mass matrices themselves."""
+    exported = tmp_path / "hinge_ref.urdf"
+    assert main(["export", str(MODELS / "hinge_ref.xml"), "--to", "urdf", "--out", str(exported)]) == 0
+    tree = ET.parse(exported)
+    axis = tree.getroot().find("joint[@name='twist']/axis")
+    assert axis is not None
+    axis.set("xyz", "0 0 1")
+    corrupted = tmp_path / "corrupted.urdf"
+    tree.write(corrupted)
+    capsys.readouterr()
+    assert main(["export", "--check-only", str(MODELS / "hinge_ref.xml"), str(corrupted)]) == 1
+    text = capsys.readouterr().out
+    for engine in ("mujoco", "pinocchio"):
+        assert f"{engine}: mass matrix differs by" in text
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["export"],
+        ["export", "MODEL_ONLY.xml", "--to", "urdf"],
+        ["export", "{model}", "--to", "urdf", "--out", "{tmp}/wrong_suffix.xml"],
+        ["export", "{model}", "--to", "mjcf", "--out", "{tmp}/wrong_suffix.urdf"],
+        ["export", "{model}", "--to", "urdf", "--out", "{tmp}"],
+        ["export", "{model}", "--to", "urdf", "--out", "{tmp}/missing/dir.urdf"],
+        ["export", "{model}", "--to", "sdf", "--out", "{tmp}/x.sdf"],
+        ["export", "--check-only", "{model}", "{tmp}/missing.urdf"],
+        ["export", "--check-only", "{model}", "{model}", "--to", "urdf"],
+        ["export", "{model}", "--to", "urdf", "--out", "{tmp}/x.urdf", "--poses", "0"],
+        ["export", "{model}", "--to", "urdf", "--out", "{tmp}/x.urdf", "--pinocchio-model", "{model}"],
+    ],
+)
+def test_usage_errors_exit_2_before_any_work(tmp_path: Path, argv: list[str]) -> None:
+    argv = [a.format(model=MODELS / "slide.xml", tmp=tmp_path) for a in argv]
+    with pytest.raises(SystemExit) as caught:
+        main(argv)
+    assert caught.value.code == 2
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_refusal_exits_1_naming_the_joint(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["export", str(MODELS / "ball.xml"), "--to", "urdf", "--out", str(tmp_path / "b.urdf")]) == 1
+    assert "ball joint (joints socket)" in capsys.readouterr().out
