@@ -99,7 +99,7 @@ def test_readme_relative_path_works_from_any_directory(tmp_path: Path, monkeypat
 
 
 def test_check_says_which_load_and_why_not(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    from koenig_check.cli import _loads_in_both
+    from koenig_check.cli.models import _loads_in_both
 
     assert _loads_in_both("gimbal.urdf") == "yes"
     verdict = _loads_in_both("free_body.urdf")

@@ -1,0 +1,65 @@
+"""``koenig-check dynamics``: the mass matrix and inertia forces each formula implies, against the engines."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from koenig_check.cli.parsing import add_command, add_out, check_out, positive, tolerance
+
+
+def add(sub: argparse._SubParsersAction) -> None:
+    """The ``dynamics`` sub-command: M and Q* implied by each formula, against both engines."""
+    from koenig_check.engines.load_options import add_load_arguments
+    from koenig_check.formulas import FORMULAS
+    from koenig_check.implied_dynamics.analysis import M_RTOL, Q_RTOL
+
+    p = add_command(
+        sub,
+        "dynamics",
+        "mass matrix and generalized inertia forces implied by each energy formula, against both engines",
+        "koenig-check dynamics gimbal.xml --poses 10 --out dyn-report",
+    )
+    p.add_argument("model", metavar="MODEL", help="model file or name")
+    add_load_arguments(p)
+    p.add_argument("--poses", type=positive, default=5, help="random poses (default 5)")
+    p.add_argument("--seed", type=int, default=0, help="seed (default 0)")
+    p.add_argument(
+        "--formulas", nargs="+", metavar="NAME", choices=list(FORMULAS), help="formulas (default: all; exact always)"
+    )
+    add_out(p, "write dynamics.md and dynamics.json into this directory")
+    p.add_argument("--m-rtol", type=tolerance, default=M_RTOL, help=f"tolerance on M of exact (default {M_RTOL:g})")
+    p.add_argument("--q-rtol", type=tolerance, default=Q_RTOL, help=f"tolerance on Q* of exact (default {Q_RTOL:g})")
+    p.set_defaults(func=_cmd_dynamics)
+
+
+def _cmd_dynamics(args: argparse.Namespace) -> int:
+    from dataclasses import asdict
+
+    from koenig_check.engines.load_options import LoadOptions
+    from koenig_check.implied_dynamics.analysis import dynamics
+    from koenig_check.implied_dynamics.markdown import terminal_lines, write_dynamics
+
+    check_out(args)
+    options = asdict(LoadOptions.from_namespace(args))
+    result = dynamics(
+        args.model,
+        n_poses=args.poses,
+        seed=args.seed,
+        formulas=args.formulas,
+        m_rtol=args.m_rtol,
+        q_rtol=args.q_rtol,
+        **options,
+    )
+    print("\n".join(terminal_lines(result)))
+    if args.out:
+        from koenig_check.report.output_dir import clean_out_dir, file_listing, finish_out_dir
+
+        clean_out_dir(args.out)
+        written = finish_out_dir(args.out, write_dynamics(Path(args.out), result))
+        print("\n" + file_listing(args.out, written))
+    if result.ok:
+        return 0
+    print(f"koenig-check: exact disagrees with an engine: {result.reason()}", file=sys.stderr)
+    return 1

@@ -1,0 +1,58 @@
+"""``koenig-check parity``: import parity only, with the diagnosis's root causes and three-engine verdicts."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from koenig_check.cli.parsing import add_command, load_options_of
+from koenig_check.engines.load_options import add_load_arguments
+
+
+def add(sub: argparse._SubParsersAction) -> None:
+    """Add the ``parity`` sub-command.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+    """
+    p = add_command(
+        sub,
+        "parity",
+        "import parity only: do MuJoCo and Pinocchio see the same robot in the same file?",
+        "koenig-check parity serial7.urdf",
+    )
+    p.add_argument("model", metavar="MODEL", help="model file or name")
+    add_load_arguments(p)
+    p.set_defaults(func=_cmd_parity)
+
+
+def _cmd_parity(args: argparse.Namespace) -> int:
+    from koenig_check.diagnosis.diagnose import diagnose
+    from koenig_check.diagnosis.import_parity import format_parity
+    from koenig_check.diagnosis.policy import asked_for
+    from koenig_check.diagnosis.reason import lead_line
+    from koenig_check.engines import load_model
+    from koenig_check.findings import Kind
+
+    options = load_options_of(args)
+    model = load_model(args.model, options)
+    for name in asked_for(options.engines):
+        model.attach(name)
+    diagnosis = diagnose(model)
+    report = diagnosis.parity
+    assert report is not None
+    for f in diagnosis.findings:
+        if f.kind is Kind.VERDICT:
+            print(f"three engines: {f.message()}")
+        elif f in diagnosis.optional_findings:
+            print(f.message())
+    print(format_parity(report))
+    lead = lead_line(diagnosis.findings)
+    if report.clean and not lead:
+        return 0
+    print(
+        f"koenig-check: import differences in {args.model}: {'; '.join(t for t in (lead, report.headline()) if t)}",
+        file=sys.stderr,
+    )
+    return 1

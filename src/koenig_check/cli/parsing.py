@@ -1,0 +1,142 @@
+"""What every command shares: the parser whose errors are one line with exit status 2, argument types, options."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import replace
+from typing import NoReturn
+
+from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
+from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
+from koenig_check.sources.errors import ModelSourceError
+
+#: The report directory of ``demo`` when none is given.
+DEFAULT_OUT = "koenig-check-report"
+#: Errors of the API's argument checks that the command line reports as usage errors (exit 2).
+USAGE_ERRORS = (ArgumentValueError, ArgumentTypeError, ModelSourceError)
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line and exit with status 2."""
+
+    def short_usage(self) -> str:
+        """One line: the command, ``[options]`` and its positional arguments."""
+        positionals = [a.metavar or a.dest for a in self._actions if not a.option_strings and a.nargs != 0]
+        shown = [
+            f"{m} [{m} ...]" if a.nargs == "+" else str(m)
+            for a, m in zip(
+                [a for a in self._actions if not a.option_strings and a.nargs != 0], positionals, strict=True
+            )
+        ]
+        return " ".join(["usage:", self.prog, "[options]", *shown])
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        """Exit with status 2: the short usage line, then the error in one line."""
+        self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def usage_error(args: argparse.Namespace, message: str) -> NoReturn:
+    """Exit with status 2, the command's usage and a one-line message (before any work)."""
+    parser: argparse.ArgumentParser | None = getattr(args, "parser", None)
+    if parser is None:
+        print(f"koenig-check: error: {message}", file=sys.stderr)
+        raise SystemExit(2)
+    parser.error(message)
+
+
+def check_out(args: argparse.Namespace) -> None:
+    """Refuse an unusable ``--out`` before any work."""
+    from koenig_check.arguments import ArgumentValueError
+    from koenig_check.report.output_dir import check_out_dir
+
+    if getattr(args, "out", None):
+        try:
+            check_out_dir(args.out, overwrite=args.overwrite)
+        except ArgumentValueError as err:
+            usage_error(args, str(err))
+
+
+def tolerance(text: str) -> float:
+    """A relative tolerance: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not (value > 0 and value < float("inf")):
+        raise argparse.ArgumentTypeError(f"tolerance must be a finite number > 0, got {text}")
+    return value
+
+
+def positive(text: str) -> int:
+    """A whole number >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {text}")
+    return value
+
+
+def formatter(prog: str) -> argparse.HelpFormatter:
+    """The help formatter of every command: epilogs kept as written (examples, formula lists)."""
+    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32)
+
+
+def add_command(
+    sub: argparse._SubParsersAction, name: str, help_: str, example: str, epilog: str = ""
+) -> argparse.ArgumentParser:
+    """Add a sub-command with its help, an example in its epilog and ``--debug``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+    name, help_, example : str
+    epilog : str
+        Shown before the example.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
+    text = f"{epilog}\n\nexample:\n  {example}" if epilog else f"example:\n  {example}"
+    p = sub.add_parser(name, help=help_, description=help_, epilog=text, formatter_class=formatter)
+    p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show Python tracebacks on errors")
+    p.set_defaults(parser=p)
+    return p
+
+
+def add_out(p: argparse.ArgumentParser, help_: str, default: str | None = None) -> None:
+    """Add ``--out DIR`` and ``--overwrite`` to a sub-command.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+    help_ : str
+    default : str, optional
+    """
+    p.add_argument("--out", default=default, help=help_)
+    p.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="write into an --out directory holding files koenig-check did not write (they are left in place); "
+        "koenig-check's own earlier files are always replaced",
+    )
+
+
+def load_options_of(args: argparse.Namespace) -> LoadOptions:
+    """The load options of a command; ``--allow-coupled`` is accepted with a note and ignored."""
+    from koenig_check.engines.errors import EngineUnavailableError
+    from koenig_check.engines.registry import check_engines
+
+    options = LoadOptions.from_namespace(args)
+    try:
+        check_engines(options.engines)
+    except EngineUnavailableError as err:  # a usage error: refused before any work
+        print(f"koenig-check: error: {err}", file=sys.stderr)
+        raise SystemExit(2) from None
+    if options.allow_coupled:
+        print(f"koenig-check: note: {ALLOW_COUPLED_DEPRECATION}", file=sys.stderr)
+        options = replace(options, allow_coupled=False)
+    return options
