@@ -62,7 +62,7 @@ def targets() -> list[tuple[str, str]]:
     """(label, name or path) of every model of the table: the gimbal, serial7, then the robots."""
     by_name = {p.name: p for p in project_corpus()}
     out = [(display_name(by_name[n]), str(by_name[n])) for n in ("gimbal.xml", "serial7.xml")]
-    from koenig_check.engines.sources import resolve_model
+    from koenig_check.sources.catalogue import resolve_model
 
     out += [(display_name(resolve_model(r).path), r) for r in ROBOTS]
     return out

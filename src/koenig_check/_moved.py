@@ -39,6 +39,10 @@ MOVED: dict[str, str] = {
     "koenig_check.report_content": "koenig_check.report.content",
     "koenig_check.report_html": "koenig_check.report.html",
     "koenig_check.verdict": "koenig_check.report.terminal",
+    "koenig_check.engines.sources": "koenig_check.sources.catalogue",
+    "koenig_check.pytest_plugin": "koenig_check.testing.plugin",
+    "koenig_check.project_config": "koenig_check.testing.project_config",
+    "koenig_check.failure_text": "koenig_check.testing.failure_text",
 }
 
 

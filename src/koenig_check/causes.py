@@ -452,7 +452,7 @@ def explain_load_failures(load: F) -> F:
 
 
 def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
-    from koenig_check.engines.sources import resolve_model
+    from koenig_check.sources.catalogue import resolve_model
 
     try:
         source = resolve_model(path_or_name, fmt)

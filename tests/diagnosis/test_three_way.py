@@ -134,7 +134,7 @@ def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str)
 @needs_drake
 def test_drake_limits_are_findings_naming_the_element() -> None:
     from koenig_check.engines.drake.loader import load_drake
-    from koenig_check.engines.sources import resolve_model
+    from koenig_check.sources.catalogue import resolve_model
 
     _, findings = load_drake(resolve_model("anymal_b_simple/anymal"))
     negative = [f for f in findings if "negative" in f.summary]

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from koenig_check.engines import list_models
-from koenig_check.engines.sources import project_models_dir
+from koenig_check.sources.catalogue import project_models_dir
 
 N_POSES = 20
 SEED = 20261121

@@ -58,7 +58,7 @@ def test_floating_keyframes_pinocchio_refuses_are_dropped_for_pinocchio_and_said
         import pinocchio as pin
 
         from koenig_check.engines.pinocchio.loader import _build
-        from koenig_check.engines.sources import resolve_model
+        from koenig_check.sources.catalogue import resolve_model
 
         try:  # the limitation itself, straight from Pinocchio
             pin.buildModelFromMJCFAndRootJoint(str(path), pin.JointModelFreeFlyer(), "root_joint")

@@ -19,8 +19,8 @@ from koenig_check.engines import (
     random_states,
     resolve_model,
 )
-from koenig_check.engines.sources import project_models_dir
 from koenig_check.findings import Kind
+from koenig_check.sources.catalogue import project_models_dir
 
 
 def _urdf(links: str, joints: str) -> str:

@@ -11,8 +11,8 @@ from source_trees import write_hand_expanded
 
 from koenig_check import compare
 from koenig_check.engines import load_model
-from koenig_check.engines.sources import resolve_model
 from koenig_check.sources import ModelSourceError
+from koenig_check.sources.catalogue import resolve_model
 
 PROJECT_MODEL = Path(__file__).resolve().parents[2] / "models" / "double_pendulum.xml"
 OFFLINE_CLONE = (

@@ -18,8 +18,8 @@ from source_trees import (
 from koenig_check import compare
 from koenig_check.cli import main
 from koenig_check.engines import load_model
-from koenig_check.engines.sources import resolve_model
 from koenig_check.sources import ModelSourceError
+from koenig_check.sources.catalogue import resolve_model
 
 TREES = {"MENAGERIE_ROOT": menagerie_root, "MENAGERIE_CACHE_DIR": menagerie_cache}
 NAMES = {

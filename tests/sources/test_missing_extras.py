@@ -8,8 +8,8 @@ import pytest
 
 from koenig_check import compare
 from koenig_check.cli import main
-from koenig_check.engines.sources import resolve_model
 from koenig_check.sources import ModelSourceError
+from koenig_check.sources.catalogue import resolve_model
 
 #: model as typed -> (the module that is missing, the extra that installs it)
 SOURCES = {

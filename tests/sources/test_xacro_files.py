@@ -13,7 +13,7 @@ from koenig_check.cli import main
 from koenig_check.engines import load_model
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.engines.load_options import LoadOptions, parse_xacro_args
-from koenig_check.engines.sources import resolve_model
+from koenig_check.sources.catalogue import resolve_model
 
 #: (xacro arguments, the length the hand-expanded file was written for)
 CASES = {"default": ({}, "0.5"), "length=0.8": ({"length": "0.8"}, "0.8")}

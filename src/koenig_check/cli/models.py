@@ -31,7 +31,7 @@ def add(sub: argparse._SubParsersAction) -> None:
 
 
 def _cmd_models(args: argparse.Namespace) -> int:
-    from koenig_check.engines.sources import DEFAULT_FORMAT, model_names
+    from koenig_check.sources.catalogue import DEFAULT_FORMAT, model_names
 
     if args.menagerie:
         from koenig_check.sources.listing import menagerie_lines
@@ -72,7 +72,7 @@ def _loads_in_both(name: str) -> str:
 
     from koenig_check.api import one_line
     from koenig_check.engines import load_model
-    from koenig_check.engines.sources import resolve_model
+    from koenig_check.sources.catalogue import resolve_model
 
     try:
         with warnings.catch_warnings():

@@ -45,7 +45,7 @@ if TYPE_CHECKING:
     from koenig_check.engines.pinocchio.state_map import StateMap
     from koenig_check.engines.registry import ENGINE_NAMES
     from koenig_check.engines.sampling import random_states
-    from koenig_check.engines.sources import ModelSource, list_models, resolve_model
+    from koenig_check.sources.catalogue import ModelSource, list_models, resolve_model
 
 #: Public name -> the module that defines it.
 _HOME = {
@@ -72,9 +72,9 @@ _HOME = {
     "StateMap": "pinocchio.state_map",
     "ENGINE_NAMES": "registry",
     "random_states": "sampling",
-    "ModelSource": "sources",
-    "list_models": "sources",
-    "resolve_model": "sources",
+    "ModelSource": "koenig_check.sources.catalogue",
+    "list_models": "koenig_check.sources.catalogue",
+    "resolve_model": "koenig_check.sources.catalogue",
 }
 
 __all__ = [
@@ -110,7 +110,8 @@ __all__ = [
 def __getattr__(name: str) -> Any:
     if name not in _HOME:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_HOME[name]}"), name)
+    home = _HOME[name] if _HOME[name].startswith("koenig_check.") else f"{__name__}.{_HOME[name]}"
+    value = getattr(importlib.import_module(home), name)
     globals()[name] = value
     return value
 

@@ -20,8 +20,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from koenig_check.engines.sources import ModelSource
 from koenig_check.findings import Finding, Kind
+from koenig_check.sources.catalogue import ModelSource
 from koenig_check.validate import parse_xml
 
 _LOOP = (mujoco.mjtEq.mjEQ_CONNECT, mujoco.mjtEq.mjEQ_WELD)

@@ -27,9 +27,9 @@ from koenig_check.engines.pinocchio.adapter import PinocchioEngine
 from koenig_check.engines.pinocchio.loader import load_pinocchio
 from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
 from koenig_check.engines.sampling import random_states
-from koenig_check.engines.sources import ModelSource, resolve_model
 from koenig_check.findings import Finding, Kind
 from koenig_check.roundoff import ROUNDOFF
+from koenig_check.sources.catalogue import ModelSource, resolve_model
 from koenig_check.validate import preflight
 
 #: Number of seeded random states the self-consistency checks run on at load time.

@@ -8,13 +8,13 @@ from pathlib import Path
 from koenig_check.arguments import ArgumentValueError
 from koenig_check.engines.load_options import ENGINE_NAMES, LoadOptions
 from koenig_check.engines.mujoco.loader import load_mujoco
-from koenig_check.engines.sources import resolve_model
 from koenig_check.export.carried import NotCarried
 from koenig_check.export.mjcf_from_urdf import write_mjcf_from_urdf
 from koenig_check.export.portable_mjcf import write_portable_mjcf
 from koenig_check.export.proof import PROOF_POSES, PROOF_RTOL, prove
 from koenig_check.export.result import ExportResult
 from koenig_check.export.urdf_writer import write_urdf
+from koenig_check.sources.catalogue import resolve_model
 
 #: The formats an export writes.
 TARGETS = ("urdf", "mjcf")

@@ -60,7 +60,7 @@ def add_export_arguments(p: argparse.ArgumentParser) -> None:
 
 def _exists(name: str) -> bool:
     """A file, or a name ``koenig-check models`` accepts."""
-    from koenig_check.engines.sources import resolve_model
+    from koenig_check.sources.catalogue import resolve_model
 
     if Path(name).is_file():
         return True

@@ -11,7 +11,7 @@ import mujoco
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.adapter import MujocoEngine
 from koenig_check.engines.mujoco.loader import load_mujoco, root_free_joint
-from koenig_check.engines.sources import resolve_model
+from koenig_check.sources.catalogue import resolve_model
 
 #: The engines a proof compares, in report order.
 PROOF_ENGINES = ("mujoco", "pinocchio", "drake")

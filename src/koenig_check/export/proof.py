@@ -23,10 +23,10 @@ from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
 from koenig_check.engines.sampling import random_states
-from koenig_check.engines.sources import detect_format
 from koenig_check.export.engine_sides import PROOF_ENGINES, EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
+from koenig_check.sources.catalogue import detect_format
 
 #: Default relative tolerance of the proof.
 PROOF_RTOL = 1e-9

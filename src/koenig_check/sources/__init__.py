@@ -2,7 +2,7 @@
 
 ``menagerie:NAME[:ENTRY]`` (extra ``[menagerie]``), ``rd:NAME`` (extra ``[descriptions]``) and ``*.xacro``
 (extra ``[xacro]``) become a local model file with a label saying where it came from
-(:func:`koenig_check.sources.external.resolve_external`); :func:`koenig_check.engines.sources.resolve_model`
+(:func:`koenig_check.sources.external.resolve_external`); :func:`koenig_check.sources.catalogue.resolve_model`
 asks it first.
 """
 

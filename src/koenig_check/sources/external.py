@@ -16,7 +16,7 @@ from typing import Any
 from koenig_check.sources import descriptions, menagerie
 from koenig_check.sources.xacro import expand_xacro, xacro_available
 
-#: The origins of external models, as :class:`koenig_check.engines.sources.ModelSource` records them.
+#: The origins of external models, as :class:`koenig_check.sources.catalogue.ModelSource` records them.
 ORIGINS = ("menagerie", "robot_descriptions", "xacro")
 
 

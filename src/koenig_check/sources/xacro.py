@@ -82,7 +82,7 @@ def expand_xacro(
     ModelLoadError
         If the file is missing or xacro cannot expand it (one line: the file and xacro's reason).
     """
-    from koenig_check.engines.errors import ModelLoadError
+    from koenig_check.exceptions import ModelLoadError
 
     name = label or str(path)
     xacro_available(name)

@@ -41,9 +41,9 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from koenig_check.engines.sources import ModelSource
 from koenig_check.exceptions import DrakeLoadError
 from koenig_check.findings import Finding, Kind
+from koenig_check.sources.catalogue import ModelSource
 from koenig_check.validate import parse_xml
 
 _LOCATION = re.compile(r"^(?P<file>[^\s:]+):(?P<line>\d+): (?:warning|error): ")

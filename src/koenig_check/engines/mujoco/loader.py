@@ -30,9 +30,9 @@ import numpy as np
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
 from koenig_check.engines.mujoco.inertia_repair import Repair, repair_body
-from koenig_check.engines.sources import ModelSource, resolve_uri
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import check_physical_inertia
+from koenig_check.sources.catalogue import ModelSource, resolve_uri
 
 #: Name given to the free joint added for a floating base, in both engines (Pinocchio's default).
 ROOT_JOINT_NAME = "root_joint"

@@ -9,7 +9,7 @@ import pytest
 
 from koenig_check.testing import assert_energy_parity
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 
 
 @pytest.mark.parametrize("name", ["serial7.urdf", "serial7.xml", "gimbal.xml", "double_pendulum.urdf"])

@@ -9,7 +9,7 @@ import pytest
 
 from koenig_check import cli
 from koenig_check.engines.errors import ModelLoadError
-from koenig_check.engines.sources import (
+from koenig_check.sources.catalogue import (
     DEFAULT_FORMAT,
     accepted_names,
     list_models,

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 AGREES = ROOT / "models" / "double_pendulum.xml"
 DISAGREES = ROOT / "tests" / "models" / "causes" / "class_mass.xml"  # Pinocchio ignores a class's geom mass
 ROOT_CAUSE = "root cause: pinocchio: geom pole: geom mass from default class 'pole' not applied by Pinocchio"

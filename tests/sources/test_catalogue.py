@@ -6,10 +6,12 @@ import importlib.metadata
 from pathlib import Path
 
 import pytest
-from engine_helpers import PROJECT
 
 from koenig_check.engines import ModelLoadError, list_models, resolve_model
-from koenig_check.engines.sources import detect_format, example_robot_data_dirs, project_models_dir, resolve_uri
+from koenig_check.sources.catalogue import detect_format, example_robot_data_dirs, project_models_dir, resolve_uri
+
+#: The project models in both formats.
+PROJECT = ("free_body", "gimbal", "double_pendulum", "serial7", "armature_chain")
 
 
 def test_example_robot_data_found_through_the_installed_distribution():

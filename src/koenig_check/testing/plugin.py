@@ -2,7 +2,7 @@
 
 Registered through the ``pytest11`` entry point and off unless ``--koenig-check`` is given.  The models are
 read from the pyproject.toml of the run (pytest's ``inipath`` when it is one, else ``rootdir/pyproject.toml``;
-see :mod:`koenig_check.project_config`).  An item's id is the model's label in reports, it passes exactly when
+see :mod:`koenig_check.testing.project_config`).  An item's id is the model's label in reports, it passes exactly when
 ``koenig-check compare`` would exit 0 (and ``koenig-check dynamics`` too with ``dynamics = true``), and its
 failure reads like the command line's verdict: the root causes first, no frame of koenig-check's own code.  An
 optional engine that is not installed (Drake) skips the item with the reason.  ``--koenig-check-report DIR``
@@ -20,7 +20,7 @@ import pytest
 
 if TYPE_CHECKING:
     from koenig_check.api import CrossCheck
-    from koenig_check.project_config import ModelEntry, ProjectConfigError
+    from koenig_check.testing.project_config import ModelEntry, ProjectConfigError
 
 
 @dataclass
@@ -148,8 +148,8 @@ class ModelsFile(pytest.File):
         ------
         pytest.Item
         """
-        from koenig_check.project_config import ProjectConfigError, read_models
         from koenig_check.run.labels import unique_labels
+        from koenig_check.testing.project_config import ProjectConfigError, read_models
 
         try:
             entries = read_models(self.path)
@@ -185,8 +185,8 @@ class ModelItem(pytest.Item):
         __tracebackhide__ = True
         from koenig_check import compare, dynamics
         from koenig_check.exceptions import EngineUnavailableError as DrakeUnavailableError
-        from koenig_check.failure_text import verdict_lines
         from koenig_check.sources import ModelSourceError
+        from koenig_check.testing.failure_text import verdict_lines
 
         entry = self.entry
         if isinstance(entry, Exception):
