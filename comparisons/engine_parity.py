@@ -103,9 +103,9 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
     from koenig_check.engines.pinocchio.loader import load_pinocchio
     from koenig_check.engines.sampling import random_states
+    from koenig_check.modelfile.validate import preflight
     from koenig_check.run.stats import relative_error
     from koenig_check.sources.catalogue import resolve_model
-    from koenig_check.validate import preflight
 
     path, floating, n_poses, use_drake = task
     start = time.perf_counter()

@@ -22,7 +22,7 @@ from common import HERE, display_name, dm_control_corpus, erd_corpus, progress, 
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
 from koenig_check.export import ExportRefusedError, export_model
-from koenig_check.validate import ModelFileError
+from koenig_check.modelfile.validate import ModelFileError
 
 RTOL = 1e-9
 

@@ -98,7 +98,7 @@ def test_posed_jointless_root_is_a_frame_note_and_the_engines_agree() -> None:
 def test_class_mass_is_named_even_when_the_raw_file_does_not_compile(monkeypatch) -> None:
     # dm_control's fruitfly.xml compiles only through the loader's mesh fixes: the cause then carries
     # the engines' own segment masses instead of MuJoCo's density × volume.
-    import koenig_check.causes as causes
+    import koenig_check.diagnosis.pair_causes as causes
 
     def fails(*_args: Any) -> dict:
         raise ValueError("Error: Error opening file 'head_body.msh'")

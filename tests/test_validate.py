@@ -5,8 +5,8 @@ from pathlib import Path
 
 import pytest
 
-import koenig_check.validate
-from koenig_check.validate import MAX_DEPTH, ModelFileError, preflight
+import koenig_check.modelfile.validate
+from koenig_check.modelfile.validate import MAX_DEPTH, ModelFileError, preflight
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
 
@@ -79,7 +79,7 @@ def test_oversized_file_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPat
     path = tmp_path / "big.urdf"
     path.write_text("<robot name='r'/>")  # 17 bytes
     assert preflight(path) == "urdf"
-    monkeypatch.setattr(koenig_check.validate, "MAX_FILE_BYTES", 10)
+    monkeypatch.setattr(koenig_check.modelfile.validate, "MAX_FILE_BYTES", 10)
     with pytest.raises(ModelFileError) as info:
         preflight(path)
     text = str(info.value)

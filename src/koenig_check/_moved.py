@@ -40,6 +40,7 @@ MOVED: dict[str, str] = {
     "koenig_check.report_html": "koenig_check.report.html",
     "koenig_check.verdict": "koenig_check.report.terminal",
     "koenig_check.engines.sources": "koenig_check.sources.catalogue",
+    "koenig_check.validate": "koenig_check.modelfile.validate",
     "koenig_check.pytest_plugin": "koenig_check.testing.plugin",
     "koenig_check.project_config": "koenig_check.testing.project_config",
     "koenig_check.failure_text": "koenig_check.testing.failure_text",
@@ -48,6 +49,13 @@ MOVED: dict[str, str] = {
 
 #: Old module name -> the modules it was split into.
 SPLIT: dict[str, tuple[str, ...]] = {
+    "koenig_check.causes": (
+        "koenig_check.diagnosis.pair_causes",
+        "koenig_check.diagnosis.root_frame",
+        "koenig_check.engines.parser_traps",
+        "koenig_check.engines.canonical",
+        "koenig_check.modelfile.mjcf",
+    ),
     "koenig_check.tiebreak": (
         "koenig_check.diagnosis.three_way",
         "koenig_check.diagnosis.reason",

@@ -6,7 +6,7 @@ needs are attributes, not text to parse: the root causes of a load failure are
 that cannot be paired are :attr:`JointMismatch.only_in_mujoco` and its siblings.
 
 The modules that raise these errors import them from here and keep their old names
-(``koenig_check.engines.errors.ModelLoadError``, ``koenig_check.validate.ModelFileError``, …).
+(``koenig_check.engines.errors.ModelLoadError``, ``koenig_check.modelfile.validate.ModelFileError``, …).
 
 Hierarchy::
 

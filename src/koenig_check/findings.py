@@ -181,3 +181,23 @@ def _jsonable(value: Any) -> Any:
     if isinstance(value, (list, tuple)):
         return [_jsonable(v) for v in value]
     return value
+
+
+#: Names listed in one element before "+N more".
+_SHOWN = 4
+
+
+def shown_names(items: list[str] | tuple[str, ...], limit: int = _SHOWN) -> str:
+    """Names for a finding's element: the first ``limit``, then how many more.
+
+    Parameters
+    ----------
+    items : sequence of str
+    limit : int
+
+    Returns
+    -------
+    str
+    """
+    shown = ", ".join(items[:limit])
+    return shown + (f" (+{len(items) - limit} more)" if len(items) > limit else "")

@@ -8,7 +8,7 @@ armature as the diagonal of the engine's mass matrix minus the rigid-body mass m
 rebuilt from those Jacobians.  Model-level findings come from the load notes and from
 the file's own compiler options.
 
-Root causes come first (:mod:`koenig_check.causes`): a construct Pinocchio's MJCF parser reads
+Root causes come first (:mod:`koenig_check.diagnosis.pair_causes`): a construct Pinocchio's MJCF parser reads
 differently (a geom mass from a default class, a dropped root-body pose, ...) is one typed
 :class:`~koenig_check.findings.Finding` naming the elements, and the segments it explains are not
 listed again as separate reasons.  A dropped root pose is a constant world transform: Pinocchio's
@@ -24,12 +24,13 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.causes import FrameOffset, model_causes
+from koenig_check.diagnosis.pair_causes import model_causes
+from koenig_check.diagnosis.root_frame import FrameOffset
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.validate import parse_xml
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.segments import SegmentStates
-from koenig_check.validate import parse_xml
 
 #: Default relative tolerance of parity comparisons.
 PARITY_RTOL = 1e-9

@@ -112,3 +112,40 @@ class VelocityMapped:
         """
         T = self.velocity_matrix(qpos)
         return np.swapaxes(T, -1, -2) @ m_engine @ T
+
+
+def segment_of_body(mj_model: mujoco.MjModel) -> dict[str, str]:
+    """MuJoCo body name -> the segment (name of its carrier's last joint) that moves it ('' if static).
+
+    Parameters
+    ----------
+    mj_model : mujoco.MjModel
+
+    Returns
+    -------
+    dict of str to str
+    """
+    seg = segment_by_body_id(mj_model)
+    names = (mujoco.mj_id2name(mj_model, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(mj_model.nbody))
+    return {name: seg[b] for b, name in enumerate(names) if name}
+
+
+def segment_by_body_id(mj_model: mujoco.MjModel) -> list[str]:
+    """The segment of every MuJoCo body, by body id ('' for the world and static bodies).
+
+    Parameters
+    ----------
+    mj_model : mujoco.MjModel
+
+    Returns
+    -------
+    list of str
+    """
+    names = mujoco_joint_names(mj_model)
+    seg = [""] * mj_model.nbody
+    for b in range(1, mj_model.nbody):  # parents come before children
+        if mj_model.body_jntnum[b] > 0:
+            seg[b] = names[mj_model.body_jntadr[b] + mj_model.body_jntnum[b] - 1]
+        else:
+            seg[b] = seg[mj_model.body_parentid[b]]
+    return seg

@@ -21,8 +21,8 @@ import mujoco
 import numpy as np
 
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
-from koenig_check.validate import parse_xml
 
 _LOOP = (mujoco.mjtEq.mjEQ_CONNECT, mujoco.mjtEq.mjEQ_WELD)
 #: Number of polynomial coefficients of a MuJoCo joint equality.

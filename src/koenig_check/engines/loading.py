@@ -9,7 +9,6 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.causes import explain_load_failures
 from koenig_check.engines import registry
 from koenig_check.engines.base import Engine
 from koenig_check.engines.coupling import coupling_findings
@@ -23,14 +22,15 @@ from koenig_check.engines.finite import check_finite, check_segments
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.engines.mujoco.adapter import MujocoEngine
 from koenig_check.engines.mujoco.loader import load_mujoco, root_free_joint
+from koenig_check.engines.parser_traps import explain_load_failures
 from koenig_check.engines.pinocchio.adapter import PinocchioEngine
 from koenig_check.engines.pinocchio.loader import load_pinocchio
 from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
 from koenig_check.engines.sampling import random_states
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.validate import preflight
 from koenig_check.roundoff import ROUNDOFF
 from koenig_check.sources.catalogue import ModelSource, resolve_model
-from koenig_check.validate import preflight
 
 #: Number of seeded random states the self-consistency checks run on at load time.
 CONSISTENCY_POSES = 3
@@ -273,7 +273,7 @@ def load_model(
     ModelLoadError, InertiaError
         If an engine cannot load the file (one-line message naming the file, the element and
         the engine's whole reason; for an inertia MuJoCo refuses, the option that would load it).
-    koenig_check.validate.ModelFileError
+    koenig_check.modelfile.validate.ModelFileError
         If the file fails the pre-flight checks (missing, empty, not XML, DOCTYPE...).
     JointMismatch
         If the engines' joints cannot be paired by name.

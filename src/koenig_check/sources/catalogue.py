@@ -28,7 +28,7 @@ from functools import cache
 from pathlib import Path
 
 from koenig_check.engines.errors import ModelLoadError
-from koenig_check.validate import ModelFileError, preflight
+from koenig_check.modelfile.validate import ModelFileError, preflight
 
 #: Names the historical example-robot-data loaders used for files whose stem differs.
 LEGACY_ALIASES = {"talos": "talos_reduced", "talos_full": "talos_full_v2", "talos_arm": "talos_left_arm"}

@@ -43,12 +43,14 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
 
 def _file_causes(model: Any) -> list[Finding]:
     """The constructs of an MJCF file that Drake's parser skips too: ``<frame>`` (measured on 1.51)."""
-    from koenig_check.causes import _read_mjcf, _segment_of_body, frame_causes
+    from koenig_check.engines.canonical import segment_of_body
+    from koenig_check.engines.parser_traps import frame_causes
+    from koenig_check.modelfile.mjcf import read_mjcf
 
     if model.source.format != "mjcf":
         return []
-    root = _read_mjcf(Path(str(model.source.path)))
-    return [] if root is None else frame_causes(root, _segment_of_body(model.mujoco.model), engine="drake")
+    root = read_mjcf(Path(str(model.source.path)))
+    return [] if root is None else frame_causes(root, segment_of_body(model.mujoco.model), engine="drake")
 
 
 def armature_findings(model: Any, drake: Any) -> list[Finding]:

@@ -20,7 +20,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from koenig_check.findings import Finding, Kind
-from koenig_check.validate import parse_xml
+from koenig_check.modelfile.validate import parse_xml
 
 #: Relative difference above which Drake is said to have replaced a link's mass or inertia.
 REPLACED_RTOL = 1e-9

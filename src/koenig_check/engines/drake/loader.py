@@ -43,8 +43,8 @@ from typing import Any
 
 from koenig_check.exceptions import DrakeLoadError
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
-from koenig_check.validate import parse_xml
 
 _LOCATION = re.compile(r"^(?P<file>[^\s:]+):(?P<line>\d+): (?:warning|error): ")
 

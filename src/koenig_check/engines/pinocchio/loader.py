@@ -25,8 +25,8 @@ import pinocchio as pin
 
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
-from koenig_check.validate import parse_xml
 
 #: Lines of Pinocchio's C++ exception text that say where in Pinocchio's sources it was raised, not why.
 _SOURCE_LOCATION = ("From file:", "in function:", "at line:", "message:")
