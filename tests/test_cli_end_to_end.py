@@ -198,5 +198,5 @@ def test_engine_disagreement_names_its_import_cause(tmp_path: Path) -> None:
     copy = tmp_path / "heavier.urdf"
     copy.write_text(altered)
     parity = engine_parity(compare_model(MODELS / "serial7.urdf", n_poses=4, pinocchio_model=copy))
-    assert not parity.agrees and "cause: both: segment j5: mass differs between the engines" in parity.reason
-    assert "(mujoco 1.2, pinocchio 1.5)" in parity.reason
+    assert not parity.agrees and "cause: both: link link5 (joint j5): mass differs between the engines" in parity.reason
+    assert "(mujoco 1.2, pinocchio 1.5, relative difference 0.2)" in parity.reason

@@ -80,18 +80,32 @@ class CrossCheck:
         self.parities.append(parity)
         return parity
 
-    def reason(self) -> str:
-        """One line saying why :attr:`ok` is False (empty when it is True)."""
+    def reasons(self) -> list[str]:
+        """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
+
+        A model that could not be checked gives its whole reason (the engine's own); a disagreeing model gives
+        the check asked for and not made or the engine that departs, the gap, and at most three root causes,
+        the most important first, within 200 characters (the details are in ``koenig-check parity``,
+        ``summary.md`` and the report).
+
+        Returns
+        -------
+        list of str
+        """
         parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in self.failures]  # once, not twice
-        for comparison, parity in zip(self.comparisons, self.parities, strict=True):
+        for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
             lead = reason.lead_line(comparison.findings)
-            if lead or not parity.agrees:
-                text = "; ".join(t for t in (lead, "" if parity.agrees else parity.reason) if t)
+            if lead or not agreement.agrees:
+                text = reason.short_reason(agreement.model, comparison.findings, agreement.gap)
                 unused = reason.engine_usage(comparison.findings)
-                if not lead and unused:
+                if not lead and unused and len(text) + len(unused) + 2 <= reason.REASON_WIDTH:
                     text += f"; {unused}"
-                parts.append(f"{parity.model}: {text}")
-        return "; ".join(parts)
+                parts.append(text)
+        return parts
+
+    def reason(self) -> str:
+        """One line saying why :attr:`ok` is False (empty when it is True): :meth:`reasons` joined."""
+        return "; ".join(self.reasons())
 
 
 def make_poses(

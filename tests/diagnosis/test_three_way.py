@@ -52,18 +52,20 @@ def test_the_engine_that_departs_is_named_with_its_construct(path, engines, quan
     else:
         assert f"construct responsible: {construct}" in verdict.summary
     assert not check.ok
-    assert check.reason().startswith(f"{path.name}: {verdict.message()}")  # the reason leads with it
+    departs = verdict.summary.split("; ")[0].split(" (")[0]  # "MuJoCo departs", "all three engines differ"
+    assert check.reason().startswith(f"{path.name}: {departs}")  # the reason leads with it
+    assert f"three engines: {verdict.message()}" in check.comparisons[0].notes  # whole in summary.md, the report
     assert "\n" not in check.reason()
 
 
 @needs_drake
 def test_import_verdict_per_segment_names_the_segment() -> None:
     check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
-    mass = [f for f in _verdicts(check) if f.element == "segment hinge mass"]
+    mass = [f for f in _verdicts(check) if f.element == "body pole (joint hinge) mass"]
     assert [f.engine for f in mass] == ["pinocchio"]
     assert mass[0].values["mujoco"] == pytest.approx(0.1) and mass[0].values["drake"] == pytest.approx(0.1)
     assert mass[0].segments == ("hinge",)
-    moments = [f for f in _verdicts(check) if f.element == "segment hinge principal moments"]
+    moments = [f for f in _verdicts(check) if f.element == "body pole (joint hinge) principal moments"]
     assert [f.engine for f in moments] == ["pinocchio"]
     assert moments[0].values["mujoco"] == pytest.approx(moments[0].values["drake"], rel=1e-12)
 
@@ -99,8 +101,10 @@ def test_cli_engines_option_on_compare_and_parity(capsys: pytest.CaptureFixture[
         == 0
     )
     assert main(["parity", str(TIEBREAK / "settotalmass.xml")]) == 1
-    err = capsys.readouterr().err
-    assert "mujoco: segment spin mass: MuJoCo departs (Pinocchio and Drake agree)" in err.splitlines()[-1]
+    out, err = capsys.readouterr()
+    assert "three engines: mujoco: body box (joint spin) mass: MuJoCo departs (Pinocchio and Drake agree)" in out
+    assert err.startswith("koenig-check: settotalmass.xml: MuJoCo departs; root cause: compiler settotalmass")
+    assert len(err.splitlines()) == 1 and len(err.rstrip("\n")) <= 200
 
 
 @needs_drake
@@ -155,7 +159,7 @@ def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.Mo
     monkeypatch.setattr(registry, "installed", lambda name: name != "drake")
     check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
     assert set(check.comparisons[0].engines) == {"mujoco", "pinocchio"}
-    assert "Drake not used: not installed" in check.reason()
+    assert any("Drake not used: not installed" in note for note in check.comparisons[0].notes)
     with pytest.raises(DrakeUnavailableError, match="pydrake is not installed"):
         koenig_check.compare("gimbal.xml", engines=ALL)
     with pytest.raises(SystemExit) as usage:  # a usage error, before any work (like argparse's)
@@ -177,7 +181,7 @@ def test_all_three_differ_each_construct_named() -> None:
     check = koenig_check.compare(
         TIEBREAK / "unbalanced_inertia.urdf", n_poses=2, formulas=["exact"], repair_inertia=True
     )
-    verdict = {f.element: f for f in _verdicts(check)}["segment swing principal moments"]
+    verdict = {f.element: f for f in _verdicts(check)}["link arm (joint swing) principal moments"]
     assert verdict.engine == "all"
     assert (
         verdict.summary == "all three engines differ; constructs: MuJoCo: link arm (repair); Drake: link arm (inertia)"

@@ -30,7 +30,7 @@ def test_names_the_segment_of_a_link_whose_mass_changed(tmp_path: Path) -> None:
     with pytest.raises(AssertionError) as info:
         assert_energy_parity(MODELS / "serial7.urdf", pinocchio_model=copy, n_poses=10)
     message = str(info.value)
-    assert "segment 'j5' at pose random-" in message
+    assert "link link5 (joint j5) at pose random-" in message  # the link the user wrote, and its joint
     assert "import parity: mass differ" in message
     assert re.search(r"difference [+-]\d", message)
 

@@ -124,7 +124,7 @@ def test_pass_and_failure_as_the_cli_root_cause_first_and_one_report(pytester):
     assert model_failure.index("root cause:") < model_failure.index("engines: MuJoCo and Pinocchio")
     # the helper's failure reads the same way
     assert "root cause: pinocchio: geom pole: geom mass from default class 'pole'" in helper_failure
-    assert helper_failure.index("root cause:") < helper_failure.index("segment 'hinge'")
+    assert helper_failure.index("root cause:") < helper_failure.index("body pole (joint hinge) at pose")
     for source in HELPER_SOURCE:
         assert source not in model_failure and source not in helper_failure
     # the report of the whole run

@@ -106,7 +106,8 @@ def _finish(check, out: str | None, extra_figures: dict | None = None, records=N
         print("\n" + file_listing(out, written))
     if check.ok:
         return 0
-    print(f"koenig-check: engines disagree or a model failed: {check.reason()}", file=sys.stderr)
+    for line in check.reasons():  # one sentence per failing model, the details in the report
+        print(f"koenig-check: {line}", file=sys.stderr)
     return 1
 
 

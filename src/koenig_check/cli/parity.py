@@ -31,9 +31,10 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.diagnosis.diagnose import diagnose
     from koenig_check.diagnosis.import_parity import format_parity
     from koenig_check.diagnosis.policy import asked_for
-    from koenig_check.diagnosis.reason import lead_line
+    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, lead_line, short_reason
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
+    from koenig_check.run.labels import unique_labels
 
     options = load_options_of(args)
     model = load_model(args.model, options)
@@ -51,8 +52,9 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     lead = lead_line(diagnosis.findings)
     if report.clean and not lead:
         return 0
-    print(
-        f"koenig-check: import differences in {args.model}: {'; '.join(t for t in (lead, report.headline()) if t)}",
-        file=sys.stderr,
-    )
+    label = unique_labels([args.model], options.floating, options.xacro_args)[0]
+    line = short_reason(label, diagnosis.findings)  # one sentence: the details are in the table above
+    if line == f"{label}: ":  # every difference at the level of a written file's rounding
+        line += f"import differences, each at most {ROUNDING_LEVEL:g} relative: a written file's rounding"
+    print(f"koenig-check: {line}", file=sys.stderr)
     return 1

@@ -95,13 +95,14 @@ def diagnose(
     findings = list(model.findings) + parity.as_findings() + optional
     verdicts: list[Finding] = []
     if len(model.engines) == 3:
-        verdicts = _verdicts(model, findings, qpos, qvel, rtol, include_armature)
+        verdicts = _verdicts(model, parity.segment_labels, findings, qpos, qvel, rtol, include_armature)
     unmade = policy.unmade_checks(optional, engines)
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
 
 
 def _verdicts(
     model: Any,
+    labels: dict[str, str],
     findings: list[Finding],
     qpos: np.ndarray | None,
     qvel: np.ndarray | None,
@@ -121,7 +122,7 @@ def _verdicts(
     q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in model.engines.items()}
-    return out + three_way.import_verdicts(states, findings, rtol)
+    return out + three_way.import_verdicts(states, findings, rtol, labels)
 
 
 @dataclass(frozen=True)

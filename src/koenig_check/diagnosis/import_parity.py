@@ -74,6 +74,9 @@ class SegmentParity:
         Distance between the two joint anchors (m).
     causes : tuple of str
         Which quantities differ beyond tolerance (``mass``, ``com``, ``inertia``, ``anchor``).
+    relative : dict of str to float
+        Per quantity, its difference relative to its scale (what the tolerance is compared with): the mass
+        to the larger mass, lengths to the model's size, inertias to the largest principal moment.
     """
 
     name: str
@@ -83,6 +86,7 @@ class SegmentParity:
     principal_moments: tuple[np.ndarray, np.ndarray]
     pole_distance: float
     causes: tuple[str, ...]
+    relative: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -102,6 +106,8 @@ class DofParity:
         exists in one engine only).
     causes : tuple of str
         ``axis`` and/or ``armature`` when they differ.
+    relative : dict of str to float
+        Per quantity, its difference relative to its scale (see :class:`SegmentParity`).
     """
 
     dof: int
@@ -109,6 +115,7 @@ class DofParity:
     armature: tuple[float, float]
     jacobian_difference: float
     causes: tuple[str, ...]
+    relative: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -147,6 +154,20 @@ class ParityReport:
     causes: list[Finding] = field(default_factory=list)
     massless_in_pinocchio: list[str] = field(default_factory=list)
     massless_in_mujoco: list[str] = field(default_factory=list)
+    segment_labels: dict[str, str] = field(default_factory=dict)
+
+    def label(self, segment: str) -> str:
+        """A segment as the user wrote it: its link or body, and the joint that keys it.
+
+        Parameters
+        ----------
+        segment : str
+
+        Returns
+        -------
+        str
+        """
+        return self.segment_labels.get(segment, f"segment {segment}")
 
     @property
     def differing_segments(self) -> list[SegmentParity]:
@@ -189,12 +210,14 @@ class ParityReport:
                 out |= _EXPLAINS.get(c.kind, _ALL_SYMPTOMS)
         return out
 
-    def causes_for(self, segment: str) -> tuple[str, ...]:
+    def causes_for(self, segment: str, above: float = 0.0) -> tuple[str, ...]:
         """The causes found for one segment (empty when it matches).
 
         Parameters
         ----------
         segment : str
+        above : float
+            Only the quantities whose relative difference is above this (e.g. above a written file's rounding).
 
         Returns
         -------
@@ -202,7 +225,7 @@ class ParityReport:
         """
         for s in self.segments:
             if s.name == segment:
-                return s.causes
+                return tuple(c for c in s.causes if s.relative.get(c, float("inf")) > above)
         return ()
 
     def as_findings(self) -> list[Finding]:
@@ -221,12 +244,13 @@ class ParityReport:
             for cause in seg.causes:
                 if cause in self.explained(seg.name):
                     continue
-                values = {"mujoco": seg.mass[0], "pinocchio": seg.mass[1]} if cause == "mass" else {}
+                values: dict[str, float] = {"mujoco": seg.mass[0], "pinocchio": seg.mass[1]} if cause == "mass" else {}
+                values["relative difference"] = seg.relative.get(cause, float("nan"))
                 out.append(
                     Finding(
                         _PARITY_KINDS.get(cause, Kind.INERTIA),
                         "both",
-                        f"segment {seg.name}",
+                        self.label(seg.name),
                         f"{cause} differs between the engines",
                         values,
                         affects_energy=True,
@@ -238,6 +262,7 @@ class ParityReport:
                 if cause in self.explained(dof.joint):
                     continue
                 values = {"mujoco": dof.armature[0], "pinocchio": dof.armature[1]} if cause == "armature" else {}
+                values["relative difference"] = dof.relative.get(cause, float("nan"))
                 out.append(
                     Finding(
                         _PARITY_KINDS.get(cause, Kind.AXIS),
@@ -284,6 +309,27 @@ class ParityReport:
             if rest:
                 parts.append(f"{label}: {rest}")
         return "; ".join(parts) or "no import difference"
+
+
+def segment_labels(pair: Any) -> dict[str, str]:
+    """Each segment as the user wrote it: ``"link forearm (joint elbow)"``, or ``"body hand"`` when they share a name.
+
+    A segment is keyed by the joint that moves it; the user edits the link (URDF) or body (MJCF) that joint
+    moves, the first of the bodies welded together in the segment.
+
+    Parameters
+    ----------
+    pair : LoadedModel
+
+    Returns
+    -------
+    dict of str to str
+    """
+    word = "link" if pair.source.format == "urdf" else "body"
+    out = {}
+    for segment, body in pair.mujoco.segment_bodies().items():
+        out[segment] = f"{word} {body}" if body == segment or not body else f"{word} {body} (joint {segment})"
+    return out
 
 
 def _unit_rate_states(engine: Any, qpos0: np.ndarray, nv: int) -> SegmentStates:
@@ -409,6 +455,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     nv = mj_model.nv
     report = ParityReport(model=str(getattr(pair, "path", getattr(mj, "path", "?"))), rtol=rtol)
     report.causes, offset = model_causes(pair)
+    report.segment_labels = segment_labels(pair)
     sa = _unit_rate_states(mj, qpos0, nv)
     sb = _in_mujoco_world(_unit_rate_states(pn, qpos0, nv), offset)
     report.total_mass = (float(sa.mass.sum()), float(sb.mass.sum()))
@@ -429,16 +476,14 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
         fro = float(np.linalg.norm(Ia[k] - Ib[k]))
         moments = (np.linalg.eigvalsh(Ia[k]), np.linalg.eigvalsh(Ib[k]))
         scale_I = max(float(np.abs(moments[0]).max()), float(np.abs(moments[1]).max()), 1e-300)
-        causes = []
-        if abs(ma - mb) > rtol * max(ma, mb):
-            causes.append("mass")
-        if com_d > rtol * size:
-            causes.append("com")
-        if fro > rtol * scale_I:
-            causes.append("inertia")
-        if pole_d > rtol * size:
-            causes.append("anchor")
-        report.segments.append(SegmentParity(name, (ma, mb), com_d, fro, moments, pole_d, tuple(causes)))
+        relative = {
+            "mass": abs(ma - mb) / max(ma, mb, 1e-300),
+            "com": com_d / size,
+            "inertia": fro / scale_I,
+            "anchor": pole_d / size,
+        }
+        causes = tuple(q for q, value in relative.items() if value > rtol)
+        report.segments.append(SegmentParity(name, (ma, mb), com_d, fro, moments, pole_d, causes, relative))
     # Dofs: the joint's own segment under a unit rate of the dof (its angular velocity and its pole's
     # velocity: the joint axis, free of any difference in COMs or downstream links) and armature.
     own = {name: k for k, name in enumerate(common)}
@@ -460,12 +505,9 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
             diff = float(
                 max(np.abs(A.omega[d, seg] - B.omega[d, seg]).max(), np.abs(A.v_pole[d, seg] - B.v_pole[d, seg]).max())
             )
-        causes = []
-        if diff > rtol * jac_scale * size:  # nan (segment missing) is not an axis difference
-            causes.append("axis")
-        if abs(arm_a[d] - arm_b[d]) > rtol * m_scale:
-            causes.append("armature")
-        report.dofs.append(DofParity(d, joint, (float(arm_a[d]), float(arm_b[d])), diff, tuple(causes)))
+        relative = {"axis": diff / (jac_scale * size), "armature": abs(arm_a[d] - arm_b[d]) / m_scale}
+        causes = tuple(q for q, value in relative.items() if value > rtol)  # nan (segment missing) is no axis cause
+        report.dofs.append(DofParity(d, joint, (float(arm_a[d]), float(arm_b[d])), diff, causes, relative))
     report.findings = _pair_notes(pair) + compiler_findings(Path(str(mj.path)), mj_model)
     masses_a = A.mass
     masses_b = B.mass

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 
 from koenig_check.findings import Finding, Kind, root_causes
@@ -10,12 +11,52 @@ from koenig_check.findings import Finding, Kind, root_causes
 _SYMPTOMS = (Kind.MASS, Kind.COM, Kind.INERTIA, Kind.ANCHOR, Kind.AXIS, Kind.ARMATURE, Kind.SEGMENTS, Kind.FRAME)
 
 
-def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
-    """The cause of an engine disagreement, chosen from the findings, for the one-line reason.
+#: A relative difference at most this is what numbers written with 6 significant digits explain (MuJoCo's
+#: XML writer, ``MjSpec.to_xml``, MuJoCo's URDF import saved: up to 5e-6 per number): a written file's
+#: rounding, not a construct.
+ROUNDING_LEVEL = 1e-5
+#: The longest one-line reason of a model (characters, its label included): with the command line's
+#: ``koenig-check: `` before it, the line fits 200 characters.
+REASON_WIDTH = 200 - len("koenig-check: ")
 
-    Root causes that change the energy come first (a repaired or compiler-altered inertia, a
-    construct one parser ignores), then the per-segment import differences, then each engine's
-    inconsistencies with itself.
+
+def _relative(f: Finding) -> float:
+    """A symptom's size relative to its scale (0 when unknown)."""
+    value = f.values.get("relative difference", 0.0)
+    return float(value) if isinstance(value, float) and value == value else 0.0
+
+
+def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
+    """The findings that explain a change of energy, the most important first; rounding-level ones left out.
+
+    Root causes that change the energy come first (a repaired or compiler-altered inertia, a construct one
+    parser ignores), then the per-segment import differences no root cause explains, the largest relative
+    difference first, then each engine's inconsistencies with itself.  A symptom whose relative difference
+    is at the level of a written file's rounding (:data:`ROUNDING_LEVEL`) is never listed.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+
+    Returns
+    -------
+    list of Finding
+    """
+    energy = [f for f in findings if f.affects_energy]
+    roots = [f for f in root_causes(energy) if f.affects_energy]
+    symptoms = [f for f in energy if f.kind in _SYMPTOMS and f not in roots]
+    symptoms = [f for f in symptoms if "relative difference" not in f.values or _relative(f) > ROUNDING_LEVEL]
+    symptoms.sort(key=lambda f: -_relative(f))
+    selves = [f for f in energy if f.kind is Kind.SELF_CONSISTENCY and f not in roots]
+    chosen: list[Finding] = []
+    for f in roots + symptoms + selves:
+        if f not in chosen:
+            chosen.append(f)
+    return chosen
+
+
+def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
+    """The cause of an engine disagreement, chosen from the findings (:func:`ordered_causes`), in full.
 
     Parameters
     ----------
@@ -28,18 +69,110 @@ def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
     str
         Empty when no finding explains a change of energy.
     """
-    energy = [f for f in findings if f.affects_energy]
-    roots = [f for f in root_causes(energy) if f.affects_energy]
-    symptoms = [f for f in energy if f.kind in _SYMPTOMS and f not in roots]
-    selves = [f for f in energy if f.kind is Kind.SELF_CONSISTENCY and f not in roots]
-    chosen: list[Finding] = []
-    for f in roots + symptoms + selves:
-        if f not in chosen:
-            chosen.append(f)
+    chosen = ordered_causes(findings)
     text = "; ".join(f.message() for f in chosen[:limit])
     if len(chosen) > limit:
         text += f"; and {len(chosen) - limit} more finding(s)"
     return text
+
+
+def short_cause(f: Finding) -> str:
+    """A cause in a few words: its element and the first clause of its summary, without parentheses or values.
+
+    An element that lists several names keeps the first and says how many more.
+
+    Parameters
+    ----------
+    f : Finding
+
+    Returns
+    -------
+    str
+    """
+    element = f.element
+    more = re.search(r" \(\+(\d+) more\)$", element)
+    listed = element[: more.start()] if more else element
+    if ", " in listed:
+        first, rest = listed.split(", ", 1)
+        extra = rest.count(", ") + 1 + (int(more.group(1)) if more else 0)
+        element = f"{first} (+{extra} more)"
+    clause = re.sub(r" \([^)]*\)", "", f.summary.split("; ")[0])
+    return f"{element}: {clause}"
+
+
+def _departures(findings: Sequence[Finding]) -> str:
+    """The three-engine verdicts in a few words: which engine departs (once each), or that all differ."""
+    heads = []
+    for f in findings:
+        if f.kind is Kind.VERDICT:
+            head = re.sub(
+                r" \([^)]*\)", "", f.summary.split("; ")[0]
+            )  # "Pinocchio departs", "all three engines differ"
+            if head not in heads:
+                heads.append(head)
+    return ", ".join(heads)
+
+
+def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: int = 3) -> str:
+    """Why a model fails, in one sentence of at most :data:`REASON_WIDTH` characters.
+
+    The check asked for and not made (with the engine's own reason) or the engine that departs first, then
+    at most ``limit`` root causes, the most important first, and how many more, then the engines' gap;
+    ``koenig-check parity``, ``summary.md`` and the report hold the details.  To fit, the gap loses its pose,
+    then the gap goes (the verdict table shows it), then causes after the first go ("and N more"), and last the
+    first cause is cut at a word ("…").
+
+    Parameters
+    ----------
+    label : str
+        The model's label.
+    findings : sequence of Finding
+    gap : str
+        The engines' disagreement in a few words (empty when they agree).
+    limit : int
+
+    Returns
+    -------
+    str
+    """
+    unmade = [f.message() for f in findings if f.kind is Kind.ENGINE_UNABLE]  # the engine's whole reason
+    head = "; ".join(t for t in (*unmade, _departures(findings)) if t)
+    causes = [short_cause(f) for f in ordered_causes(findings)]
+    gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
+    if head or causes:  # the gap may go when something else says why (the verdict table shows it)
+        gaps.append("")
+    text = ""
+    for n in range(min(limit, len(causes)), 0 if causes else -1, -1):
+        for g in gaps:
+            said = "; ".join(causes[:n]) + (f" and {len(causes) - n} more" if len(causes) > n else "")
+            parts = [head, f"root cause: {said}" if n else "", g]
+            text = f"{label}: " + "; ".join(t for t in parts if t)
+            if len(text) <= REASON_WIDTH or unmade:  # an engine's refusal is given whole
+                return text
+    return text[: REASON_WIDTH - 1].rsplit(" ", 1)[0] + "…"  # one long cause: cut at a word, the report has it
+
+
+def rounding_hint(max_relative: float, rtol: float) -> str:
+    """A hint when every difference is at the level a written file's rounding explains, else empty.
+
+    Parameters
+    ----------
+    max_relative : float
+        The largest relative difference of the engines' energies.
+    rtol : float
+        The tolerance it exceeds.
+
+    Returns
+    -------
+    str
+    """
+    if not rtol < max_relative <= ROUNDING_LEVEL:
+        return ""
+    option = next(t for t in (1e-6, ROUNDING_LEVEL) if max_relative <= t)
+    return (
+        f"MuJoCo and Pinocchio differ by at most {max_relative:.2g} relative, what a file written with 6 "
+        f"significant digits explains: --rtol {option:g} accepts it"
+    )
 
 
 #: Findings that lead a reason: a check the user asked for that was not made, an engine that departs.

@@ -15,7 +15,7 @@ When Drake runs (on every pose, or only where MuJoCo and Pinocchio disagree) is 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -169,7 +169,12 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
     return out
 
 
-def import_verdicts(states: dict[str, Any], findings: Sequence[Finding], rtol: float = TIEBREAK_RTOL) -> list[Finding]:
+def import_verdicts(
+    states: dict[str, Any],
+    findings: Sequence[Finding],
+    rtol: float = TIEBREAK_RTOL,
+    labels: Mapping[str, str] | None = None,
+) -> list[Finding]:
     """Three-way verdicts on each segment's mass, COM and central inertia (world axes) in one state.
 
     Frames are not compared (each engine has its own segment frame: a body, a joint frame), only what
@@ -181,6 +186,8 @@ def import_verdicts(states: dict[str, Any], findings: Sequence[Finding], rtol: f
         Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``).
     findings : sequence of Finding
     rtol : float
+    labels : mapping of str to str, optional
+        Segment name -> how the user wrote it (``"link forearm (joint elbow)"``).
 
     Returns
     -------
@@ -217,7 +224,8 @@ def import_verdicts(states: dict[str, Any], findings: Sequence[Finding], rtol: f
     for (label, odd), items in grouped.items():
         segments = [n for n, _ in items]
         what = "principal moments" if label == "inertia" else label
-        element = f"segment {segments[0]} {what}" + (f" (+{len(segments) - 1} segments)" if len(segments) > 1 else "")
+        first = (labels or {}).get(segments[0], f"segment {segments[0]}")  # the link or body the user wrote
+        element = f"{first} {what}" + (f" (+{len(segments) - 1} segments)" if len(segments) > 1 else "")
         out.append(_verdict(element, odd, items[0][1], findings, segments))
     return out
 

@@ -29,13 +29,15 @@ def _wrap(head: str, text: str, width: int = WIDTH) -> list[str]:
 
 
 def _cause(check: CrossCheck, model: str) -> str:
-    from koenig_check.diagnosis.reason import changes_line, lead_line
+    from koenig_check.diagnosis.reason import changes_line, lead_line, short_reason
 
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         if parity.model == model:
-            lead = lead_line(comparison.findings)
+            short = ""
+            if lead_line(comparison.findings) or not parity.agrees:  # the one-line reason, without the label
+                short = short_reason(model, comparison.findings, parity.gap).removeprefix(f"{model}: ")
             changes = changes_line(comparison.findings)  # a model changed to be loaded says so, agreeing or not
-            return "; ".join(t for t in (lead, "" if parity.agrees else parity.reason, changes) if t)
+            return "; ".join(t for t in (short, changes) if t)
     return ""
 
 

@@ -7,10 +7,11 @@ Per formula, its errors (:class:`FormulaSummary`); and whether the engines agree
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from koenig_check.diagnosis.reason import disagreement_cause
+from koenig_check.diagnosis.reason import disagreement_cause, rounding_hint
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL, ModelStats
@@ -147,7 +148,11 @@ def summarize_records(
 
 @dataclass(frozen=True)
 class EngineAgreement:
-    """Engine-versus-engine and engine-versus-exact agreement of one model."""
+    """Engine-versus-engine and engine-versus-exact agreement of one model.
+
+    ``reason`` says in full why they do not agree (with the cause's values); ``gap`` says it in a few words, for
+    the one-line reason (:func:`koenig_check.diagnosis.reason.short_reason`).
+    """
 
     model: str
     rigid_max_rel: float  # MuJoCo rigid energy vs Pinocchio rigid energy
@@ -156,6 +161,7 @@ class EngineAgreement:
     worst_pose: str
     agrees: bool
     reason: str
+    gap: str = ""
 
 
 def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> EngineAgreement:
@@ -190,6 +196,7 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
     for name, value in p.self_rel.items():
         if value > rtol:
             reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
+    gap = _gap(p, rtol) if reasons else ""
     cause = disagreement_cause(comparison.findings) if reasons else ""
     if cause:
         reasons.append(f"cause: {cause}")
@@ -201,7 +208,20 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
         p.rigid.where,
         not reasons,
         "; ".join(reasons),
+        gap,
     )
+
+
+def _gap(p: Any, rtol: float) -> str:
+    """The engines' disagreement in a few words, with the rounding hint when a written file's rounding explains it."""
+    parts = []
+    if p.rigid.value > rtol:
+        parts.append(f"MuJoCo and Pinocchio differ by {p.rigid.value:.2g} relative (pose {p.rigid.where})")
+    if p.armature_scaled > rtol:
+        parts.append(f"their armature energies by {p.armature.value:.2g} J")
+    parts += [f"{name}'s exact differs from its own energy by {v:.2g}" for name, v in p.self_rel.items() if v > rtol]
+    hint = rounding_hint(float(p.rigid.value), rtol) if len(parts) == 1 else ""
+    return hint or ", ".join(parts)  # within a written file's rounding, the hint says the gap and what to do
 
 
 #: Former names of :class:`EngineAgreement` and :func:`engine_agreement` ("parity" now means import parity only).

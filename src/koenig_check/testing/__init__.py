@@ -63,7 +63,7 @@ def assert_energy_parity(
     """
     __tracebackhide__ = True
     from koenig_check.diagnosis.diagnose import diagnose
-    from koenig_check.diagnosis.reason import disagreement_cause, lead_line
+    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, disagreement_cause, lead_line, rounding_hint
     from koenig_check.engines import load_model
     from koenig_check.engines.registry import check_engines
     from koenig_check.run.poses import random_poses
@@ -124,10 +124,13 @@ def assert_energy_parity(
         rtol=rtol,
         include_armature=include_armature,
     )
-    if worst_segment is not None and diagnosis.parity is not None:
-        causes = diagnosis.parity.causes_for(sa.names[b])
+    if worst_segment is not None and diagnosis.parity is not None:  # the segment as the user wrote it
+        name = sa.names[b]
+        problems[worst_segment] = problems[worst_segment].replace(f"segment {name!r}", diagnosis.parity.label(name), 1)
+        causes = diagnosis.parity.causes_for(name, above=ROUNDING_LEVEL)  # never a file's rounding
         if causes:
             problems[worst_segment] += f"; import parity: {', '.join(causes)} differ"
+    hint = rounding_hint(float(rel.max()), rtol) if len(problems) == 1 + (worst_segment is not None) else ""
     lead = lead_line(diagnosis.findings)
     if lead:
         problems.insert(0, lead)
@@ -135,4 +138,6 @@ def assert_energy_parity(
         cause = disagreement_cause(diagnosis.findings)
         if cause:  # right after the three-engine verdict, before the symptoms
             problems.insert(1 if lead else 0, f"root cause: {cause}")
+        if hint:
+            problems.append(hint)
         raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))

@@ -90,6 +90,19 @@ class MujocoEngine(Engine):
             seg = self._segment_of[bid] if bid >= 0 else ""
             self.findings.append(replace(finding, segments=(seg,) if seg else ()))
 
+    def segment_bodies(self) -> dict[str, str]:
+        """Each segment's first body, as the file names it (the link or body its joint moves).
+
+        Returns
+        -------
+        dict of str to str
+            Segment name -> body name ("" for an unnamed body).
+        """
+        return {
+            name: mujoco.mj_id2name(self.model, mujoco.mjtObj.mjOBJ_BODY, int(b)) or ""
+            for name, b in zip(self.segment_names, self._seg_body, strict=True)
+        }
+
     def dof_segments(self) -> tuple[str, ...]:
         """Name of the segment each canonical degree of freedom moves (its body's segment).
 

@@ -1,0 +1,105 @@
+"""The one-line reason: one sentence within 200 characters, the root causes first, never a file's rounding."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+import pytest
+
+import koenig_check
+from koenig_check.cli import main
+from koenig_check.diagnosis.reason import (
+    REASON_WIDTH,
+    ROUNDING_LEVEL,
+    ordered_causes,
+    short_cause,
+    short_reason,
+)
+from koenig_check.findings import Finding, Kind
+from koenig_check.testing import assert_energy_parity
+
+TESTS = Path(__file__).resolve().parents[1]
+PROJECT = TESTS.parent / "models"
+#: Files of the corpus whose construct changes no energy: the engines agree.
+AGREEING = {"childclass_geom_type.xml", "class_joint_pos_explicit.xml", "class_mass_explicit.xml", "posed_root.xml"}
+AGREEING |= {"robot_part.xml", "hinge_ref.xml"}
+#: Files of the test corpus whose engines disagree (a construct Pinocchio or MuJoCo reads its own way).
+DISAGREEING = sorted(
+    p
+    for p in [*(TESTS / "models" / "causes").glob("*.xml"), *(TESTS / "models" / "tiebreak").glob("*.xml")]
+    if p.name not in {"arm_part.xml", "arm_part_mujocoinclude.xml", "tool_part.xml"}  # included fragments
+    and p.name not in AGREEING
+)
+
+
+def _symptom(element: str, relative: float) -> Finding:
+    return Finding(
+        Kind.INERTIA,
+        "both",
+        element,
+        "inertia differs between the engines",
+        {"relative difference": relative},
+        affects_energy=True,
+    )
+
+
+def test_root_causes_first_then_the_largest_symptom_and_never_a_files_rounding() -> None:
+    root = Finding(
+        Kind.MASS, "pinocchio", "geom pole", "geom mass from a class not applied", affects_energy=True, root_cause=True
+    )
+    small, large, rounding = _symptom("link a", 1e-3), _symptom("link b", 0.5), _symptom("link c", ROUNDING_LEVEL / 10)
+    assert ordered_causes([small, rounding, large, root]) == [root, large, small]
+
+
+def test_many_causes_fit_the_line_with_how_many_more() -> None:
+    findings = [
+        _symptom(f"link number_{k:02d} (joint a_rather_long_joint_name_{k:02d})", 1 - k / 100) for k in range(12)
+    ]
+    line = short_reason("robot.xml", findings, "MuJoCo and Pinocchio differ by 0.5 relative (pose random-3)")
+    assert len(line) <= REASON_WIDTH and "\n" not in line
+    assert line.startswith("robot.xml: root cause: link number_00") and " and 11 more" in line
+
+
+@pytest.mark.parametrize("path", DISAGREEING, ids=lambda p: p.name)
+def test_reasons_of_the_corpus_are_one_short_sentence_leading_with_the_root_cause(path: Path) -> None:
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"])
+    assert not check.ok
+    for line in check.reasons():
+        assert "\n" not in line and (len(line) <= REASON_WIDTH or check.failures), line
+    if check.failures:
+        return  # a file an engine refuses: its whole reason, on one line
+    (line,) = check.reasons()
+    assert line.startswith(f"{check.parities[0].model}: ")
+    causes = ordered_causes(check.comparisons[0].findings)
+    if causes and len(short_cause(causes[0])) < 100:
+        assert f"root cause: {short_cause(causes[0])}" in line
+    rounding = [
+        f for f in check.comparisons[0].findings if 0 < float(f.values.get("relative difference", 0)) <= ROUNDING_LEVEL
+    ]
+    assert not any(f.element in line for f in rounding)
+
+
+@pytest.fixture(scope="module")
+def twin(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """serial7.urdf as MuJoCo's own URDF import saves it: numbers with 6 significant digits."""
+    out = tmp_path_factory.mktemp("twin") / "serial7_saved.xml"
+    mujoco.mj_saveLastXML(str(out), mujoco.MjModel.from_xml_path(str(PROJECT / "serial7.urdf")))
+    return out
+
+
+def test_a_twin_written_at_six_digits_gets_the_rounding_hint(twin: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    options = dict(pinocchio_model=PROJECT / "serial7.urdf", n_poses=5, formulas=["exact"])
+    check = koenig_check.compare(twin, **options)
+    assert not check.ok
+    (line,) = check.reasons()
+    assert "what a file written with 6 significant digits explains: --rtol 1e-06 accepts it" in line
+    assert "differs" not in line  # no rounding-level item named as a cause
+    assert koenig_check.compare(twin, rtol=1e-6, **options).ok  # the option the hint names
+    with pytest.raises(AssertionError, match=r"--rtol 1e-06 accepts it"):
+        assert_energy_parity(twin, pinocchio_model=PROJECT / "serial7.urdf", n_poses=5)
+    argv = ["compare", str(twin), "--pinocchio-model", str(PROJECT / "serial7.urdf"), "--poses", "5"]
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert "--rtol 1e-06 accepts it" in err and all(len(x) <= 200 for x in err.splitlines())
+    assert main([*argv, "--rtol", "1e-6"]) == 0
