@@ -38,14 +38,19 @@ def test_index_by_model(check):
         check["ur10"]
 
 
-def test_summary_by_model_and_formula(check):
-    found = check.summary("ur5", "koenig_world", source="pinocchio", reference="mujoco")
+@pytest.mark.parametrize("source", ["mujoco", "pinocchio"])
+@pytest.mark.parametrize("reference", ["mujoco", "pinocchio"])
+def test_summary_by_model_and_formula(check, source, reference):
+    found = check.summary("ur5", "koenig_world", source=source, reference=reference)
     expected = [
         s
         for s in check.summaries
-        if (s.model, s.formula, s.source, s.reference) == ("ur5", "koenig_world", "pinocchio", "mujoco")
+        if (s.model, s.formula, s.source, s.reference) == ("ur5", "koenig_world", source, reference)
     ]
-    assert [found] == expected
+    assert len(expected) == 1 and found is expected[0]
+
+
+def test_summary_defaults_and_misses(check):
     assert check.summary("ur5", "exact").source == check.summary("ur5", "exact").reference == "mujoco"
     with pytest.raises(KeyError, match="koenig_world"):
         check.summary("ur5", "koenig_wrld")
