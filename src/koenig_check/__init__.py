@@ -12,59 +12,35 @@ _moved.install()
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from koenig_check.api import CrossCheck
+    from koenig_check.api import compare
     from koenig_check.export.result import ExportResult
-    from koenig_check.implied_dynamics.analysis import DynamicsResult
+    from koenig_check.implied_dynamics.analysis import dynamics
     from koenig_check.run.records import RecordTable
 
 __all__ = ["SegmentStates", "compare", "dynamics", "export", "read_records"]
 __version__ = "0.1.0"
 
 
-def compare(models: Any, **options: Any) -> CrossCheck:
-    """Cross-check kinetic energy for one or several models (see :func:`koenig_check.api.compare`).
+def __getattr__(name: str) -> Any:
+    """``compare`` and ``dynamics`` are imported on first use (``import koenig_check`` stays light).
 
-    Parameters
-    ----------
-    models : str, Path or sequence of them
-        Model files or names (``koenig-check models``).
-    **options
-        ``rtol``, ``progress``, ``pose_kind``, ``n_poses``, ``seed``, ``formulas``, ``velocity_scale``,
-        ``grid_joints``, ``duration``, ``pose_set``, ``pose_file``, ``load_options``, and every load
-        option by name (``floating``, ``balance_inertia``, ``repair_inertia``, ``pinocchio_model``: see
-        :class:`koenig_check.engines.load_options.LoadOptions`).
-
-    Returns
-    -------
-    CrossCheck
-        Records, summaries, engine parity and failures.
+    They are the functions themselves, :func:`koenig_check.api.compare` and
+    :func:`koenig_check.implied_dynamics.analysis.dynamics`, so that ``help()``, ``inspect.signature`` and
+    IDEs show every keyword.
     """
-    from koenig_check.api import compare as _compare
+    function: Any
+    if name == "compare":
+        from koenig_check.api import compare as function
+    elif name == "dynamics":
+        from koenig_check.implied_dynamics.analysis import dynamics as function
+    else:
+        raise AttributeError(f"module 'koenig_check' has no attribute {name!r}")
+    globals()[name] = function
+    return function
 
-    return _compare(models, **options)
 
-
-def dynamics(model: Any, **options: Any) -> DynamicsResult:
-    """Mass matrix and generalized inertia forces implied by each energy formula, against both engines.
-
-    See :func:`koenig_check.implied_dynamics.analysis.dynamics`.
-
-    Parameters
-    ----------
-    model : str or Path
-        A model file or name (``koenig-check models``).
-    **options
-        ``n_poses``, ``seed``, ``formulas``, ``m_rtol``, ``q_rtol``, ``velocity_scale`` and the load
-        options ``floating``, ``balance_inertia``, ``pinocchio_model``, ``allow_coupled``.
-
-    Returns
-    -------
-    DynamicsResult
-        Matrices and forces per formula and route, the engines' own, and the errors as arrays.
-    """
-    from koenig_check.implied_dynamics.analysis import dynamics as _dynamics
-
-    return _dynamics(model, **options)
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
 
 
 def read_records(path: str | Path) -> RecordTable:

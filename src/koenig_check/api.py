@@ -3,18 +3,19 @@
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from koenig_check.arguments import POSE_KINDS, check_compare_arguments, check_keywords, keywords_of
+from koenig_check.arguments import POSE_KINDS, check_compare_arguments, keywords_of, suggest_keywords
 from koenig_check.diagnosis import policy, reason
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.engines.registry import check_engines
 from koenig_check.run import pipeline, poses, summaries
 from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.labels import unique_labels
+from koenig_check.run.lookup import ResultLookup
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL
 from koenig_check.run.summaries import EngineParity, FormulaSummary
@@ -23,9 +24,12 @@ if TYPE_CHECKING:
     from koenig_check.report import RecordSink
 
 
-@dataclass
-class CrossCheck:
+@dataclass(repr=False)
+class CrossCheck(ResultLookup):
     """Result of :func:`compare` over one or several models.
+
+    ``check["gimbal.xml"]`` is that model's :class:`ModelComparison`, ``check.summary(model, formula,
+    source, reference)`` one :class:`FormulaSummary`, ``check.to_pandas()`` the summaries as a table.
 
     Attributes
     ----------
@@ -175,6 +179,7 @@ def compare_model(
     sink: RecordSink | None = None,
     keep_records: bool | None = None,
     chunk_poses: int | None = None,
+    on_chunk: Callable[[int, int], None] | None = None,
     **load_kwargs: Any,
 ) -> ModelComparison:
     """Load one model into both engines and run the comparison grid on it.
@@ -209,6 +214,8 @@ def compare_model(
         Keep the records in memory too (default: only without a sink).
     chunk_poses : int, optional
         Poses per chunk (default: about 32,768 segment-poses per chunk).
+    on_chunk : callable, optional
+        Called as ``on_chunk(poses, total)`` after each chunk: its poses and the model's total.
     **load_kwargs
         The load options as keywords (``floating``, ``balance_inertia``, ``pinocchio_model``, ...);
         they override ``load_options``.
@@ -263,6 +270,7 @@ def compare_model(
             sink=sink,
             keep_records=keep_records,
             chunk_poses=chunk_poses,
+            on_chunk=on_chunk,
         )
     finally:
         pipeline.forget()  # the run is over: the process keeps no model (only this call's `loaded`)
@@ -291,31 +299,84 @@ def _verdict_sample(loaded: Any, pose_set: poses.PoseSet | None, random: pipelin
     return poses.random_pose_range(loaded.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
 
 
+@suggest_keywords
 def compare(
     models: str | Path | Sequence[str | Path],
     *,
     rtol: float = DEFAULT_RTOL,
     progress: Callable[[str], None] | None = None,
     debug: bool = False,
-    **options: Any,
+    pose_kind: str = "random",
+    n_poses: int = 20,
+    seed: int = 0,
+    formulas: Sequence[str] | None = None,
+    velocity_scale: float = 1.0,
+    grid_joints: Sequence[str] | None = None,
+    duration: float = 1.0,
+    pose_set: poses.PoseSet | None = None,
+    pose_file: str | Path | None = None,
+    records: str = "totals",
+    jobs: int = 1,
+    client: Any = None,
+    sink: RecordSink | None = None,
+    keep_records: bool | None = None,
+    chunk_poses: int | None = None,
+    load_options: LoadOptions | None = None,
+    floating: bool | None = None,
+    balance_inertia: bool | None = None,
+    repair_inertia: bool | None = None,
+    pinocchio_model: str | Path | None = None,
+    allow_coupled: bool | None = None,
+    engines: Sequence[str] | None = None,
+    xacro_args: Mapping[str, Any] | Sequence[str] | None = None,
 ) -> CrossCheck:
     """Cross-check kinetic energy for one or several models; a failing model never loses the others.
 
     Parameters
     ----------
     models : str, Path or sequence of them
-        Model files or names.
+        Model files or names (``koenig-check models``).
     rtol : float
         Tolerance of "agrees" (engines with each other and with ``exact``; formulas).
     progress : callable, optional
-        Called with a short message as each model starts.
+        Called as ``progress(label)`` as each model starts.  If it also has a method
+        ``advance(poses, total)``, that is called after each chunk of poses with the number of poses
+        just compared and the model's total (:class:`koenig_check.report.progress.Progress` does both).
     debug : bool
         Re-raise a model's failure instead of recording it (to see its traceback).
-    **options
-        Passed to :func:`compare_model`: ``pose_kind``, ``n_poses``, ``seed``, ``formulas``,
-        ``velocity_scale``, ``grid_joints``, ``duration``, ``pose_set``, ``pose_file``, ``load_options``, and
-        every load option by name (:meth:`LoadOptions.names`: ``floating``, ``balance_inertia``,
-        ``pinocchio_model``, ...).
+    pose_kind : {"random", "keyframes", "grid", "trajectory"}
+    n_poses : int
+        Poses (random), samples per joint (grid) or samples along the path (trajectory).
+    seed : int
+    formulas : sequence of str, optional
+        Default: every formula (``koenig-check compare --help`` lists them).
+    velocity_scale : float
+        Standard deviation of the random joint rates.
+    grid_joints : sequence of two str, optional
+        The two joints of a ``grid`` sweep.
+    duration : float
+        Trajectory duration in seconds.
+    pose_set : PoseSet, optional
+        Use these canonical states instead of drawing poses.
+    pose_file : str or Path, optional
+        Read the canonical states from a ``.npz`` or ``.csv`` file.
+    records : {"totals", "segments", "none"}
+        Which records to keep: totals per pose, also per segment, or none (summaries only).
+    jobs : int
+        Run the pose chunks in this many local processes (same results as one process).
+    client : dask.distributed.Client, optional
+        Run the pose chunks on a Dask cluster (extra ``[cluster]``).
+    sink : RecordSink, optional
+        Receives the records chunk by chunk as they are computed (e.g. a Parquet file).
+    keep_records : bool, optional
+        Keep the records in memory too (default: only without a sink).
+    chunk_poses : int, optional
+        Poses per chunk (default: about 32,768 segment-poses per chunk).
+    load_options : LoadOptions, optional
+        How the models are loaded; the load keywords below override its fields.
+    floating, balance_inertia, repair_inertia, pinocchio_model, allow_coupled, engines, xacro_args
+        The fields of :class:`koenig_check.engines.load_options.LoadOptions` (see there); ``None`` keeps the
+        value of ``load_options`` (its default when not given).
 
     Returns
     -------
@@ -324,33 +385,34 @@ def compare(
     Raises
     ------
     TypeError
-        A keyword :func:`compare_model` does not take, or an argument of the wrong type
-        (:class:`koenig_check.arguments.ArgumentTypeError`), before any model is loaded.
+        A keyword :func:`compare` does not take (the message names the closest one), or an argument of the
+        wrong type (:class:`koenig_check.arguments.ArgumentTypeError`), before any model is loaded.
     ValueError
         An argument out of range (``rtol <= 0``, ``n_poses < 1``, an unknown formula, a grid without its
         two joints: :class:`koenig_check.arguments.ArgumentValueError`), before any model is loaded; or a
         model named by its source that cannot be had (:class:`koenig_check.sources.ModelSourceError`: extra
         missing, unknown name, download impossible), before any model is loaded.
     """
+    given = dict(locals())
+    options = {name: given[name] for name in RUN_OPTIONS}
+    overrides = {name: given[name] for name in LoadOptions.names() if given[name] is not None}
     if isinstance(models, str | Path):
         models = [models]
-    accepted = (keywords_of(compare_model) - {"model", "label", "rtol"}) | set(LoadOptions.names())
-    check_keywords(options, sorted(accepted), "compare")
     check_compare_arguments(rtol, options)
-    options = dict(options)
-    load = load_options_from(options.pop("load_options", None), LoadOptions.pop_from(options).as_overrides())
+    load = load_options_from(load_options, overrides)
     check_engines(load.engines)
     from koenig_check.sources.external import prepare
 
     models = list(models)
     prepare([*models, *([load.pinocchio_model] if load.pinocchio_model else [])])  # extras, names, downloads
     result = CrossCheck(rtol=rtol)
+    advance = getattr(progress, "advance", None)
     for model, label in zip(models, unique_labels(models, load.floating, load.xacro_args), strict=True):
         if progress:
             progress(label)
-        result.settings[label] = {k: options[k] for k in _SETTINGS if k in options}
+        result.settings[label] = {k: options[k] for k in _SETTINGS}
         try:
-            comp = compare_model(model, label=label, load_options=load, rtol=rtol, **options)
+            comp = compare_model(model, label=label, load_options=load, rtol=rtol, on_chunk=advance, **options)
         except Exception as err:  # recorded with its reason; the batch goes on
             if debug:
                 raise
@@ -358,6 +420,10 @@ def compare(
             continue
         result.add(comp)
     return result
+
+
+#: The keywords of :func:`compare` passed on to :func:`compare_model` for every model.
+RUN_OPTIONS = tuple(sorted(keywords_of(compare_model) - {"model", "label", "rtol", "load_options", "on_chunk"}))
 
 
 #: The pose settings recorded per model for the report (see :attr:`CrossCheck.settings`).

@@ -8,11 +8,12 @@ The API raises them instead of recording a model failure; the command line exits
 from __future__ import annotations
 
 import difflib
+import functools
 import inspect
 import math
 from collections.abc import Callable, Mapping, Sequence
 from numbers import Integral, Real
-from typing import Any
+from typing import Any, TypeVar, cast
 
 from koenig_check.exceptions import ArgumentTypeError, ArgumentValueError
 
@@ -49,6 +50,36 @@ def check_keywords(given: Mapping[str, Any], accepted: Sequence[str], where: str
         close = difflib.get_close_matches(key, list(accepted), n=1)
         hint = f"; did you mean {close[0]!r}?" if close else f"; it takes {sorted(accepted)}"
         raise ArgumentTypeError(f"{where}() got an unexpected keyword argument {key!r}{hint}")
+
+
+_Function = TypeVar("_Function", bound=Callable[..., Any])
+
+
+def suggest_keywords(func: _Function) -> _Function:
+    """Make a misspelt keyword raise :class:`ArgumentTypeError` naming the closest keyword of ``func``.
+
+    The wrapper keeps ``func``'s signature (``inspect.signature`` and IDEs show every keyword); only the
+    message of an unexpected keyword changes, from Python's bare ``TypeError`` to one with a suggestion.
+
+    Parameters
+    ----------
+    func : callable
+        A function whose keywords are all named in its signature (no ``**kwargs``).
+
+    Returns
+    -------
+    callable
+        ``func`` wrapped.
+    """
+    accepted = sorted(keywords_of(func))
+
+    @functools.wraps(func)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        __tracebackhide__ = True  # a failing assertion of the wrapped helper shows no line of this one
+        check_keywords(kwargs, accepted, func.__name__)
+        return func(*args, **kwargs)
+
+    return cast(_Function, wrapper)
 
 
 def keywords_of(*functions: Callable[..., Any]) -> set[str]:

@@ -52,6 +52,7 @@ def run_demo(
     rtol: float = DEFAULT_RTOL,
     grid_samples: int = 25,
     trajectory_samples: int = 200,
+    quiet: bool = False,
 ) -> tuple[CrossCheck, dict[str, ModelComparison]]:
     """Cross-check every built-in model, sweep the gimbal's two angles and follow a trajectory.
 
@@ -65,6 +66,8 @@ def run_demo(
         Samples per gimbal angle.
     trajectory_samples : int
         Samples along the simulated gimbal trajectory (2 s from the reference pose).
+    quiet : bool
+        No progress bar (it is drawn on a terminal only).
 
     Returns
     -------
@@ -104,13 +107,13 @@ def run_demo(
     )
     check = CrossCheck(rtol=rtol)
     figures: dict[str, ModelComparison] = {}
-    with Progress(len(jobs), "models") as bar:
+    with Progress(len(jobs), "models", quiet=quiet) as bar:
         for label, options in jobs:
             bar.step(label)
             check.settings[label] = {"seed": seed, "velocity_scale": 1.0, **options}
             check.settings[label].pop("model")
             try:
-                comp = compare_model(label=label, rtol=rtol, **options)
+                comp = compare_model(label=label, rtol=rtol, on_chunk=bar.advance, **options)
             except Exception as err:  # the other models still report
                 check.failures.append((label, one_line(err)))
                 continue

@@ -44,6 +44,7 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--rtol", type=tolerance, default=DEFAULT_RTOL, help=f"agreement tolerance (default {DEFAULT_RTOL:g})"
     )
+    _add_quiet(p)
     p.set_defaults(func=_cmd_demo)
 
     p = add_command(
@@ -80,7 +81,16 @@ def add(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--jobs", type=positive, default=1, help="run pose chunks in N local processes (default 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run pose chunks on this Dask scheduler (extra [cluster])")
+    _add_quiet(p)
     p.set_defaults(func=_cmd_compare)
+
+
+def _add_quiet(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--quiet",
+        action="store_true",
+        help="no progress bar (it is drawn on a terminal only, over the poses of each model, for runs over 2 s)",
+    )
 
 
 def _formulas_epilog() -> str:
@@ -158,11 +168,11 @@ def _cmd_compare(args: argparse.Namespace) -> int:
         clean_out_dir(args.out)
         sink = RecordFiles(Path(args.out))
     figures_need_records = args.pose_kind in ("grid", "trajectory")
-    with Progress(len(args.models), "models") as bar, _aborted_on_error(sink):
+    with Progress(len(args.models), "models", quiet=args.quiet) as bar, _aborted_on_error(sink):
         check = compare(
             args.models,
             rtol=args.rtol,
-            progress=bar.step,
+            progress=bar,
             pose_kind=args.pose_kind,
             n_poses=args.poses,
             seed=args.seed,
@@ -203,6 +213,6 @@ def _cmd_demo(args: argparse.Namespace) -> int:
     from koenig_check.report.output_dir import clean_out_dir
 
     _check_compare_usage(args)
-    check, figures = run_demo(n_poses=args.poses, seed=args.seed, rtol=args.rtol)
+    check, figures = run_demo(n_poses=args.poses, seed=args.seed, rtol=args.rtol, quiet=args.quiet)
     clean_out_dir(args.out)
     return _finish(check, args.out, figures)

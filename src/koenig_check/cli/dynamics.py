@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from koenig_check.cli.parsing import add_command, add_out, check_out, positive, tolerance
+from koenig_check.cli.parsing import add_command, add_out, check_out, load_options_of, positive, tolerance
 
 
 def add(sub: argparse._SubParsersAction) -> None:
@@ -31,18 +31,22 @@ def add(sub: argparse._SubParsersAction) -> None:
     add_out(p, "write dynamics.md and dynamics.json into this directory")
     p.add_argument("--m-rtol", type=tolerance, default=M_RTOL, help=f"tolerance on M of exact (default {M_RTOL:g})")
     p.add_argument("--q-rtol", type=tolerance, default=Q_RTOL, help=f"tolerance on Q* of exact (default {Q_RTOL:g})")
+    p.add_argument(
+        "--rtol",
+        type=tolerance,
+        default=None,
+        help="tolerance of the engines' readings of the model against each other (engine against engine, a "
+        "route on one engine against the other), when larger than --m-rtol/--q-rtol: e.g. 1e-6 for a twin "
+        "written at 6 digits (default: --m-rtol/--q-rtol)",
+    )
     p.set_defaults(func=_cmd_dynamics)
 
 
 def _cmd_dynamics(args: argparse.Namespace) -> int:
-    from dataclasses import asdict
-
-    from koenig_check.engines.load_options import LoadOptions
     from koenig_check.implied_dynamics.analysis import dynamics
     from koenig_check.implied_dynamics.markdown import terminal_lines, write_dynamics
 
     check_out(args)
-    options = asdict(LoadOptions.from_namespace(args))
     result = dynamics(
         args.model,
         n_poses=args.poses,
@@ -50,7 +54,8 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         formulas=args.formulas,
         m_rtol=args.m_rtol,
         q_rtol=args.q_rtol,
-        **options,
+        rtol=args.rtol,
+        load_options=load_options_of(args),
     )
     print("\n".join(terminal_lines(result)))
     if args.out:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from koenig_check.cli.parsing import add_command, load_options_of
+from koenig_check.cli.parsing import add_command, load_options_of, tolerance
 from koenig_check.engines.load_options import add_load_arguments
 
 
@@ -22,7 +22,16 @@ def add(sub: argparse._SubParsersAction) -> None:
         "import parity only: do MuJoCo and Pinocchio see the same robot in the same file?",
         "koenig-check parity serial7.urdf",
     )
+    from koenig_check.diagnosis.import_parity import PARITY_RTOL
+
     p.add_argument("model", metavar="MODEL", help="model file or name")
+    p.add_argument(
+        "--rtol",
+        type=tolerance,
+        default=PARITY_RTOL,
+        help=f"relative tolerance of the import parity (lengths by the model's size, inertias by the largest "
+        f"principal moment; default {PARITY_RTOL:g}): e.g. 1e-6 for a twin written at 6 digits",
+    )
     add_load_arguments(p)
     p.set_defaults(func=_cmd_parity)
 
@@ -40,7 +49,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     model = load_model(args.model, options)
     for name in asked_for(options.engines):
         model.attach(name)
-    diagnosis = diagnose(model)
+    diagnosis = diagnose(model, rtol=args.rtol)
     report = diagnosis.parity
     assert report is not None
     for f in diagnosis.findings:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import difflib
 import sys
 from dataclasses import replace
 from typing import NoReturn
@@ -31,9 +32,42 @@ class Parser(argparse.ArgumentParser):
         ]
         return " ".join(["usage:", self.prog, "[options]", *shown])
 
+    def parse_args(self, args=None, namespace=None):  # type: ignore[no-untyped-def, override]
+        """Parse like argparse; an unknown option is reported by its sub-command with the closest option."""
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            parser = getattr(parsed, "parser", None)
+            (parser if isinstance(parser, Parser) else self).error(unrecognized(parser or self, extras))
+        return parsed
+
     def error(self, message: str) -> None:  # type: ignore[override]
         """Exit with status 2: the short usage line, then the error in one line."""
         self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def unrecognized(parser: argparse.ArgumentParser, extras: list[str]) -> str:
+    """The message for arguments a parser does not know, with the closest option to a misspelt one.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The (sub-command's) parser that did not know them.
+    extras : list of str
+
+    Returns
+    -------
+    str
+        E.g. ``unrecognized argument --floting; did you mean --floating?``.
+    """
+    words = " ".join(extras)
+    message = f"unrecognized argument{'s' if len(extras) > 1 else ''} {words}"
+    options = [o for o in parser._option_string_actions if o.startswith("--")]
+    for word in extras:
+        if word.startswith("-"):
+            close = difflib.get_close_matches(word.split("=", 1)[0], options, n=1, cutoff=0.6)
+            if close:
+                return f"{message}; did you mean {close[0]}?"
+    return message
 
 
 def usage_error(args: argparse.Namespace, message: str) -> NoReturn:

@@ -17,10 +17,13 @@ paper's formulas disagreeing is the finding the report is for, not a failure.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
+from koenig_check.arguments import suggest_keywords
 from koenig_check.engines import ModelPair, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
@@ -81,6 +84,8 @@ class DynamicsResult:
         Formula -> why it has no ``M``/``Q*`` (path-dependent energy, non-plane-parallel motion...).
     m_rtol, q_rtol : float
         Tolerances of the verdict on ``exact``.
+    rtol : float, optional
+        Tolerance of the engines' readings of the model against each other, when larger (see :meth:`tolerance`).
     notes : list of str
         The model's load notes, for people.
     findings : list of Finding
@@ -99,6 +104,7 @@ class DynamicsResult:
     refusals: dict[str, str] = field(default_factory=dict)
     m_rtol: float = M_RTOL
     q_rtol: float = Q_RTOL
+    rtol: float | None = None
     notes: list[str] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
 
@@ -112,14 +118,31 @@ class DynamicsResult:
         """The discrepancies of one formula (optionally only ``"M"`` or ``"Q*"``)."""
         return [e for e in self.errors if e.formula == formula and quantity in (None, e.quantity)]
 
+    def tolerance(self, e: Discrepancy) -> float:
+        """The tolerance of one comparison.
+
+        ``m_rtol`` / ``q_rtol`` by quantity; where two engines' readings of the model meet (the engines against
+        each other, or a route on one engine's states against another engine) the larger of that and ``rtol``.
+
+        Parameters
+        ----------
+        e : Discrepancy
+
+        Returns
+        -------
+        float
+        """
+        tol = self.m_rtol if e.quantity == "M" else self.q_rtol
+        across = e.formula == ENGINE_PARITY or e.route.rpartition("@")[2] != e.engine
+        return max(tol, self.rtol) if across and self.rtol is not None else tol
+
     def failures(self) -> list[Discrepancy]:
         """Comparisons of ``exact`` (every route) and of the engines with each other beyond tolerance."""
         out = []
         for e in self.errors:
             if e.formula not in ("exact", ENGINE_PARITY):
                 continue
-            tol = self.m_rtol if e.quantity == "M" else self.q_rtol
-            if not e.max_rel_error <= tol:
+            if not e.max_rel_error <= self.tolerance(e):
                 out.append(e)
         return out
 
@@ -144,8 +167,8 @@ class DynamicsResult:
         bad = self.failures()
         if not bad:
             return ""
-        e = max(bad, key=lambda d: d.max_rel_error / (self.m_rtol if d.quantity == "M" else self.q_rtol))
-        tol = self.m_rtol if e.quantity == "M" else self.q_rtol
+        e = max(bad, key=lambda d: d.max_rel_error / self.tolerance(d))
+        tol = self.tolerance(e)
         who = "engines disagree" if e.formula == ENGINE_PARITY else f"exact by {e.route}"
         return (
             f"{self.model}: {who}: {e.quantity} of {e.route} against {e.engine} off by {e.max_rel_error:.3g} "
@@ -240,6 +263,7 @@ def dynamics_of_pair(
     return result
 
 
+@suggest_keywords
 def dynamics(
     model: str | os.PathLike[str],
     n_poses: int = 5,
@@ -248,7 +272,16 @@ def dynamics(
     m_rtol: float = M_RTOL,
     q_rtol: float = Q_RTOL,
     velocity_scale: float = 1.0,
-    **load_options: bool | str | None,
+    *,
+    rtol: float | None = None,
+    load_options: LoadOptions | None = None,
+    floating: bool | None = None,
+    balance_inertia: bool | None = None,
+    repair_inertia: bool | None = None,
+    pinocchio_model: str | os.PathLike[str] | None = None,
+    allow_coupled: bool | None = None,
+    engines: Sequence[str] | None = None,
+    xacro_args: Mapping[str, Any] | Sequence[str] | None = None,
 ) -> DynamicsResult:
     """Mass matrix and generalized inertia forces implied by each energy formula, against both engines.
 
@@ -262,31 +295,49 @@ def dynamics(
     formulas : list of str, optional
         Default: every formula (``exact`` is always included).
     m_rtol, q_rtol : float
-        Tolerances of the verdict on ``exact`` (per-pose norm-relative error of ``M`` and ``Q*``).
+        Tolerances of the verdict on ``exact`` (per-pose norm-relative error of ``M`` and ``Q*``): how closely
+        the routes (polarization, Lagrange's finite differences, Kane) must reproduce an engine.
     velocity_scale : float
-    **load_options
-        :class:`~koenig_check.engines.load_options.LoadOptions` fields: ``floating``, ``balance_inertia``,
-        ``pinocchio_model``, ``allow_coupled``, ``engines`` (``("mujoco", "pinocchio", "drake")`` adds
-        Drake's column; by default Drake, when installed, only where MuJoCo and Pinocchio disagree).
+    rtol : float, optional
+        How closely the two engines' readings of the model must agree: the tolerance of the engines against
+        each other and of a route on one engine's states against the other engine, when it is larger than
+        ``m_rtol`` / ``q_rtol`` (e.g. ``1e-6`` for a twin file written at 6 significant digits).  Default: no
+        more than ``m_rtol`` / ``q_rtol``.
+    load_options : LoadOptions, optional
+        How the model is loaded; the load keywords below override its fields.
+    floating, balance_inertia, repair_inertia, pinocchio_model, allow_coupled, engines, xacro_args
+        The fields of :class:`koenig_check.engines.load_options.LoadOptions` (``None`` keeps the value of
+        ``load_options``): e.g. ``repair_inertia=True`` loads inertias MuJoCo refuses;
+        ``engines=("mujoco", "pinocchio", "drake")`` adds Drake's column (by default Drake, when installed,
+        only where MuJoCo and Pinocchio disagree).  ``allow_coupled`` is a deprecated no-op.
 
     Returns
     -------
     DynamicsResult
         ``result.routes[(formula, route)].M`` / ``.Q``, ``result.engine_mass`` / ``engine_forces``,
         ``result.errors`` (arrays of per-pose relative errors), ``result.ok``, ``result.reason()``.
+
+    Raises
+    ------
+    TypeError
+        A keyword :func:`dynamics` does not take (the message names the closest one) or a wrong type.
+    ValueError
+        An argument out of range, before the model is loaded.
     """
-    from koenig_check.arguments import check_dynamics_arguments, check_keywords
+    from koenig_check.api import load_options_from
+    from koenig_check.arguments import check_dynamics_arguments, check_tolerance
     from koenig_check.engines.registry import check_engines
 
-    options = LoadOptions.pop_from(load_options)
-    accepted = ["n_poses", "seed", "formulas", "m_rtol", "q_rtol", "velocity_scale", *LoadOptions.names()]
-    check_keywords(load_options, accepted, "dynamics")
+    given = dict(locals())
     check_dynamics_arguments(n_poses, seed, formulas, m_rtol, q_rtol, velocity_scale)
-
+    if rtol is not None:
+        check_tolerance(rtol, "rtol")
+    options = load_options_from(load_options, {n: given[n] for n in LoadOptions.names() if given[n] is not None})
     check_engines(options.engines)
     pair = load_model(model, options)  # every load option, one definition (repair_inertia included)
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     qacc = velocity_scale * _random_accelerations(pair.mujoco.nv, n_poses, seed)
     result = dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)
+    result.rtol = rtol
     add_drake_column(result, pair, options.engines, ENGINE_PARITY)
     return result

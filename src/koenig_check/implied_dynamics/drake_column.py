@@ -32,10 +32,7 @@ def add_drake_column(result: Any, pair: Any, engines: Sequence[str] | None, pari
     """
     from koenig_check.diagnosis import policy
 
-    disagree = any(
-        e.formula == parity_label and e.max_rel_error > (result.m_rtol if e.quantity == "M" else result.q_rtol)
-        for e in result.errors
-    )
+    disagree = any(e.formula == parity_label and e.max_rel_error > result.tolerance(e) for e in result.errors)
     why = policy.to_consult("drake", engines, disagree)
     drake = pair.attach("drake") if why is None else None
     found = [why] if why is not None else list(pair.optional_findings)

@@ -58,6 +58,12 @@ class ModelComparison:
     pose_kind: str = ""
     engines: tuple[str, ...] = ENGINES
 
+    def __repr__(self) -> str:
+        return (
+            f"<ModelComparison {self.model!r}: {self.n_poses} {self.pose_kind or ''} poses, engines "
+            f"{', '.join(self.engines)}, {len(self.records)} records, {len(self.findings)} findings>"
+        )
+
 
 def compare_runs(
     label: str,

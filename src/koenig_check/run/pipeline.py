@@ -290,6 +290,21 @@ def plan(
     ]
 
 
+def chunk_poses_of(task: ChunkTask) -> int:
+    """The number of poses of a chunk task.
+
+    Parameters
+    ----------
+    task : ChunkTask
+
+    Returns
+    -------
+    int
+    """
+    chunk = task.poses
+    return chunk.stop - chunk.start if isinstance(chunk, RandomRange) else chunk.n_poses
+
+
 def _windowed(submit: Callable[[ChunkTask], Any], result: Callable[[Any], ChunkResult], tasks, window: int):
     pending: deque = deque()
     for t in tasks:
@@ -352,6 +367,7 @@ def run_model(
     sink: Any = None,
     keep_records: bool | None = None,
     chunk_poses: int | None = None,
+    on_chunk: Callable[[int, int], None] | None = None,
 ) -> ModelComparison:
     """Run a loaded model's poses chunk by chunk; merge the statistics, stream the records.
 
@@ -378,6 +394,9 @@ def run_model(
         Keep the records in memory too (default: only without a sink).
     chunk_poses : int, optional
         Poses per chunk (default :func:`chunk_size`).
+    on_chunk : callable, optional
+        Called as ``on_chunk(poses, total)`` after each chunk is merged: the chunk's number of poses and the
+        model's (a progress bar over poses).
 
     Returns
     -------
@@ -400,7 +419,10 @@ def run_model(
     )
     keep = sink is None if keep_records is None else keep_records
     stats, kept = None, []
+    sizes = [chunk_poses_of(t) for t in tasks]
     for result in run_tasks(tasks, jobs=jobs, client=client):
+        if on_chunk is not None:
+            on_chunk(sizes[result.index], sum(sizes))
         if stats is None:
             stats = result.stats
         else:

@@ -146,6 +146,9 @@ class RecordTable:
     def __len__(self) -> int:
         return self.table.num_rows
 
+    def __repr__(self) -> str:
+        return f"<RecordTable {len(self)} rows, columns {', '.join(RECORD_FIELDS)}>"
+
     def __bool__(self) -> bool:
         return self.table.num_rows > 0
 

@@ -6,18 +6,21 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from koenig_check.api import load_options_from
+from koenig_check.arguments import suggest_keywords
 from koenig_check.diagnosis import policy
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.formulas import FORMULAS
 from koenig_check.run.stats import DEFAULT_RTOL, relative_error
 
 
+@suggest_keywords
 def assert_energy_parity(
     model: str | Path,
     pinocchio_model: str | Path | None = None,
@@ -28,7 +31,12 @@ def assert_energy_parity(
     rtol: float = DEFAULT_RTOL,
     include_armature: bool = True,
     load_options: LoadOptions | None = None,
-    **load_kwargs: Any,
+    floating: bool | None = None,
+    balance_inertia: bool | None = None,
+    repair_inertia: bool | None = None,
+    allow_coupled: bool | None = None,
+    engines: Sequence[str] | None = None,
+    xacro_args: Mapping[str, Any] | Sequence[str] | None = None,
 ) -> None:
     """Assert that MuJoCo and Pinocchio give the same kinetic energy for a model, segment by segment.
 
@@ -46,10 +54,10 @@ def assert_energy_parity(
     include_armature : bool
         Also require the engines' armature energies to agree.
     load_options : LoadOptions, optional
-        How the model is loaded.
-    **load_kwargs
-        Any load option by name (:meth:`LoadOptions.names`: ``floating``, ``balance_inertia``, ...),
-        overriding ``load_options``.  ``engines=("mujoco", "pinocchio", "drake")`` also requires Drake to
+        How the model is loaded; the load keywords override its fields.
+    floating, balance_inertia, repair_inertia, allow_coupled, engines, xacro_args
+        The other fields of :class:`koenig_check.engines.load_options.LoadOptions` (``None`` keeps the value
+        of ``load_options``).  ``engines=("mujoco", "pinocchio", "drake")`` also requires Drake to
         agree; by default Drake, when installed, is consulted only when the two engines disagree, and the
         message then opens with the engine that departs and the construct responsible.
 
@@ -68,9 +76,8 @@ def assert_energy_parity(
     from koenig_check.engines.registry import check_engines
     from koenig_check.run.poses import random_poses
 
-    if pinocchio_model is not None:
-        load_kwargs["pinocchio_model"] = pinocchio_model
-    options = load_options_from(load_options, load_kwargs)
+    given = locals()
+    options = load_options_from(load_options, {n: given[n] for n in LoadOptions.names() if given[n] is not None})
     check_engines(options.engines)
     pair = load_model(model, options)
     for name in policy.asked_for(options.engines):  # named engines are compared on every pose

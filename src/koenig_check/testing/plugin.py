@@ -202,8 +202,11 @@ class ModelItem(pytest.Item):
         run.checks.append(check)
         lines = verdict_lines(check)
         if entry.dynamics and check.ok:
-            overrides = entry.load.as_overrides()
-            result = dynamics(entry.model, **({"seed": entry.seed} if entry.seed is not None else {}), **overrides)
+            options: dict[str, Any] = {
+                **entry.load.as_overrides(),
+                **({"seed": entry.seed} if entry.seed is not None else {}),
+            }
+            result = dynamics(entry.model, **options)
             if not result.ok:
                 lines.append(f"{self.name}: koenig-check dynamics would exit 1: {result.reason()}")
         if lines:

@@ -1,0 +1,33 @@
+"""A misspelt option gets the sub-command's usage and the closest option, exit 2."""
+
+from __future__ import annotations
+
+import pytest
+
+from koenig_check.cli.main import main
+
+
+@pytest.mark.parametrize(
+    ("argv", "closest"),
+    [
+        (["compare", "x.xml", "--floting"], "--floating"),
+        (["parity", "x.xml", "--rtl", "1e-6"], "--rtol"),
+        (["dynamics", "x.xml", "--repair-inertias"], "--repair-inertia"),
+        (["export", "x.xml", "--to", "urdf", "--out", "y.urdf", "--sede", "3"], "--seed"),
+    ],
+)
+def test_closest_option(argv, closest, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"usage: koenig-check {argv[0]} [options]"), err
+    assert "unrecognized argument" in err and f"did you mean {closest}?" in err
+
+
+def test_no_suggestion_for_nothing_close(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["compare", "x.xml", "--zzzzzz"])
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert "unrecognized argument --zzzzzz" in err and "did you mean" not in err
