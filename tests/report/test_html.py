@@ -172,3 +172,13 @@ def test_the_disagreement_is_not_a_paragraph_of_the_whole_reason(report) -> None
     parity = next(p for p in check.parities if p.model == "class_mass.xml")
     assert "DISAGREE" in section and html.escape(parity.reason) not in section
     assert section.count('<ul class="causes">') == 1 and "geom pole" in section.split('<ul class="causes">')[1]
+
+
+def test_the_engine_gap_figure_is_beside_each_models_table(report) -> None:
+    check, out, _, _ = report
+    text = (out / "report.html").read_text(encoding="utf-8")
+    sections = text.split('<section class="model"')[1:]
+    assert len(sections) == len(check.comparisons)
+    for section in sections:
+        side = section.split('<div class="side">', 1)[1].split('<div class="wide">', 1)[0].split("</section>", 1)[0]
+        assert "<table>" in side and "gap between the engines" in side

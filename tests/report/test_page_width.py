@@ -100,8 +100,13 @@ def chromium(page: Path, *args: str) -> str:
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A demo report at few poses, with a model whose engines disagree (its causes and engine gap shown)."""
+    """A demo report at few poses, a robot with long joint names and a model whose engines disagree.
+
+    example-robot-data's kinova (joints named like ``j2s7s300_joint_finger_tip_1``) made main's tables scroll
+    sideways inside their column at 1280 px; class_mass.xml shows its causes and its engine gap.
+    """
     check, figures = run_demo(n_poses=4, grid_samples=5, trajectory_samples=20)
+    check.add(compare_model("kinova", n_poses=4))
     check.add(compare_model(CAUSES / "class_mass.xml", n_poses=6))
     assert not check.parities[-1].agrees  # the page shows a disagreement
     out = tmp_path_factory.mktemp("page")
