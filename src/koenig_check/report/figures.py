@@ -25,7 +25,7 @@ from matplotlib.text import Text
 from matplotlib.ticker import MaxNLocator
 
 from koenig_check.report.engine_energies import EngineEnergies
-from koenig_check.roundoff import ROUNDOFF
+from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.stats import QuantileSketch, relative_error
 
@@ -212,7 +212,8 @@ def engine_gap_figure(
     for engine, gap in gaps.items():
         y = np.where(gap < ROUNDOFF, _BAND, np.log10(np.clip(gap, ROUNDOFF, 10.0**top)))
         worst = int(np.argmax(np.nan_to_num(gap, nan=np.inf)))
-        label = f"{engine} vs mujoco: largest {gap[worst]:.2g} at {energies.poses[worst]}" if n else engine
+        largest = fmt(float(gap[worst]), ".2g") if n else ""  # below ROUNDOFF: 0, as everywhere in the report
+        label = f"{engine} vs mujoco: largest {largest} at {energies.poses[worst]}" if n else engine
         color = ENGINE_COLORS.get(engine, "tab:gray")
         ax.plot(x, y, "o", color=color, markersize=size, markeredgewidth=0, label=label, rasterized=n > 2000)
     ax.axhspan(_BAND - 0.6, _BAND + 0.6, color="0.92", zorder=0)

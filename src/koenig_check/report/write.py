@@ -98,8 +98,9 @@ def write_report(
 ) -> list[Path]:
     """Write the report directory: summary.md, report.html, records.json, the record files and the figures.
 
-    Figures: ``error_distribution_<model>.png`` per model, ``error_distribution.png`` pooled over the models
-    (labelled so, with the models named) when there are several, ``error_map.png`` for a grid sweep and
+    Figures: ``error_distribution_<model>.png`` and ``engine_gap_<model>.png`` (the engines' energy difference
+    at each pose; from the records kept, else from the record files) per model, ``error_distribution.png`` pooled
+    over the models (labelled so, with the models named) when there are several, ``error_map.png`` for a grid sweep and
     ``trajectory_energy.png`` for a trajectory.  ``report.html`` embeds them all.
 
     Parameters
