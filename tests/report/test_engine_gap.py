@@ -19,7 +19,7 @@ import koenig_check
 from koenig_check.api import CrossCheck, compare_model
 from koenig_check.report import RecordFiles, write_report
 from koenig_check.report import figures as figure_module
-from koenig_check.report.engine_energies import EngineEnergies, energy_rows, engine_energies
+from koenig_check.report.engine_energies import EngineEnergies, energy_chunks, engine_energies
 from koenig_check.roundoff import ROUNDOFF
 
 CAUSES = Path(__file__).parents[1] / "models" / "causes"
@@ -51,7 +51,7 @@ def _series(fig: Figure, engine: str):
 @pytest.mark.parametrize("model", [CAUSES / "class_mass.xml", "serial7.urdf"])
 def test_one_point_per_pose_at_the_engines_gap(model, drawn, tmp_path: Path) -> None:
     comp = compare_model(model, n_poses=8, seed=4, engines=("mujoco", "pinocchio"))
-    energies = engine_energies(energy_rows(comp.records), comp.model, comp.engines, comp.n_poses)
+    energies = engine_energies(energy_chunks(comp.records), comp.model, comp.engines, comp.n_poses)
     assert energies is not None
     figure_module.engine_gap_figure(comp.model, energies, tmp_path / "g.png", RTOL)
     line = _series(drawn[0], "pinocchio")
@@ -70,7 +70,7 @@ def test_one_point_per_pose_at_the_engines_gap(model, drawn, tmp_path: Path) -> 
 def test_the_largest_gap_and_its_pose_are_the_parity_statistics(drawn, tmp_path: Path) -> None:
     check = koenig_check.compare([CAUSES / "class_mass.xml"], n_poses=12, seed=1)
     comp, parity = check.comparisons[0], check.parities[0]
-    energies = engine_energies(energy_rows(comp.records), comp.model, comp.engines, comp.n_poses)
+    energies = engine_energies(energy_chunks(comp.records), comp.model, comp.engines, comp.n_poses)
     assert energies is not None
     figure_module.engine_gap_figure(comp.model, energies, tmp_path / "g.png", RTOL)
     line = _series(drawn[0], "pinocchio")
@@ -110,7 +110,7 @@ def test_records_streamed_to_a_file_give_the_same_figures(monkeypatch: pytest.Mo
     write_report(tmp_path / "streamed", streamed, records=sink)
     assert len(seen) == 2 * len(runs)
     for (label_a, a), (label_b, b) in zip(seen[: len(runs)], seen[len(runs) :], strict=True):
-        assert label_a == label_b and a.poses == b.poses
+        assert label_a == label_b and a.poses.to_pylist() == b.poses.to_pylist()
         for engine in a.energy:
             np.testing.assert_array_equal(a.energy[engine], b.energy[engine])
     assert not np.array_equal(seen[0][1].energy["mujoco"], seen[2][1].energy["mujoco"])  # seeds 1 and 2
@@ -123,7 +123,7 @@ def test_drake_on_every_pose_is_a_series_of_its_own(drawn, tmp_path: Path) -> No
     if not installed("drake"):
         pytest.skip("Drake is not installed (pip install 'koenig-check[drake]')")
     comp = compare_model(CAUSES / "class_mass.xml", n_poses=6, engines=("mujoco", "pinocchio", "drake"))
-    energies = engine_energies(energy_rows(comp.records), comp.model, comp.engines, comp.n_poses)
+    energies = engine_energies(energy_chunks(comp.records), comp.model, comp.engines, comp.n_poses)
     assert energies is not None and set(energies.energy) == {"mujoco", "pinocchio", "drake"}
     figure_module.engine_gap_figure(comp.model, energies, tmp_path / "g.png", RTOL)
     drake = np.asarray(_series(drawn[0], "drake").get_ydata())
@@ -143,3 +143,23 @@ def test_every_figure_records_its_smallest_text_and_none_is_below_9_points(tmp_p
         with Image.open(png) as image:
             dpi = 110  # every figure of the report is written at 110 dpi
             assert float(image.text[figure_module.MIN_FONT_KEY]) >= 9 * dpi / 72, png.name
+
+
+def test_a_long_run_draws_the_largest_gap_of_each_block_of_poses(drawn, tmp_path: Path) -> None:
+    import pyarrow as pa
+
+    n = 12_001  # three poses per point, the last block a single pose
+    rng = np.random.default_rng(0)
+    mujoco = 1.0 + rng.random(n)
+    pinocchio = mujoco * (1.0 + 10.0 ** rng.uniform(-8, -2, n))
+    labels = pa.chunked_array([pa.array([f"random-{i}" for i in range(n)]).dictionary_encode()])
+    energies = EngineEnergies(labels, {"mujoco": mujoco, "pinocchio": pinocchio})
+    figure_module.engine_gap_figure("long", energies, tmp_path / "g.png", RTOL)
+    line = _series(drawn[0], "pinocchio")
+    gap = np.abs(pinocchio - mujoco) / mujoco
+    block = -(-n // figure_module.GAP_POINTS)
+    expected = [gap[k : k + block].max() for k in range(0, n, block)]
+    assert len(line.get_xdata()) == len(expected) <= figure_module.GAP_POINTS
+    np.testing.assert_allclose(10.0 ** np.asarray(line.get_ydata()), expected, rtol=1e-12)
+    assert f"largest of {block} consecutive poses" in drawn[0].axes[0].get_xlabel()
+    assert f"at random-{int(np.argmax(gap))}" in line.get_label()

@@ -2,16 +2,18 @@
 
 The records hold, for every formula, state source and reference engine, the reference engine's own energy
 (``reference_value``).  The rows of ``exact`` on MuJoCo's states, totals, hold every engine's energy once per
-pose: that is all the engine-gap figure needs, so a run whose records were streamed to a file keeps these rows
-only (one per pose and engine), never the whole table.
+pose: that is all the engine-gap figure needs, so a run whose records were streamed to a file keeps only these
+values (one number per pose and engine, and the pose labels as stored), never the whole table.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import pyarrow as pa
+import pyarrow.compute as pc
 
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import relative_error
@@ -20,8 +22,26 @@ from koenig_check.run.stats import relative_error
 SOURCE = "mujoco"
 
 
-def energy_rows(records: RecordTable) -> RecordTable:
-    """The rows that carry each engine's own energy per pose: ``exact``, totals, on MuJoCo's states.
+@dataclass(frozen=True)
+class EnergyChunk:
+    """One model's engine energies from one block of records, in pose order.
+
+    Attributes
+    ----------
+    model : str
+    poses : pyarrow.ChunkedArray
+        Pose labels, as the records store them (dictionary-coded).
+    energy : dict of str to ndarray
+        Engine name to its energy at each pose (J).
+    """
+
+    model: str
+    poses: pa.ChunkedArray
+    energy: dict[str, np.ndarray]
+
+
+def energy_chunks(records: RecordTable) -> list[EnergyChunk]:
+    """Each engine's energy per pose, per model, from records: ``exact``, totals, on MuJoCo's states.
 
     Parameters
     ----------
@@ -29,11 +49,23 @@ def energy_rows(records: RecordTable) -> RecordTable:
 
     Returns
     -------
-    RecordTable
+    list of EnergyChunk
+        One per model in the records.
     """
     if not len(records):
-        return records
-    return records.where(formula="exact", scope="total", source=SOURCE)
+        return []
+    table = records.where(formula="exact", scope="total", source=SOURCE).table
+    out = []
+    for model in table.column("model").unique().to_pylist():
+        mine = table.filter(pc.equal(table.column("model"), model))
+        references = mine.column("reference")
+        energy = {
+            str(e): mine.filter(pc.equal(references, e)).column("reference_value").to_numpy()
+            for e in references.unique().to_pylist()
+        }
+        poses = mine.filter(pc.equal(references, SOURCE)).column("pose")
+        out.append(EnergyChunk(str(model), poses, energy))
+    return out
 
 
 @dataclass(frozen=True)
@@ -42,14 +74,27 @@ class EngineEnergies:
 
     Attributes
     ----------
-    poses : list of str
-        Pose labels.
+    poses : pyarrow.ChunkedArray
+        Pose labels (:meth:`label` gives one as text).
     energy : dict of str to ndarray
         Engine name to its energy at each pose (J).
     """
 
-    poses: list[str]
+    poses: pa.ChunkedArray
     energy: dict[str, np.ndarray]
+
+    def label(self, k: int) -> str:
+        """The label of pose ``k``.
+
+        Parameters
+        ----------
+        k : int
+
+        Returns
+        -------
+        str
+        """
+        return str(self.poses[k].as_py())
 
     def gap(self, engine: str, reference: str = "mujoco") -> np.ndarray:
         """``|E_engine − E_reference| / |E_reference|`` per pose.
@@ -66,14 +111,14 @@ class EngineEnergies:
 
 
 def engine_energies(
-    rows: RecordTable, model: str, engines: tuple[str, ...], n_poses: int, skip: int = 0
+    chunks: Sequence[EnergyChunk], model: str, engines: tuple[str, ...], n_poses: int, skip: int = 0
 ) -> EngineEnergies | None:
-    """Each engine's energy per pose for one model, from energy rows (:func:`energy_rows`).
+    """Each engine's energy per pose for one model run, from energy chunks (:func:`energy_chunks`).
 
     Parameters
     ----------
-    rows : RecordTable
-        Energy rows of one or several models.
+    chunks : sequence of EnergyChunk
+        In run order, of one or several models.
     model : str
         The model's label.
     engines : tuple of str
@@ -86,33 +131,13 @@ def engine_energies(
     Returns
     -------
     EngineEnergies or None
-        None when the rows do not hold every engine's energy for the model.
+        None when the chunks do not hold every engine's energy at each of the run's poses.
     """
-    if not len(rows) or "mujoco" not in engines:
+    mine = [c for c in chunks if c.model == model]
+    if not mine or "mujoco" not in engines or n_poses <= 0 or any(set(engines) - set(c.energy) for c in mine):
         return None
-    mine = rows.where(model=model)
-    energy: dict[str, np.ndarray] = {}
-    poses: list[str] = []
-    for engine in engines:
-        one = mine.where(reference=engine)
-        values = np.asarray(one["reference_value"], dtype=float)
-        if values.size < skip + n_poses or n_poses <= 0:
-            return None
-        energy[engine] = values[skip : skip + n_poses]
-        if engine == "mujoco":
-            poses = [str(p) for p in one["pose"][skip : skip + n_poses]]
-    return EngineEnergies(poses, energy)
-
-
-def concat_rows(tables: list[pa.Table]) -> RecordTable:
-    """Energy rows collected chunk by chunk, as one table.
-
-    Parameters
-    ----------
-    tables : list of pyarrow.Table
-
-    Returns
-    -------
-    RecordTable
-    """
-    return RecordTable.concat(RecordTable(t) for t in tables)
+    energy = {e: np.concatenate([c.energy[e] for c in mine])[skip : skip + n_poses] for e in engines}
+    if any(v.size != n_poses for v in energy.values()):
+        return None
+    poses = pa.chunked_array([a for c in mine for a in c.poses.chunks], type=mine[0].poses.type)
+    return EngineEnergies(poses.slice(skip, n_poses), energy)

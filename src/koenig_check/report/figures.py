@@ -176,6 +176,19 @@ def error_distribution_figure(
     return _save(fig, path, dpi)
 
 
+#: Most points drawn per engine in the engine-gap figure; beyond, each point is the largest gap of a block of poses.
+GAP_POINTS = 5000
+
+
+def _block_maxima(values: np.ndarray, block: int) -> np.ndarray:
+    """Index of the largest value in each run of ``block`` consecutive values (every index when ``block`` is 1)."""
+    if block <= 1:
+        return np.arange(values.size)
+    padded = np.full(-(-values.size // block) * block, -np.inf)
+    padded[: values.size] = values
+    return padded.reshape(-1, block).argmax(axis=1) + np.arange(padded.size // block) * block
+
+
 def engine_gap_figure(
     model: str, energies: EngineEnergies, path: Path, rtol: float, caption: str = "", dpi: int = 110
 ) -> Path:
@@ -207,10 +220,11 @@ def engine_gap_figure(
     ax = fig.add_subplot()
     shown = [g[np.isfinite(g) & (g >= ROUNDOFF)] for g in gaps.values()]
     top = max([float(np.log10(g).max()) for g in shown if g.size] + [np.log10(rtol) + 1, 0.0])
-    x = np.arange(n)
+    block = -(-n // GAP_POINTS)  # poses per point: 1 up to GAP_POINTS poses
     size = 4.0 if n <= 200 else 1.5
     for engine, gap in gaps.items():
-        y = np.where(gap < ROUNDOFF, _BAND, np.log10(np.clip(gap, ROUNDOFF, 10.0**top)))
+        x = _block_maxima(np.nan_to_num(gap, nan=np.inf), block)
+        y = np.where(gap[x] < ROUNDOFF, _BAND, np.log10(np.clip(gap[x], ROUNDOFF, 10.0**top)))
         worst = int(np.argmax(np.nan_to_num(gap, nan=np.inf)))
         largest = fmt(float(gap[worst]), ".2g") if n else ""  # below ROUNDOFF: 0, as everywhere in the report
         label = f"{engine} vs mujoco: largest {largest} at {energies.poses[worst]}" if n else engine
@@ -225,7 +239,8 @@ def engine_gap_figure(
     ax.set_xlim(-0.5, max(n, 1) - 0.5)
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     first, last = (energies.poses[0], energies.poses[-1]) if n else ("", "")
-    ax.set_xlabel(f"pose, in run order ({first} … {last})", fontsize=MIN_FONT)
+    each = f"; each point: the largest of {block} consecutive poses" if block > 1 else ""
+    ax.set_xlabel(f"pose, in run order ({first} … {last}){each}", fontsize=MIN_FONT)
     ax.set_ylabel("|E − E_mujoco| / |E_mujoco|\n(log scale)", fontsize=MIN_FONT)
     title = f"{model}: gap between the engines' rigid-body energies per pose"
     ax.set_title(title + (f"\n{textwrap.fill(caption, 70)}" if caption else ""), fontsize=MIN_FONT)

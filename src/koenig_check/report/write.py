@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from koenig_check.report.content import run_conditions
-from koenig_check.report.engine_energies import EngineEnergies, energy_rows, engine_energies
+from koenig_check.report.engine_energies import EngineEnergies, energy_chunks, engine_energies
 from koenig_check.report.markdown import summary_markdown
 from koenig_check.report.record_files import RecordFiles
 from koenig_check.run.comparison import ModelComparison
@@ -216,7 +216,7 @@ def _energies(check: CrossCheck, k: int, records: RecordFiles) -> EngineEnergies
     """Each engine's energy per pose for comparison ``k``: from its own records, else from the record files."""
     comp = check.comparisons[k]
     if len(comp.records):
-        return engine_energies(energy_rows(comp.records), comp.model, comp.engines, comp.n_poses)
+        return engine_energies(energy_chunks(comp.records), comp.model, comp.engines, comp.n_poses)
     earlier = sum(c.n_poses for c in check.comparisons[:k] if c.model == comp.model)  # same label, run before
     return engine_energies(records.energies, comp.model, comp.engines, comp.n_poses, skip=earlier)
 
