@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import base64
+import html
+import re
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -10,7 +12,10 @@ import pytest
 
 import koenig_check
 from koenig_check.api import compare_model
+from koenig_check.findings import Finding, Kind
 from koenig_check.report import figure_name, write_report
+from koenig_check.report.html import SHOWN_CAUSES, _causes
+from koenig_check.run.comparison import ModelComparison
 
 CAUSES = Path(__file__).parents[1] / "models" / "causes"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -129,5 +134,51 @@ def test_figure_of_the_grid_is_in_the_grid_models_section(report) -> None:
     check, _, _, page = report
     k = len(check.comparisons) - 1
     anchor = "model-" + "".join(c if c.isalnum() else "-" for c in check.comparisons[k].model) + f"-{k}"
-    assert sum(1 for img in page.images if img["section"] == anchor) == 2  # its distribution and the map
-    assert sum(1 for img in page.images if img["section"] == anchor.replace(f"-{k}", "-0")) == 1
+    # its distribution, its engine gap and the map; the random run of the same label: its own two
+    assert sum(1 for img in page.images if img["section"] == anchor) == 3
+    assert sum(1 for img in page.images if img["section"] == anchor.replace(f"-{k}", "-0")) == 2
+
+
+def _finding(element: str, *, root: bool = False, energy: bool = False, kind: str = "inertia") -> Finding:
+    return Finding(Kind(kind), "pinocchio", element, f"{element} differs", {"mujoco": 1.0}, energy, root)
+
+
+def test_a_disagreement_is_a_short_list_of_causes_root_causes_that_change_the_energy_first() -> None:
+    """Rounding-level items (no effect on the energy) never come first; at most three, then "and N more"."""
+    findings = [
+        _finding("joint a1 rounding"),  # does not change the energy
+        _finding("joint a2 symptom", energy=True, kind="mass"),
+        _finding("include arm.xml", root=True),  # a root cause that does not change the energy
+        _finding("joint a3 symptom", energy=True, kind="com"),
+        _finding("geom pole", root=True, energy=True, kind="ignored_construct"),
+        _finding("joint a4 symptom", energy=True, kind="inertia"),
+    ]
+    page = _causes(ModelComparison("m.xml", None, findings=findings))
+    shown = page.split('<ul class="causes">', 1)[1].split("</ul>", 1)[0]
+    items = re.findall(r"<li>(.*?)</li>", shown)
+    assert len(items) == SHOWN_CAUSES + 1 and items[-1] == "and 1 more"
+    named = [re.search(r"<strong>(.*?)</strong>", i).group(1) for i in items[:-1]]
+    assert named == ["geom pole", "joint a2 symptom", "joint a3 symptom"]
+    assert "rounding" not in shown and "include arm.xml" not in shown
+    folded = page.split("<details>", 1)[1]
+    assert all(f"{e}: {e} differs" in folded for e in ("geom pole", "joint a4 symptom"))
+
+
+def test_the_disagreement_is_not_a_paragraph_of_the_whole_reason(report) -> None:
+    check, out, _, _ = report
+    text = (out / "report.html").read_text(encoding="utf-8")
+    k = next(k for k, c in enumerate(check.comparisons) if c.model == "class_mass.xml")
+    section = text.split(f'id="model-class-mass-xml-{k}"', 1)[1].split("</section>", 1)[0]
+    parity = next(p for p in check.parities if p.model == "class_mass.xml")
+    assert "DISAGREE" in section and html.escape(parity.reason) not in section
+    assert section.count('<ul class="causes">') == 1 and "geom pole" in section.split('<ul class="causes">')[1]
+
+
+def test_the_engine_gap_figure_is_beside_each_models_table(report) -> None:
+    check, out, _, _ = report
+    text = (out / "report.html").read_text(encoding="utf-8")
+    sections = text.split('<section class="model"')[1:]
+    assert len(sections) == len(check.comparisons)
+    for section in sections:
+        side = section.split('<div class="side">', 1)[1].split('<div class="wide">', 1)[0].split("</section>", 1)[0]
+        assert "<table>" in side and "gap between the engines" in side

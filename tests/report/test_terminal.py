@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import koenig_check
@@ -117,3 +118,81 @@ def test_the_former_name_and_module_give_the_same_table() -> None:
     from koenig_check.verdict import verdict_table  # type: ignore[import-not-found]  # the module's old name
 
     assert verdict_table is terminal_table
+
+
+def _drake_installed() -> bool:
+    from koenig_check.engines.registry import installed
+
+    return installed("drake")
+
+
+needs_drake = pytest.mark.skipif(not _drake_installed(), reason="Drake is not installed (koenig-check[drake])")
+
+
+def _model_rows(table: str) -> list[str]:
+    return [line for line in table.split("\n\n")[0].splitlines() if line and not line.startswith(" ")]
+
+
+@needs_drake
+@pytest.mark.parametrize("model", ["class_mass.xml", "class_joint_pos_explicit.xml"])  # Pinocchio, Drake depart
+def test_drake_on_every_pose_has_its_column_with_its_gap_to_mujoco(model: str) -> None:
+    check = koenig_check.compare(  # in chunks of 2 poses: the largest gap is merged across them
+        [CAUSES / model, "gimbal.xml"], n_poses=7, chunk_poses=2, engines=("mujoco", "pinocchio", "drake")
+    )
+    table = terminal_table(check)
+    assert table.startswith("Models: do MuJoCo, Pinocchio and Drake agree?")
+    header = next(line for line in table.splitlines() if line.startswith("model "))
+    assert header.split()[:7] == ["model", "verdict", "pinocchio", "gap", "drake", "gap", "exact"]
+    for comp, row in zip(check.comparisons, _model_rows(table)[3:], strict=True):
+        # Independent route: the records' exact totals on each engine's states (equal to its energy to rounding).
+        value = {
+            e: comp.records.where(formula="exact", scope="total", source=e, reference=e)["value"]
+            for e in ("mujoco", "drake")
+        }
+        gap = float(np.max(np.abs(value["drake"] - value["mujoco"]) / np.abs(value["mujoco"])))
+        printed = row.split()[3]
+        assert printed == "0" if gap < 1e-13 else float(printed) == pytest.approx(gap, rel=0.06)
+    assert max(len(line) for line in table.splitlines()) <= WIDTH
+
+
+@needs_drake
+def test_drake_as_tie_breaker_shows_its_gap_where_the_engines_differ_most() -> None:
+    from koenig_check.findings import Kind
+
+    check = koenig_check.compare([CAUSES / "class_mass.xml", "gimbal.xml"], n_poses=5)
+    table = terminal_table(check)
+    verdict = next(
+        f for f in check.comparisons[0].findings if f.kind is Kind.VERDICT and f.element == "rigid-body energy"
+    )
+    by_hand = abs(verdict.values["drake"] - verdict.values["mujoco"]) / abs(verdict.values["mujoco"])
+    rows = _model_rows(table)[3:]
+    drake_cell = rows[0].split()[3]
+    assert drake_cell.endswith("*") and drake_cell[:-1] == ("0" if by_hand < ROUNDOFF else f"{by_hand:.1e}")
+    assert rows[1].split()[3] == "—"  # gimbal.xml: the engines agree, Drake not consulted
+    assert any(line.startswith("*: Drake as tie-breaker") for line in table.splitlines())
+
+
+def test_without_drake_the_header_and_columns_are_the_two_engines() -> None:
+    check = koenig_check.compare(["gimbal.xml"], n_poses=2, engines=("mujoco", "pinocchio"))
+    table = terminal_table(check)
+    assert table.startswith("Models: do MuJoCo and Pinocchio agree?") and "drake gap" not in table
+
+
+def test_no_line_is_longer_than_200_characters_whatever_the_label_or_word() -> None:
+    from koenig_check.report.terminal import LINE_LIMIT
+
+    check = koenig_check.compare([CAUSES / "class_mass.xml"], n_poses=2)
+    long_label = "robots/" + "very_long_directory_name/" * 10 + "arm.urdf"
+    check.failures.append((long_label, "could not load " + "/deep" * 60 + "/mesh.stl: no such file"))
+    table = terminal_table(check)
+    assert LINE_LIMIT == 200 and max(len(line) for line in table.splitlines()) <= LINE_LIMIT
+    assert long_label in table.replace("\n  ", "")  # folded, not dropped
+
+
+def test_every_line_compare_prints_on_stdout_fits_200_characters(tmp_path: Path, capsys) -> None:
+    from koenig_check.cli import main
+
+    status = main(["compare", str(CAUSES / "class_mass.xml"), "gimbal.xml", "--poses", "3", "--out", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert status == 1 and "DISAGREE" in out
+    assert max(len(line) for line in out.splitlines()) <= 200

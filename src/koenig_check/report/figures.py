@@ -4,6 +4,11 @@ Conventions: relative errors on a log axis from :data:`~koenig_check.roundoff.RO
 (exact to rounding) are drawn in a band of their own at the left, labelled, never as box-plot outliers; the
 tolerance is a dashed line; panels that are compared share one colour scale; the conditions of the run
 (poses, seed, joint rates, gravity) are in the title.
+
+Text sizes: the per-model figures are shown in report.html in a column of about 580 CSS px at a 1280 px
+window, so they are :data:`SIDE_WIDTH` inches wide and no text is smaller than :data:`MIN_FONT` points
+(about 10 px there).  Every PNG carries the size of its smallest text in pixels of the PNG (the tEXt key
+:data:`MIN_FONT_KEY`), so that the page can be checked at its display size.
 """
 
 from __future__ import annotations
@@ -16,8 +21,11 @@ from typing import Any
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.figure import Figure
+from matplotlib.text import Text
+from matplotlib.ticker import MaxNLocator
 
-from koenig_check.roundoff import ROUNDOFF
+from koenig_check.report.engine_energies import EngineEnergies
+from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.stats import QuantileSketch, relative_error
 
@@ -25,6 +33,34 @@ from koenig_check.run.stats import QuantileSketch, relative_error
 ENGINE_COLORS = {"mujoco": "tab:blue", "pinocchio": "tab:orange", "drake": "tab:green"}
 #: Where the rounding band is drawn (log10 units), left of the axis proper.
 _BAND = np.log10(ROUNDOFF) - 2.0
+#: Width (inches) of the figures shown beside a model's table in report.html.
+SIDE_WIDTH = 6.4
+#: The smallest font size (points) of any text in a figure.
+MIN_FONT = 9.0
+#: PNG text key holding the size of the figure's smallest text, in pixels of the PNG.
+MIN_FONT_KEY = "koenig-check:min-font-px"
+
+
+def smallest_text_px(fig: Figure, dpi: float) -> float:
+    """The font size of the smallest visible, non-empty text of a figure, in pixels at ``dpi``.
+
+    Parameters
+    ----------
+    fig : Figure
+    dpi : float
+
+    Returns
+    -------
+    float
+    """
+    sizes = [t.get_fontsize() for t in fig.findobj(Text) if t.get_visible() and t.get_text().strip()]
+    return float(min(sizes)) * dpi / 72.0 if sizes else float("inf")
+
+
+def _save(fig: Figure, path: Path, dpi: int) -> Path:
+    """Write the PNG with the size of its smallest text in its metadata (:data:`MIN_FONT_KEY`)."""
+    fig.savefig(path, dpi=dpi, metadata={MIN_FONT_KEY: f"{smallest_text_px(fig, dpi):.3f}"})
+    return path
 
 
 def _sketches(comparisons: Sequence[ModelComparison]) -> dict[tuple[str, str], QuantileSketch]:
@@ -97,7 +133,7 @@ def error_distribution_figure(
     pooled = _sketches(comparisons)
     formulas = list(dict.fromkeys(f for f, _ in pooled))
     engines = list(dict.fromkeys(e for _, e in pooled))
-    fig = Figure(figsize=(7.2, 0.36 * max(len(formulas), 4) + 2.1), layout="constrained")
+    fig = Figure(figsize=(SIDE_WIDTH, 0.36 * max(len(formulas), 4) + 2.4), layout="constrained")
     ax = fig.add_subplot()
     top = max([_position(s.quantile(1.0)) for s in pooled.values() if s.n] + [np.log10(rtol) + 1, 0.0])
     for k, engine in enumerate(engines):
@@ -123,21 +159,94 @@ def error_distribution_figure(
     ax.set_xlim(_BAND - 0.8, top + 0.3)
     ticks = list(range(int(np.ceil(np.log10(ROUNDOFF))), int(np.floor(top)) + 1, 2))
     ax.set_xticks([_BAND, *ticks], [f"< {ROUNDOFF:g}\n(rounding)", *[f"1e{t}" for t in ticks]])
-    ax.set_yticks(np.arange(len(formulas)), formulas, fontsize=8)
-    ax.tick_params(axis="x", labelsize=8)
+    ax.set_yticks(np.arange(len(formulas)), formulas, fontsize=MIN_FONT)
+    ax.tick_params(axis="x", labelsize=MIN_FONT)
     ax.set_ylim(len(formulas) - 0.5, -0.5)
-    ax.set_xlabel("relative error of the total energy |formula − engine| / engine (log scale)", fontsize=8)
+    ax.set_xlabel("relative error of the total energy\n|formula − engine| / engine (log scale)", fontsize=MIN_FONT)
     models = [c.model for c in comparisons]
     if len(models) == 1:
         title = f"{models[0]}: relative error of each formula"
     else:
-        title = textwrap.fill(f"Pooled over {len(models)} models ({', '.join(models)}): relative error", 95)
-    sub = "boxes: quartiles; whiskers: min and max over the poses; dots: exact to rounding on every pose"
-    ax.set_title(f"{title}\n{sub}" + (f"\n{textwrap.fill(caption, 95)}" if caption else ""), fontsize=8)
-    fig.legend(loc="outside lower center", ncol=3, frameon=False, fontsize=7)
+        title = textwrap.fill(f"Pooled over {len(models)} models ({', '.join(models)}): relative error", 70)
+    sub = "boxes: quartiles; whiskers: min and max over the poses;\ndots: exact to rounding on every pose"
+    # A figure title (centred on the figure, not on the axes beside the long formula names): it fits the width.
+    fig.suptitle(f"{title}\n{sub}" + (f"\n{textwrap.fill(caption, 70)}" if caption else ""), fontsize=MIN_FONT)
+    fig.legend(loc="outside lower center", ncol=2, frameon=False, fontsize=MIN_FONT)
     ax.grid(True, axis="x", alpha=0.3)
-    fig.savefig(path, dpi=dpi)
-    return path
+    return _save(fig, path, dpi)
+
+
+#: Most points drawn per engine in the engine-gap figure; beyond, each point is the largest gap of a block of poses.
+GAP_POINTS = 5000
+
+
+def _block_maxima(values: np.ndarray, block: int) -> np.ndarray:
+    """Index of the largest value in each run of ``block`` consecutive values (every index when ``block`` is 1)."""
+    if block <= 1:
+        return np.arange(values.size)
+    padded = np.full(-(-values.size // block) * block, -np.inf)
+    padded[: values.size] = values
+    return padded.reshape(-1, block).argmax(axis=1) + np.arange(padded.size // block) * block
+
+
+def engine_gap_figure(
+    model: str, energies: EngineEnergies, path: Path, rtol: float, caption: str = "", dpi: int = 110
+) -> Path:
+    """The gap between the engines at each pose: ``|E_engine − E_MuJoCo| / |E_MuJoCo|`` on a log axis.
+
+    One series of points per engine other than MuJoCo, in pose order; gaps below :data:`ROUNDOFF` (the
+    engines agree to rounding) are drawn in a band of their own at the bottom; the tolerance is a dashed line.
+
+    Parameters
+    ----------
+    model : str
+        The model's label (in the title).
+    energies : EngineEnergies
+        Each engine's rigid-body energy per pose.
+    path : Path
+    rtol : float
+    caption : str
+        Conditions of the run, printed under the title.
+    dpi : int
+
+    Returns
+    -------
+    Path
+    """
+    others = [e for e in energies.energy if e != "mujoco"]
+    gaps = {e: energies.gap(e) for e in others}
+    n = len(energies.poses)
+    fig = Figure(figsize=(SIDE_WIDTH, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    shown = [g[np.isfinite(g) & (g >= ROUNDOFF)] for g in gaps.values()]
+    top = max([float(np.log10(g).max()) for g in shown if g.size] + [np.log10(rtol) + 1, 0.0])
+    block = -(-n // GAP_POINTS)  # poses per point: 1 up to GAP_POINTS poses
+    size = 4.0 if n <= 200 else 1.5
+    for engine, gap in gaps.items():
+        x = _block_maxima(np.nan_to_num(gap, nan=np.inf), block)
+        y = np.where(gap[x] < ROUNDOFF, _BAND, np.log10(np.clip(gap[x], ROUNDOFF, 10.0**top)))
+        worst = int(np.argmax(np.nan_to_num(gap, nan=np.inf)))
+        largest = fmt(float(gap[worst]), ".2g") if n else ""  # below ROUNDOFF: 0, as everywhere in the report
+        label = f"{engine} vs mujoco: largest {largest} at {energies.poses[worst]}" if n else engine
+        color = ENGINE_COLORS.get(engine, "tab:gray")
+        ax.plot(x, y, "o", color=color, markersize=size, markeredgewidth=0, label=label, rasterized=n > 2000)
+    ax.axhspan(_BAND - 0.6, _BAND + 0.6, color="0.92", zorder=0)
+    ax.axhline(np.log10(rtol), color="tab:red", linestyle="--", linewidth=1.2, label=f"tolerance {rtol:g}")
+    ax.set_ylim(_BAND - 0.8, top + 0.3)
+    ticks = list(range(int(np.ceil(np.log10(ROUNDOFF))), int(np.floor(top)) + 1, 2))
+    ax.set_yticks([_BAND, *ticks], [f"< {ROUNDOFF:g}\n(rounding)", *[f"1e{t}" for t in ticks]])
+    ax.tick_params(labelsize=MIN_FONT)
+    ax.set_xlim(-0.5, max(n, 1) - 0.5)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    first, last = (energies.poses[0], energies.poses[-1]) if n else ("", "")
+    each = f"; each point: the largest of {block} consecutive poses" if block > 1 else ""
+    ax.set_xlabel(f"pose, in run order ({first} … {last}){each}", fontsize=MIN_FONT)
+    ax.set_ylabel("|E − E_mujoco| / |E_mujoco|\n(log scale)", fontsize=MIN_FONT)
+    title = f"{model}: gap between the engines' rigid-body energies per pose"
+    ax.set_title(title + (f"\n{textwrap.fill(caption, 70)}" if caption else ""), fontsize=MIN_FONT)
+    fig.legend(loc="outside lower center", ncol=1, frameon=False, fontsize=MIN_FONT)
+    ax.grid(True, axis="y", alpha=0.3)
+    return _save(fig, path, dpi)
 
 
 def error_map_figure(
@@ -194,8 +303,7 @@ def error_map_figure(
         "one colour scale for all panels)"
     )
     fig.suptitle(title + (f"\n{textwrap.fill(caption, 130)}" if caption else ""), fontsize=10)
-    fig.savefig(path, dpi=dpi)
-    return path
+    return _save(fig, path, dpi)
 
 
 def trajectory_figure(
@@ -246,12 +354,11 @@ def trajectory_figure(
     ax.set_ylabel("kinetic energy (J)")
     title = f"{comparison.model}: kinetic energy along a torque-free MuJoCo trajectory, gravity off"
     ax.set_title(title + (f"\n{textwrap.fill(caption, 120)}" if caption else ""), fontsize=10)
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=MIN_FONT, ncol=2)
     ax.grid(True, alpha=0.3)
     ax_err.set_xlabel("time (s)")
     ax_err.set_ylabel("signed relative error vs MuJoCo")
     ax_err.set_title("(formula − engine) / engine, on MuJoCo's states", fontsize=9)
-    ax_err.legend(fontsize=7, ncol=2)
+    ax_err.legend(fontsize=MIN_FONT, ncol=2)
     ax_err.grid(True, alpha=0.3)
-    fig.savefig(path, dpi=dpi)
-    return path
+    return _save(fig, path, dpi)

@@ -12,6 +12,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from koenig_check.findings import Finding, Kind, root_causes
 from koenig_check.report.content import (
     COLUMNS,
     POSE_LABELS,
@@ -32,30 +33,36 @@ if TYPE_CHECKING:
 
 _CSS = """
 body { font-family: system-ui, -apple-system, 'Segoe UI', sans-serif; margin: 0 auto; max-width: 1500px;
-       padding: 1em 2em; color: #1a1a1a; line-height: 1.45; }
+       padding: 1em 2em; color: #1a1a1a; line-height: 1.45; overflow-wrap: break-word; }
 h1 { border-bottom: 2px solid #444; }
 h2 { border-bottom: 1px solid #bbb; margin-top: 2em; }
 code { background: #f2f2f2; padding: 0 .25em; border-radius: 3px; }
 table { border-collapse: collapse; font-size: 0.88em; }
-th, td { border: 1px solid #ccc; padding: .25em .5em; text-align: left; vertical-align: top; }
+th, td { border: 1px solid #ccc; padding: .25em .4em; text-align: left; vertical-align: top; }
 th { background: #eee; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.pose { overflow-wrap: anywhere; }
 tr.exact td.verdict { color: #1b6e20; font-weight: 600; }
 tr.differs td.verdict { color: #a12020; font-weight: 600; }
-.side { display: grid; grid-template-columns: minmax(0, 11fr) minmax(0, 7fr); gap: 1.2em; align-items: start; }
-.side > div:first-child { overflow-x: auto; }
-.side table { font-size: 0.78em; }
-td.pose { white-space: nowrap; }
-@media (max-width: 1000px) { .side { grid-template-columns: 1fr; } }
+.side { display: grid; grid-template-columns: minmax(0, 8fr) minmax(0, 7fr); gap: 1.2em; align-items: start; }
+.side table { font-size: 0.8em; width: 100%; }
+@media (max-width: 1000px) { .side { grid-template-columns: minmax(0, 1fr); } }
 small { color: #555; }
 figure { margin: 0 0 1em 0; }
 .wide figure img { max-width: min(100%, 1200px); }
 figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
+.side figure img { width: 100%; }
 figcaption { font-size: .85em; color: #444; }
 .agree { color: #1b6e20; font-weight: 600; }
 .disagree { color: #a12020; font-weight: 600; }
+ul.causes li { margin-bottom: .2em; }
+details summary { cursor: pointer; color: #444; }
 dl dt { font-weight: 600; } dl dd { margin: 0 0 .4em 1.5em; }
 """
+
+
+#: Figures shown beside a model's table (the others are wide: full width under it).
+_SIDE_FIGURES = ("error_distribution", "engine_gap")
 
 
 def _e(text: object) -> str:
@@ -90,7 +97,8 @@ def _table(comp: ModelComparison, summaries: Sequence[FormulaSummary]) -> str:
     for row in model_table(summaries, engines):
         maxima = "<br>".join(map(_e, row.max_error.split(" / ")))
         out.append(
-            f'<tr class="{row.verdict}"><td><code>{_e(row.formula)}</code><br><small>[{_e(row.equations)}]</small></td>'
+            f'<tr class="{row.verdict}"><td><code>{_breakable(row.formula)}</code><br>'
+            f"<small>[{_e(row.equations)}]</small></td>"
             f'<td class="verdict">{_e(row.verdict)}</td><td class="num">{maxima}</td>'
             f'<td class="num">{_e(row.median)}</td><td class="num">{_e(row.over_under)}</td>'
             f'<td class="pose">{_e(row.worst_pose)}</td><td class="pose">{_e(row.worst_segment or "—")}</td></tr>'
@@ -99,15 +107,38 @@ def _table(comp: ModelComparison, summaries: Sequence[FormulaSummary]) -> str:
     return "\n".join(out)
 
 
-def _causes(comp: ModelComparison) -> str:
-    from koenig_check.findings import Kind
+#: Causes named in a model's section before the rest is folded ("and N more").
+SHOWN_CAUSES = 3
 
-    lead = [f for f in comp.findings if f.kind is Kind.VERDICT or f.root_cause]
-    energy = [f for f in comp.findings if f.affects_energy and f not in lead]
-    if not lead and not energy:
+
+def _cause_item(f: Finding) -> str:
+    """One cause, short: the element, what was found, which engine; the values are in the folded list."""
+    who = f"<small>({_e(f.engine)}, {_e(f.kind.value)})</small>"
+    return f"<li><strong>{_e(f.element)}</strong>: {_e(f.summary)} {who}</li>"
+
+
+def _causes(comp: ModelComparison) -> str:
+    """The causes of a disagreement as a short list: root causes that change the energy first.
+
+    At most :data:`SHOWN_CAUSES` are listed, then "and N more"; every finding that changes the energy, with
+    its values, is in a folded list under it.
+    """
+    energy = [f for f in comp.findings if f.affects_energy]
+    roots = root_causes(energy)
+    verdicts = [f for f in energy if f.kind is Kind.VERDICT and f not in roots]
+    rest = [f for f in energy if f not in roots and f not in verdicts]
+    ordered = roots + verdicts + rest
+    if not ordered:
         return "<p>Parity causes: no import difference that changes the kinetic energy.</p>"
-    items = [f"<li><strong>{_e(f.kind.value)}</strong>: {_e(f.message())}</li>" for f in lead + energy]
-    return "<p>Parity causes (root causes first):</p><ul>" + "".join(items) + "</ul>"
+    shown = ordered[:SHOWN_CAUSES]
+    out = ['<p>Parity causes (root causes first):</p><ul class="causes">', *map(_cause_item, shown)]
+    if len(ordered) > len(shown):
+        out.append(f"<li>and {len(ordered) - len(shown)} more</li>")
+    out.append("</ul>")
+    details = "".join(f"<li>{_e(f.message())}</li>" for f in ordered)
+    summary = f"<summary>every finding, with its values ({len(ordered)})</summary>"
+    out.append(f"<details>{summary}<ul>{details}</ul></details>")
+    return "".join(out)
 
 
 def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[Path, str]]]) -> str:
@@ -186,7 +217,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
             verdict = (
                 '<span class="agree">the engines agree</span>'
                 if p.agrees
-                else f'<span class="disagree">the engines DISAGREE</span>: {_e(p.reason)}'
+                else '<span class="disagree">the engines DISAGREE</span> (causes below)'
             )
             exact = ", ".join(f"{k} {fmt(v)}" for k, v in p.exact_vs_engine.items())
             body.append(
@@ -197,8 +228,8 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
             )
         body.append(_causes(comp))
         mine = figures.get(k, ())
-        figs = "".join(_figure(png, caption) for png, caption in mine if png.name.startswith("error_distribution"))
-        wide = "".join(_figure(png, caption) for png, caption in mine if not png.name.startswith("error_distribution"))
+        figs = "".join(_figure(png, caption) for png, caption in mine if png.name.startswith(_SIDE_FIGURES))
+        wide = "".join(_figure(png, caption) for png, caption in mine if not png.name.startswith(_SIDE_FIGURES))
         body.append(f'<div class="side"><div>{_table(comp, by_model.get(comp.model, []))}</div>')
         body.append(f"<div>{figs}</div></div>" if figs else "</div>")
         if wide:  # the error map and the trajectory are wide: full width under the table they illustrate
@@ -223,6 +254,11 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
         + "\n".join(body)
         + "\n</body></html>\n"
     )
+
+
+def _breakable(name: str) -> str:
+    """Escape a formula name, allowing a line break after each ``:`` and ``_`` (narrow table columns)."""
+    return "".join(_e(c) + ("<wbr>" if c in ":_" else "") for c in name)
 
 
 def _code(text: str) -> str:

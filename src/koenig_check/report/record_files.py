@@ -11,6 +11,7 @@ import pyarrow as pa
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
+from koenig_check.report.engine_energies import EnergyChunk, energy_chunks
 from koenig_check.run.records import REFUSED_KEY, STORED_SCHEMA, TEXT_FIELDS, RecordTable, without_refused
 
 
@@ -98,6 +99,7 @@ class RecordFiles:
         self._error: BaseException | None = None
         self.refused: list[dict[str, str]] = []
         self.written: list[Path] = []
+        self._energy: list[EnergyChunk] = []  # each engine's energy per pose, for the engine-gap figures
 
     def write(self, table: pa.Table) -> None:
         """Append one chunk's records.
@@ -113,6 +115,7 @@ class RecordFiles:
         self._pending = threading.Thread(target=self._write_now, args=(table,), name="records-parquet")
         self._pending.start()
         self.rows += table.num_rows
+        self._energy += energy_chunks(RecordTable(table))
         if self._small is not None:
             self._small.append(table)
             if self.rows > self.csv_rows:
@@ -156,6 +159,11 @@ class RecordFiles:
         if self._small is None:
             return None
         return without_refused(RecordTable.concat(RecordTable(t) for t in self._small), self.refused)
+
+    @property
+    def energies(self) -> list[EnergyChunk]:
+        """Each engine's energy per pose of every model written (see :mod:`koenig_check.report.engine_energies`)."""
+        return self._energy
 
     def close(self) -> list[Path]:
         """Finish the files; return every file written.

@@ -1,4 +1,9 @@
-"""The table printed on the terminal, within 100 columns: one row per model, then one row per formula."""
+"""The table printed on the terminal, within 100 columns: one row per model, then one row per formula.
+
+When Drake ran on a model (on every pose, or as tie-breaker where MuJoCo and Pinocchio disagree), the model
+rows have a column for its gap to MuJoCo.  No line is longer than :data:`LINE_LIMIT` characters, whatever the
+length of a model's label or of a word in its cause.
+"""
 
 from __future__ import annotations
 
@@ -6,12 +11,20 @@ import textwrap
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 from koenig_check.api import CrossCheck
 from koenig_check.roundoff import ROUNDOFF, shown
+from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.stats import relative_error
 from koenig_check.run.summaries import FormulaSummary
 
 #: Terminal width the table fits in.
 WIDTH = 100
+#: No printed line is longer than this, even with a model label or a word longer than :data:`WIDTH`.
+LINE_LIMIT = 200
+#: The optional engine that gets a column when it ran.
+_OPTIONAL = "drake"
 
 
 def _number(value: float) -> str:
@@ -25,7 +38,50 @@ def _wrap(head: str, text: str, width: int = WIDTH) -> list[str]:
     lines = textwrap.wrap(
         text, width=width, initial_indent=head, subsequent_indent=indent, break_long_words=False, break_on_hyphens=False
     )
-    return lines or [head.rstrip()]
+    return _fold(lines or [head.rstrip()])
+
+
+def _fold(lines: list[str]) -> list[str]:
+    """Cut any line longer than :data:`LINE_LIMIT` (a word longer than a whole line: a path, a label)."""
+    out = []
+    for line in lines:
+        while len(line) > LINE_LIMIT:
+            out.append(line[:LINE_LIMIT])
+            line = "  " + line[LINE_LIMIT:]
+        out.append(line)
+    return out
+
+
+def _row(model: str, width: int, cells: str, text: str) -> list[str]:
+    """A model's row: a label wider than its column goes on a line of its own, the cells under it."""
+    if len(model) <= width:
+        return _wrap(f"{model:{width}s}  {cells}", text)
+    return _fold([model]) + _wrap(f"{'':{width}s}  {cells}", text)
+
+
+def optional_gap(comparison: ModelComparison) -> tuple[float, bool] | None:
+    """Drake's largest relative gap to MuJoCo's rigid-body energy on a model, if Drake ran on it.
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+
+    Returns
+    -------
+    (float, bool) or None
+        The gap, and whether Drake ran on every pose (False: as tie-breaker on the poses of the three-engine
+        verdict, the gap at the pose where the engines differ most); None when Drake did not run.
+    """
+    from koenig_check.findings import Kind
+
+    gap = comparison.stats.parity.gaps.get(_OPTIONAL) if comparison.stats is not None else None
+    if gap is not None and gap.where:
+        return gap.value, True
+    for f in comparison.findings:
+        if f.kind is Kind.VERDICT and f.element == "rigid-body energy" and {"mujoco", _OPTIONAL} <= set(f.values):
+            mujoco, other = float(f.values["mujoco"]), float(f.values[_OPTIONAL])
+            return float(np.abs(relative_error(np.array([other]), np.array([mujoco])))[0]), False
+    return None
 
 
 def _cause(check: CrossCheck, model: str) -> str:
@@ -89,8 +145,9 @@ def terminal_table(check: CrossCheck) -> str:
     """Render a cross-check for a 100-column terminal.
 
     First one row per model: do MuJoCo and Pinocchio agree (the largest relative difference of their
-    rigid-body kinetic energies, "engine gap"), does ``exact`` on each engine's segment states reproduce
-    that engine's energy, and the root cause when they disagree (wrapped, never cut).  Then one row per
+    rigid-body kinetic energies, "engine gap"), and Drake where it ran (its gap to MuJoCo, a column of its
+    own), does ``exact`` on each engine's segment states reproduce that engine's energy, and the root cause
+    when they disagree (wrapped at :data:`WIDTH`; a word is cut only beyond :data:`LINE_LIMIT`).  Then one row per
     formula: the worst relative error of its total energy over every model, pose and engine (each
     engine's states against its own energy), on how many models it is exact, and where the worst is.
     Values below :data:`~koenig_check.roundoff.ROUNDOFF` print as 0.
@@ -106,17 +163,37 @@ def terminal_table(check: CrossCheck) -> str:
     rtol = check.rtol
     names = [p.model for p in check.parities] + [m for m, _ in check.failures]
     mw = min(max([len(n) for n in names] + [5]), 40)
-    lines = [
-        f"Models: do MuJoCo and Pinocchio agree? (tolerance {rtol:g} relative; 0: below {ROUNDOFF:g}, rounding)",
-        f"{'model':{mw}s}  {'verdict':8s}  {'engine gap':>10s}  {'exact vs own':>12s}  root cause",
-    ]
-    for p in check.parities:
+    gaps = [optional_gap(c) for c in check.comparisons]
+    drake = any(g is not None for g in gaps)
+    scale = f"(tolerance {rtol:g} relative; 0: below {ROUNDOFF:g}, rounding)"
+    if drake:
+        lines = [
+            f"Models: do MuJoCo, Pinocchio and Drake agree? {scale}",
+            "gap: largest relative difference of the engine's rigid-body energy from MuJoCo's",
+            f"{'model':{mw}s}  {'verdict':8s}  {'pinocchio gap':>13s}  {'drake gap':>10s}  {'exact vs own':>12s}  "
+            "root cause",
+        ]
+    else:
+        lines = [
+            f"Models: do MuJoCo and Pinocchio agree? {scale}",
+            f"{'model':{mw}s}  {'verdict':8s}  {'engine gap':>10s}  {'exact vs own':>12s}  root cause",
+        ]
+    tiebreak = False
+    for p, gap in zip(check.parities, gaps, strict=True):
         status = "agree" if p.agrees else "DISAGREE"
         exact = max(p.exact_vs_engine.values(), default=0.0)
-        head = f"{p.model:{mw}s}  {status:8s}  {_number(p.rigid_max_rel):>10s}  {_number(exact):>12s}  "
-        lines += _wrap(head, _cause(check, p.model) or "—")
+        if drake:
+            shown_gap = "—" if gap is None else _number(gap[0]) + ("" if gap[1] else "*")
+            tiebreak |= gap is not None and not gap[1]
+            cells = f"{status:8s}  {_number(p.rigid_max_rel):>13s}  {shown_gap:>10s}  {_number(exact):>12s}  "
+        else:
+            cells = f"{status:8s}  {_number(p.rigid_max_rel):>10s}  {_number(exact):>12s}  "
+        lines += _row(p.model, mw, cells, _cause(check, p.model) or "—")
+    blank = f"{'':>13s}  {'':>10s}" if drake else f"{'':>10s}"
     for model, reason in check.failures:
-        lines += _wrap(f"{model:{mw}s}  {'FAILED':8s}  {'':>10s}  {'':>12s}  ", reason)
+        lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", reason)
+    if tiebreak:
+        lines.append("*: Drake as tie-breaker on the first poses: its gap where the three engines differ most")
     if not check.summaries:
         return "\n".join(lines)
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})

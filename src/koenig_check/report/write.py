@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from koenig_check.report.content import run_conditions
+from koenig_check.report.engine_energies import EngineEnergies, energy_chunks, engine_energies
 from koenig_check.report.markdown import summary_markdown
 from koenig_check.report.record_files import RecordFiles
 from koenig_check.run.comparison import ModelComparison
@@ -74,10 +75,10 @@ def write_json(
     return path
 
 
-def figure_name(model: str) -> str:
-    """The file name of a model's error-distribution figure (``error_distribution_<model>.png``)."""
+def figure_name(model: str, kind: str = "error_distribution") -> str:
+    """The file name of a model's figure (``error_distribution_<model>.png``, ``engine_gap_<model>.png``)."""
     slug = re.sub(r"[^A-Za-z0-9._-]+", "_", model).strip("_")
-    return f"error_distribution_{slug}.png"
+    return f"{kind}_{slug}.png"
 
 
 def write_report(
@@ -97,8 +98,9 @@ def write_report(
 ) -> list[Path]:
     """Write the report directory: summary.md, report.html, records.json, the record files and the figures.
 
-    Figures: ``error_distribution_<model>.png`` per model, ``error_distribution.png`` pooled over the models
-    (labelled so, with the models named) when there are several, ``error_map.png`` for a grid sweep and
+    Figures: ``error_distribution_<model>.png`` and ``engine_gap_<model>.png`` (the engines' energy difference
+    at each pose; from the records kept, else from the record files) per model, ``error_distribution.png`` pooled
+    over the models (labelled so, with the models named) when there are several, ``error_map.png`` for a grid sweep and
     ``trajectory_energy.png`` for a trajectory.  ``report.html`` embeds them all.
 
     Parameters
@@ -121,7 +123,12 @@ def write_report(
     list of Path
         Every file written.
     """
-    from koenig_check.report.figures import error_distribution_figure, error_map_figure, trajectory_figure
+    from koenig_check.report.figures import (
+        engine_gap_figure,
+        error_distribution_figure,
+        error_map_figure,
+        trajectory_figure,
+    )
     from koenig_check.report.html import report_html
 
     out = Path(out)
@@ -171,6 +178,13 @@ def write_report(
         figures.setdefault(k, []).append(
             (path, f"{comp.model}: relative error of each formula's total energy. {caption}.")
         )
+        energies = _energies(check, k, records)
+        if energies is not None and len(energies.energy) > 1:
+            path = engine_gap_figure(comp.model, energies, out / name.replace("error_distribution", "engine_gap", 1),
+                                     check.rtol, caption)
+            figures[k].append(
+                (path, f"{comp.model}: gap between the engines' rigid-body energies at each pose. {caption}.")
+            )
     if len(with_stats) > 1:
         pooled = ", ".join(c.model for c in with_stats)
         caption = f"pooled over {len(with_stats)} models ({pooled}); each model's own figure is in its section"
@@ -196,6 +210,15 @@ def write_report(
     written += [path for items in figures.values() for path, _ in items]
     written.append(_write_text(out / "report.html", report_html(check, figures)))
     return written
+
+
+def _energies(check: CrossCheck, k: int, records: RecordFiles) -> EngineEnergies | None:
+    """Each engine's energy per pose for comparison ``k``: from its own records, else from the record files."""
+    comp = check.comparisons[k]
+    if len(comp.records):
+        return engine_energies(energy_chunks(comp.records), comp.model, comp.engines, comp.n_poses)
+    earlier = sum(c.n_poses for c in check.comparisons[:k] if c.model == comp.model)  # same label, run before
+    return engine_energies(records.energies, comp.model, comp.engines, comp.n_poses, skip=earlier)
 
 
 def _position(check: CrossCheck, comparison: ModelComparison) -> int | None:

@@ -169,6 +169,8 @@ def _parity_stats(
     parity.armature_scaled = max(parity.armature_scaled, float((arm / scale).max()))
     for name, run in runs.items():
         parity.self_rel[name] = float(np.abs(relative_error(exact_totals[name], run.rigid)).max())
+        if name != "mujoco":  # each engine's gap to MuJoCo (Drake's too, when it runs on every pose)
+            parity.gaps.setdefault(name, Extreme()).offer(np.abs(relative_error(run.rigid, mj.rigid)), ids)
 
 
 def _chunk_table(

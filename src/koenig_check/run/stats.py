@@ -300,6 +300,7 @@ class ParityStats:
     armature: Extreme = field(default_factory=Extreme)  # extra: (MuJoCo, Pinocchio) armature energies
     armature_scaled: float = -np.inf
     self_rel: dict[str, float] = field(default_factory=dict)
+    gaps: dict[str, Extreme] = field(default_factory=dict)  # engine to its rigid energy's largest gap to MuJoCo's
 
     def merge(self, other: ParityStats) -> None:
         """Merge a later chunk's statistics.
@@ -313,6 +314,8 @@ class ParityStats:
         self.armature_scaled = max(self.armature_scaled, other.armature_scaled)
         for k, v in other.self_rel.items():
             self.self_rel[k] = max(self.self_rel.get(k, -np.inf), v)
+        for k, gap in other.gaps.items():
+            self.gaps.setdefault(k, Extreme()).merge(gap)
 
 
 @dataclass

@@ -1,0 +1,156 @@
+"""report.html at a 1280 px window, measured in headless Chromium: no horizontal scroll, readable figure text.
+
+A real report (the demo's models at few poses, plus a disagreeing model) is opened in Chromium with a script
+that measures the page after it has loaded and writes the measurements into the DOM, which ``--dump-dom``
+prints.  Skipped, with the reason, where Chromium is not installed; CI installs it and sets
+``KOENIG_CHECK_REQUIRE_CHROMIUM=1``, which turns the skip into a failure.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import json
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import pytest
+from PIL import Image
+
+from koenig_check.api import compare_model
+from koenig_check.demo import run_demo
+from koenig_check.report import write_report
+from koenig_check.report.figures import MIN_FONT_KEY
+
+CAUSES = Path(__file__).parents[1] / "models" / "causes"
+WINDOW = 1280
+#: The smallest text a reader is asked to read, in CSS px at the page's display size.
+MIN_TEXT_PX = 10.0
+
+CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome")) if p), None)
+if CHROMIUM is None and os.environ.get("KOENIG_CHECK_REQUIRE_CHROMIUM") != "1":
+    pytest.skip(
+        "Chromium is not installed (apt-get install chromium): the page width at 1280 px is not measured",
+        allow_module_level=True,
+    )
+
+#: Run after the page has loaded: the widths, every element that reaches past the window or scrolls
+#: sideways, each image's shown and natural width, and the smallest computed font size of the page's text.
+_MEASURE = """
+<script>
+window.addEventListener("load", () => {
+  const root = document.documentElement;
+  const out = {scrollWidth: root.scrollWidth, clientWidth: root.clientWidth, innerWidth: window.innerWidth,
+               outside: [], scrolling: [], images: [], smallestText: Infinity, smallestTextAt: ""};
+  for (const el of document.body.querySelectorAll("*")) {
+    const box = el.getBoundingClientRect();
+    const style = getComputedStyle(el);
+    if (box.width > 0 && box.right > root.clientWidth + 0.5) out.outside.push(el.tagName + " " + Math.round(box.right));
+    if (el.scrollWidth > el.clientWidth + 1 && ["auto", "scroll"].includes(style.overflowX)) {
+      out.scrolling.push(el.tagName + " " + el.scrollWidth + ">" + el.clientWidth);
+    }
+    const text = [...el.childNodes].some(n => n.nodeType === 3 && n.textContent.trim());
+    const shown = style.display !== "none" && style.visibility !== "hidden" && box.width > 0;
+    if (text && shown && parseFloat(style.fontSize) < out.smallestText) {
+      out.smallestText = parseFloat(style.fontSize);
+      out.smallestTextAt = el.tagName + ": " + el.textContent.trim().slice(0, 40);
+    }
+  }
+  for (const img of document.images) {
+    out.images.push({shown: img.clientWidth, natural: img.naturalWidth});
+  }
+  const pre = document.createElement("pre");
+  pre.id = "measured";
+  pre.hidden = true;
+  pre.textContent = JSON.stringify(out);
+  document.body.appendChild(pre);
+});
+</script>
+"""
+
+
+def chromium(page: Path, *args: str) -> str:
+    """Run headless Chromium on a local page with a 1280 px wide window; return what it prints."""
+    assert CHROMIUM is not None, "KOENIG_CHECK_REQUIRE_CHROMIUM=1 and Chromium is not installed"
+    with tempfile.TemporaryDirectory() as profile:
+        flags = [
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            f"--user-data-dir={profile}",
+            f"--window-size={WINDOW},1000",
+            "--force-device-scale-factor=1",
+        ]
+        done = subprocess.run(
+            [CHROMIUM, *flags, *args, page.as_uri()], capture_output=True, text=True, timeout=120, check=False
+        )
+    assert done.returncode == 0, done.stderr[-2000:]
+    return done.stdout
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A demo report at few poses, a robot with long joint names and a model whose engines disagree.
+
+    example-robot-data's kinova (joints named like ``j2s7s300_joint_finger_tip_1``) made main's tables scroll
+    sideways inside their column at 1280 px; class_mass.xml shows its causes and its engine gap.
+    """
+    check, figures = run_demo(n_poses=4, grid_samples=5, trajectory_samples=20)
+    check.add(compare_model("kinova", n_poses=4))
+    check.add(compare_model(CAUSES / "class_mass.xml", n_poses=6))
+    assert not check.parities[-1].agrees  # the page shows a disagreement
+    out = tmp_path_factory.mktemp("page")
+    write_report(out, check, **figures)
+    return out / "report.html"
+
+
+@pytest.fixture(scope="module")
+def measured(report: Path) -> dict:
+    page = report.with_name("measured.html")
+    page.write_text(report.read_text(encoding="utf-8").replace("</body>", _MEASURE + "</body>"), encoding="utf-8")
+    dom = chromium(page, "--dump-dom", "--virtual-time-budget=10000")
+    found = re.search(r'<pre id="measured" hidden="">(.*?)</pre>', dom, re.S)
+    assert found, "the measuring script did not run"
+    return json.loads(html.unescape(found.group(1)))
+
+
+def test_the_page_has_no_horizontal_scroll_at_1280_px(measured: dict) -> None:
+    assert measured["innerWidth"] == WINDOW
+    assert measured["scrollWidth"] <= measured["clientWidth"] <= WINDOW
+    assert measured["outside"] == []  # nothing reaches past the window (a clipped table, a wide figure)
+    assert measured["scrolling"] == []  # and no table scrolls sideways inside its own box
+
+
+def test_page_text_is_at_least_10_px(measured: dict) -> None:
+    assert measured["smallestText"] >= MIN_TEXT_PX, measured["smallestTextAt"]
+
+
+def _pngs(report: Path) -> list[Image.Image]:
+    """The page's images, in document order, decoded from their data: URIs."""
+    sources = re.findall(r'<img src="data:image/png;base64,([^"]+)"', report.read_text(encoding="utf-8"))
+    return [Image.open(io.BytesIO(base64.b64decode(s))) for s in sources]
+
+
+def test_figure_text_is_at_least_10_px_at_its_display_size(report: Path, measured: dict) -> None:
+    images = _pngs(report)
+    assert len(images) == len(measured["images"]) > 0
+    for png, shown in zip(images, measured["images"], strict=True):
+        assert shown["natural"] == png.width
+        smallest = float(png.text[MIN_FONT_KEY]) * shown["shown"] / png.width  # CSS px, as the reader sees it
+        assert smallest >= MIN_TEXT_PX, (png.text.get("Title", ""), smallest)
+
+
+def test_each_model_shows_its_engine_gap_figure(report: Path) -> None:
+    text = report.read_text(encoding="utf-8")
+    sections = text.split('<section class="model"')[1:]
+    assert sections and all("gap between the engines" in s for s in sections)
