@@ -12,6 +12,7 @@ from koenig_check.arguments import POSE_KINDS, check_compare_arguments, keywords
 from koenig_check.diagnosis import policy, reason
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.engines.registry import check_engines
+from koenig_check.exceptions import one_line
 from koenig_check.run import pipeline, poses, summaries
 from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.labels import unique_labels
@@ -458,18 +459,3 @@ def load_options_from(base: LoadOptions | None, overrides: dict[str, Any]) -> Lo
         warnings.warn(ALLOW_COUPLED_DEPRECATION, DeprecationWarning, stacklevel=3)
         options = replace(options, allow_coupled=False)
     return options
-
-
-def one_line(err: BaseException) -> str:
-    """A one-line description of an exception (its type when it has no message).
-
-    Parameters
-    ----------
-    err : BaseException
-
-    Returns
-    -------
-    str
-    """
-    text = " ".join(str(err).split())
-    return text or type(err).__name__

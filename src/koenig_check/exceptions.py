@@ -49,6 +49,7 @@ __all__ = [
     "PathDependentError",
     "PoseFileError",
     "RecordFileError",
+    "one_line",
 ]
 
 
@@ -215,3 +216,20 @@ class NotPlaneParallelError(KoenigCheckError, ValueError):
 
 class PathDependentError(KoenigCheckError):
     """Raised when a formula's energy depends on the path, not on the state ``(q, q̇)``."""
+
+
+def one_line(err: BaseException) -> str:
+    """A one-line description of an exception: its message with every run of white space made one space.
+
+    Engines' messages span lines (MuJoCo's parser, Pinocchio's C++ source locations); a reason is one line.
+    An exception without a message gives its type's name.
+
+    Parameters
+    ----------
+    err : BaseException
+
+    Returns
+    -------
+    str
+    """
+    return " ".join(str(err).split()) or type(err).__name__

@@ -15,6 +15,7 @@ import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
 from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
+from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
 
@@ -115,7 +116,7 @@ def _verdicts(
         try:
             energies = {name: e.kinetic_energy(qpos, qvel) for name, e in model.engines.items()}
         except ValueError as err:  # an engine produced an invalid state: name the file
-            raise ValueError(f"{model.path}: {' '.join(str(err).split())}") from err
+            raise ValueError(f"{model.path}: {one_line(err)}") from err
         if not include_armature:
             energies = {n: _RigidOnly(k.rigid) for n, k in energies.items()}
         out += three_way.energy_verdicts(energies, findings, rtol)

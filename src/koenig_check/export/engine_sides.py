@@ -11,6 +11,7 @@ import mujoco
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.adapter import MujocoEngine
 from koenig_check.engines.mujoco.loader import load_mujoco, root_free_joint
+from koenig_check.exceptions import one_line
 from koenig_check.sources.catalogue import resolve_model
 
 #: The engines a proof compares, in report order.
@@ -36,10 +37,6 @@ class EngineSide:
     mj_model: mujoco.MjModel
     adapters: dict[str, Any] = field(default_factory=dict)
     refused: dict[str, str] = field(default_factory=dict)
-
-
-def _one_line(err: BaseException) -> str:
-    return " ".join(str(err).split()) or type(err).__name__
 
 
 def load_side(
@@ -83,7 +80,7 @@ def load_side(
             state_map = build_state_map(mj_model, pin_model, str(source.path))
             side.adapters["pinocchio"] = PinocchioEngine(pin_model, state_map, source.path, pin_findings)
         except Exception as err:  # an engine's refusal is a result, not a crash
-            side.refused["pinocchio"] = _one_line(err)
+            side.refused["pinocchio"] = one_line(err)
     if "drake" in engines:
         from koenig_check.engines.drake.loader import drake_available
 
@@ -95,5 +92,5 @@ def load_side(
 
                 side.adapters["drake"] = load_drake_engine(source, mj_model)
             except Exception as err:
-                side.refused["drake"] = _one_line(err)
+                side.refused["drake"] = one_line(err)
     return side

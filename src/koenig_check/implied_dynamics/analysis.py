@@ -27,7 +27,7 @@ from koenig_check.arguments import suggest_keywords
 from koenig_check.engines import ModelPair, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
-from koenig_check.exceptions import KoenigCheckError
+from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.findings import Finding, Kind
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
 from koenig_check.implied_dynamics.drake_column import add_drake_column
@@ -243,7 +243,7 @@ def dynamics_of_pair(
             if isinstance(err, ValueError) and not isinstance(err, KoenigCheckError) and name != "point_masses":
                 raise  # only point_masses refuses by ValueError (a non-physical inertia has no point set)
             result.routes = {k: v for k, v in result.routes.items() if k[0] != name}
-            result.refusals[name] = " ".join(str(err).split())
+            result.refusals[name] = one_line(err)
             continue
         if name == "exact":
             result.routes[(name, "kane@mujoco")] = RouteResult(*kane_mujoco(pair.mujoco, qpos, qvel, qacc))

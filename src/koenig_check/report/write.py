@@ -180,8 +180,9 @@ def write_report(
         )
         energies = _energies(check, k, records)
         if energies is not None and len(energies.energy) > 1:
-            path = engine_gap_figure(comp.model, energies, out / name.replace("error_distribution", "engine_gap", 1),
-                                     check.rtol, caption)
+            path = engine_gap_figure(
+                comp.model, energies, out / name.replace("error_distribution", "engine_gap", 1), check.rtol, caption
+            )
             figures[k].append(
                 (path, f"{comp.model}: gap between the engines' rigid-body energies at each pose. {caption}.")
             )

@@ -22,6 +22,7 @@ import numpy as np
 
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.registry import REQUIRED as ENGINES
+from koenig_check.exceptions import one_line
 from koenig_check.run.chunks import ChunkResult, evaluate_chunk, formula_names
 from koenig_check.run.comparison import ModelComparison, finish_comparison
 from koenig_check.run.engine_runs import EngineRun, run_engine
@@ -188,7 +189,7 @@ def run_chunk(task: ChunkTask) -> ChunkResult:
         try:
             runs = {name: run_engine(engine, poses) for name, engine in engines.items()}
         except ValueError as err:  # an engine produced an invalid state: name the file
-            raise ValueError(f"{model.path}: {' '.join(str(err).split())}") from err
+            raise ValueError(f"{model.path}: {one_line(err)}") from err
     _check_finite(model.path, runs, poses)
     return evaluate_chunk(
         task.label, poses, runs, task.formulas, task.records, task.rtol, task.index, task.planar_normals

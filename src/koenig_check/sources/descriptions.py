@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from types import ModuleType
 
+from koenig_check.exceptions import one_line
 from koenig_check.sources.errors import ModelSourceError, missing_extra
 
 PREFIX = "rd:"
@@ -100,7 +101,7 @@ def description_module(model: str) -> ModuleType:
     try:
         return importlib.import_module(f"robot_descriptions.{name}")
     except Exception as err:  # a clone that cannot happen (no network, no git): one line, what to set
-        reason = " ".join(str(err).split()) or type(err).__name__
+        reason = one_line(err)
         raise ModelSourceError(
             f"{model}: robot_descriptions cannot provide {name} here ({reason}); {CLONE_HINT}"
         ) from None

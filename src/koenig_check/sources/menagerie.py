@@ -15,6 +15,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
+from koenig_check.exceptions import one_line
 from koenig_check.sources.errors import ModelSourceError, missing_extra
 
 PREFIX = "menagerie:"
@@ -122,7 +123,7 @@ def menagerie_file(model: str) -> Path:
         cache = mm.Cache()
         directory = cache.resolve(robot, mm.print_progress)
     except (mm.MenagerieError, OSError) as err:
-        reason = " ".join(str(err).split()) or type(err).__name__
+        reason = one_line(err)
         raise ModelSourceError(
             f"{model}: Menagerie robot {robot.name!r} is not available here ({reason}); {CACHE_HINT}"
         ) from None

@@ -16,6 +16,7 @@ import tempfile
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 
+from koenig_check.exceptions import one_line
 from koenig_check.sources.errors import missing_extra
 
 
@@ -102,7 +103,7 @@ def expand_xacro(
         doc = XacroDoc.from_file(path, walk_up=False, subargs=values, resolve_packages=True)
         text = doc.to_urdf_string(use_protocols=True)
     except Exception as err:  # xacro's own reason (undefined arg, unknown package, bad XML), one line
-        reason = " ".join(str(err).split()) or type(err).__name__
+        reason = one_line(err)
         raise ModelLoadError(f"{name}: xacro cannot expand {path.name}: {reason}") from None
     return _write(path, values, text)
 

@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from koenig_check.engines.load_options import LoadOptions
+from koenig_check.exceptions import one_line
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -97,7 +98,7 @@ def read_models(pyproject: Path) -> list[ModelEntry | ProjectConfigError]:
     try:
         data = tomllib.loads(pyproject.read_text(encoding="utf-8"))
     except (OSError, tomllib.TOMLDecodeError) as err:
-        raise ProjectConfigError(f"{pyproject}: {' '.join(str(err).split())}") from None
+        raise ProjectConfigError(f"{pyproject}: {one_line(err)}") from None
     table = data.get("tool", {}).get(TABLE)
     if not isinstance(table, Mapping) or "models" not in table:
         raise ProjectConfigError(f"{pyproject}: no [tool.{TABLE}] models = [...] to check")

@@ -9,6 +9,7 @@ import numpy as np
 
 from koenig_check.engines.base import Engine
 from koenig_check.engines.registry import not_used
+from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding, Kind
 
 
@@ -35,9 +36,9 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
     try:
         engine = load_drake_engine(model.source, model.mujoco.model)
     except DrakeLoadError as err:
-        return None, [not_used("drake", " ".join(str(err).split()))]
+        return None, [not_used("drake", one_line(err))]
     except ImportError as err:  # installed but not importable
-        return None, [not_used("drake", f"pydrake cannot be imported: {' '.join(str(err).split())}")]
+        return None, [not_used("drake", f"pydrake cannot be imported: {one_line(err)}")]
     return engine, list(engine.findings) + armature_findings(model, engine) + _file_causes(model)
 
 
