@@ -49,7 +49,6 @@ __all__ = [
     "PathDependentError",
     "PoseFileError",
     "RecordFileError",
-    "one_line",
 ]
 
 
