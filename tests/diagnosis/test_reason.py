@@ -103,3 +103,25 @@ def test_a_twin_written_at_six_digits_gets_the_rounding_hint(twin: Path, capsys:
     err = capsys.readouterr().err
     assert "--rtol 1e-06 accepts it" in err and all(len(x) <= 200 for x in err.splitlines())
     assert main([*argv, "--rtol", "1e-6"]) == 0
+
+
+def test_a_check_not_made_closes_the_line_after_the_root_cause() -> None:
+    summary = "geom mass from a class not applied"
+    root = Finding(Kind.MASS, "pinocchio", "geom pole", summary, affects_energy=True, root_cause=True)
+    drake = "Drake asked for (--engines) but it could not check the model: " + "an engine's long reason " * 12
+    unable = Finding(Kind.ENGINE_UNABLE, "drake", "model", drake.strip())
+    line = short_reason("hand.xml", [unable, root], "MuJoCo and Pinocchio differ by 3 relative (pose random-1)")
+    assert line.startswith("hand.xml: root cause: geom pole: geom mass from a class not applied")
+    assert line.endswith(drake.strip())  # the engine's own reason, whole, last
+
+
+def test_the_helper_reports_a_file_it_cannot_load_in_one_line() -> None:
+    with pytest.raises(AssertionError) as info:
+        assert_energy_parity("no_such_robot.xml")
+    assert str(info.value).startswith("no_such_robot.xml: no such file") and "\n" not in str(info.value)
+    assert info.value.__cause__ is None and info.value.__suppress_context__  # no library frames chained
+
+
+def test_a_dynamics_result_has_a_short_repr() -> None:
+    text = repr(koenig_check.dynamics("gimbal.xml", n_poses=1, formulas=["exact"]))
+    assert text.startswith("<DynamicsResult ") and "ok=True" in text and len(text) < 200

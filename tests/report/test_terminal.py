@@ -9,6 +9,7 @@ import pytest
 
 import koenig_check
 from koenig_check.demo import run_demo
+from koenig_check.engines.registry import installed
 from koenig_check.report.terminal import WIDTH, terminal_table
 from koenig_check.roundoff import ROUNDOFF, fmt, shown
 
@@ -121,7 +122,6 @@ def test_the_former_name_and_module_give_the_same_table() -> None:
 
 
 def _drake_installed() -> bool:
-    from koenig_check.engines.registry import installed
 
     return installed("drake")
 
@@ -196,3 +196,17 @@ def test_every_line_compare_prints_on_stdout_fits_200_characters(tmp_path: Path,
     out = capsys.readouterr().out
     assert status == 1 and "DISAGREE" in out
     assert max(len(line) for line in out.splitlines()) <= 200
+
+
+@pytest.mark.skipif(
+    not __import__("koenig_check.engines.registry").engines.registry.installed("drake"),
+    reason="Drake (extra [drake]) not installed",
+)
+def test_a_model_failed_by_a_departing_engine_is_not_agree_on_its_row(capsys) -> None:
+    """The row says what the exit status says: Drake departs on armature_chain (its parser reads no armature)."""
+    from koenig_check.cli import main
+
+    argv = ["compare", "armature_chain", "--poses", "2", "--formulas", "exact", "--engines", "mujoco,pinocchio,drake"]
+    assert main(argv) == 1
+    row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("armature_chain"))
+    assert row.split()[1] == "DISAGREE" and "Drake departs" in row

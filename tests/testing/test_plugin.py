@@ -180,7 +180,7 @@ def test_inline_options_reach_the_loader_missing_drake_skips_dynamics_checked_ba
     assert calls["dynamics"] == [["arm.xml", {"seed": 2, "repair_inertia": True}]]
     result.stdout.fnmatch_lines(["*arm.xml#2: koenig-check dynamics would exit 1: exact: M off by 1e-3*"])
     # a bad entry fails alone, naming the key
-    result.stdout.fnmatch_lines(["*models[[]3[]]*unknown key(s) ?'rtl'?*"])
+    result.stdout.fnmatch_lines(["*models[[]3[]]*unknown key(s) ?'rtl'?; did you mean rtol?*"])
 
 
 def test_report_directory_that_is_a_file_is_a_usage_error(pytester):

@@ -116,8 +116,8 @@ def _departures(findings: Sequence[Finding]) -> str:
 def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: int = 3) -> str:
     """Why a model fails, in one sentence of at most :data:`REASON_WIDTH` characters.
 
-    The check asked for and not made (with the engine's own reason) or the engine that departs first, then
-    at most ``limit`` root causes, the most important first, and how many more, then the engines' gap;
+    The engine that departs first, then at most ``limit`` root causes, the most important first, and how many
+    more, then the engines' gap, and last a check asked for and not made, with the engine's own reason whole;
     ``koenig-check parity``, ``summary.md`` and the report hold the details.  To fit, the gap loses its pose,
     then the gap goes (the verdict table shows it), then causes after the first go ("and N more"), and last the
     first cause is cut at a word ("…").
@@ -135,8 +135,8 @@ def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     -------
     str
     """
-    unmade = [f.message() for f in findings if f.kind is Kind.ENGINE_UNABLE]  # the engine's whole reason
-    head = "; ".join(t for t in (*unmade, _departures(findings)) if t)
+    unmade = "; ".join(f.message() for f in findings if f.kind is Kind.ENGINE_UNABLE)  # the engine's whole reason
+    head = _departures(findings)
     causes = [short_cause(f) for f in ordered_causes(findings)]
     gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
     if head or causes:  # the gap may go when something else says why (the verdict table shows it)
@@ -147,9 +147,16 @@ def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
             said = "; ".join(causes[:n]) + (f" and {len(causes) - n} more" if len(causes) > n else "")
             parts = [head, f"root cause: {said}" if n else "", g]
             text = f"{label}: " + "; ".join(t for t in parts if t)
-            if len(text) <= REASON_WIDTH or unmade:  # an engine's refusal is given whole
-                return text
-    return text[: REASON_WIDTH - 1].rsplit(" ", 1)[0] + "…"  # one long cause: cut at a word, the report has it
+            if len(text) <= REASON_WIDTH:
+                return _closed(text, unmade)
+    return _closed(text[: REASON_WIDTH - 1].rsplit(" ", 1)[0] + "…", unmade)  # one long cause cut at a word
+
+
+def _closed(text: str, unmade: str) -> str:
+    """A reason closed by the check asked for and not made, with the engine's own reason whole."""
+    if not unmade:
+        return text
+    return f"{text}{'' if text.endswith(': ') else '; '}{unmade}"
 
 
 def rounding_hint(max_relative: float, rtol: float) -> str:

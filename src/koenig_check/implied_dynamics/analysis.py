@@ -108,6 +108,12 @@ class DynamicsResult:
     notes: list[str] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
 
+    def __repr__(self) -> str:
+        return (
+            f"<DynamicsResult {self.model} ok={self.ok} poses={len(self.qpos)} dofs={len(self.dof_names)} "
+            f"formulas={len(self.formulas)} refused={len(self.refusals)}>"
+        )
+
     @property
     def formulas(self) -> list[str]:
         """Formulas evaluated or refused, in order."""

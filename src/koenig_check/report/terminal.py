@@ -179,8 +179,12 @@ def terminal_table(check: CrossCheck) -> str:
             f"{'model':{mw}s}  {'verdict':8s}  {'engine gap':>10s}  {'exact vs own':>12s}  root cause",
         ]
     tiebreak = False
-    for p, gap in zip(check.parities, gaps, strict=True):
-        status = "agree" if p.agrees else "DISAGREE"
+    from koenig_check.diagnosis.reason import lead_line
+
+    for p, gap, comparison in zip(check.parities, gaps, check.comparisons, strict=True):
+        # The row says what the exit status says: an engine that departs, or a check asked for and not made,
+        # fails the model even where MuJoCo and Pinocchio agree.
+        status = "agree" if p.agrees and not lead_line(comparison.findings) else "DISAGREE"
         exact = max(p.exact_vs_engine.values(), default=0.0)
         if drake:
             shown_gap = "—" if gap is None else _number(gap[0]) + ("" if gap[1] else "*")

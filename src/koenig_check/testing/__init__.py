@@ -16,6 +16,7 @@ from koenig_check.api import load_options_from
 from koenig_check.arguments import suggest_keywords
 from koenig_check.diagnosis import policy
 from koenig_check.engines.load_options import LoadOptions
+from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.formulas import FORMULAS
 from koenig_check.run.stats import DEFAULT_RTOL, relative_error
 
@@ -79,7 +80,10 @@ def assert_energy_parity(
     given = locals()
     options = load_options_from(load_options, {n: given[n] for n in LoadOptions.names() if given[n] is not None})
     check_engines(options.engines)
-    pair = load_model(model, options)
+    try:
+        pair = load_model(model, options)
+    except KoenigCheckError as refused:  # the file's own problem in one line, no frame of the library below
+        raise AssertionError(one_line(refused)) from None
     for name in policy.asked_for(options.engines):  # named engines are compared on every pose
         pair.attach(name)
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)

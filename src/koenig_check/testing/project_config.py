@@ -15,6 +15,7 @@ any of: a load option (``floating``, ``balance_inertia``, ``repair_inertia``, ``
 
 from __future__ import annotations
 
+import difflib
 import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -121,7 +122,10 @@ def _entry(raw: Any, base: Path) -> ModelEntry:
         raise ProjectConfigError("expected a string or an inline table with `model`")
     unknown = sorted(set(raw) - set(RUN_KEYS) - set(LoadOptions.names()))
     if unknown:
-        raise ProjectConfigError(f"unknown key(s) {unknown}; keys are {[*RUN_KEYS, *LoadOptions.names()]}")
+        keys = [*RUN_KEYS, *LoadOptions.names()]
+        close = [m for k in unknown for m in difflib.get_close_matches(k, keys, n=1)]
+        hint = f"; did you mean {', '.join(close)}?" if close else ""
+        raise ProjectConfigError(f"unknown key(s) {unknown}{hint} (keys are {keys})")
     if not isinstance(raw.get("model"), str) or not raw["model"]:
         raise ProjectConfigError("`model` must be a non-empty string")
     load = {k: v for k, v in raw.items() if k in LoadOptions.names()}
