@@ -15,10 +15,12 @@ import pytest
 
 import koenig_check
 from independent_energy import engines_agree
-from koenig_check.diagnosis.import_parity import compiler_findings, format_parity, import_parity
+from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.reason import short_cause
 from koenig_check.engines import load_model
 from koenig_check.findings import Finding, Kind, KoenigCheckError
+from koenig_check.modelfile.compiler import compiler_findings
+from koenig_check.report.parity_table import format_parity
 
 CAUSES = Path(__file__).resolve().parent / "models" / "causes"
 

@@ -8,8 +8,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from koenig_check.diagnosis.import_parity import compiler_findings, format_parity, import_parity
+from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.engines import load_model
+from koenig_check.modelfile.compiler import compiler_findings
+from koenig_check.report.parity_table import format_parity
 
 MODELS = Path(__file__).resolve().parents[2] / "models"
 PROJECT_FILES = sorted(p.name for p in MODELS.glob("*.xml")) + sorted(p.name for p in MODELS.glob("*.urdf"))

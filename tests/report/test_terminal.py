@@ -80,8 +80,9 @@ def test_exact_formulas_print_zero_in_the_verdict(demo_table: str) -> None:
 
 @pytest.mark.parametrize("model", ["serial7.urdf", "ur5"])
 def test_parity_report_prints_armature_round_off_as_zero(model: str) -> None:
-    from koenig_check.diagnosis.import_parity import format_parity, import_parity
+    from koenig_check.diagnosis.import_parity import import_parity
     from koenig_check.engines import load_model
+    from koenig_check.report.parity_table import format_parity
 
     report = import_parity(load_model(model))
     raw = [a for d in report.dofs for a in d.armature]

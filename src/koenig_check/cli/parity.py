@@ -38,11 +38,11 @@ def add(sub: argparse._SubParsersAction) -> None:
 
 def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.diagnosis.diagnose import diagnose
-    from koenig_check.diagnosis.import_parity import format_parity
     from koenig_check.diagnosis.policy import asked_for
     from koenig_check.diagnosis.reason import ROUNDING_LEVEL, lead_line, short_reason
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
+    from koenig_check.report.parity_table import format_parity
     from koenig_check.run.labels import unique_labels
 
     options = load_options_of(args)

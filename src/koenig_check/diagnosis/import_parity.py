@@ -17,7 +17,6 @@ segments are compared after it is removed.
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -28,8 +27,7 @@ from koenig_check.diagnosis.pair_causes import model_causes
 from koenig_check.diagnosis.root_frame import FrameOffset
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.findings import Finding, Kind
-from koenig_check.modelfile.validate import parse_xml
-from koenig_check.roundoff import ROUNDOFF, shown
+from koenig_check.modelfile.compiler import compiler_findings
 from koenig_check.segments import SegmentStates
 
 #: Default relative tolerance of parity comparisons.
@@ -133,6 +131,9 @@ class ParityReport:
     massless_in_pinocchio, massless_in_mujoco : list of str
         Segments with mass in one engine and none in the other.
     total_mass : tuple of float
+        The moving mass (the segments': bodies welded to the world are not counted), MuJoCo and Pinocchio.
+    model_mass : float
+        The mass of every body, static ones included (Pinocchio's, which keeps the links welded to the world).
     findings : list of str
         Model-level findings (compiler options, inertia from geometry, load notes).
     causes : list of Finding
@@ -148,6 +149,7 @@ class ParityReport:
     only_in_mujoco: list[str] = field(default_factory=list)
     only_in_pinocchio: list[str] = field(default_factory=list)
     total_mass: tuple[float, float] = (0.0, 0.0)
+    model_mass: float = 0.0
     findings: list[str] = field(default_factory=list)
     mass_matrix_max_rel: float = 0.0
     rtol: float = PARITY_RTOL
@@ -363,72 +365,6 @@ def _rigid_mass_matrix(states: SegmentStates) -> np.ndarray:
     return np.einsum("b,ibk,jbk->ij", states.mass, Jv, Jv) + np.einsum("ibk,bkl,jbl->ij", Jw, I_world, Jw)
 
 
-def compiler_findings(path: Path, mj_model: Any = None) -> list[str]:
-    """Compiler options and inertial gaps in an MJCF file that make the engines import it differently.
-
-    Parameters
-    ----------
-    path : Path
-    mj_model : mujoco.MjModel, optional
-        The compiled model: geom types are read from it (MuJoCo's resolution of default classes and
-        ``childclass``).  Without it, only types written on the geoms are known.
-
-    Returns
-    -------
-    list of str
-    """
-    try:
-        root = parse_xml(path).getroot()
-    except (ET.ParseError, OSError):
-        return []
-    if root.tag != "mujoco":
-        return []
-    out = []
-    for comp in root.iter("compiler"):
-        for attr in (
-            "settotalmass",
-            "boundmass",
-            "boundinertia",
-            "balanceinertia",
-            "inertiafromgeom",
-            "inertiagrouprange",
-        ):
-            value = comp.get(attr)
-            if value is None:
-                continue
-            if attr == "settotalmass" and float(value) > 0:
-                out.append(
-                    f"compiler settotalmass={value}: MuJoCo rescales every mass and inertia to this total; "
-                    "check whether Pinocchio's MJCF parser does the same (total masses below)"
-                )
-            elif attr in ("boundmass", "boundinertia") and float(value) > 0:
-                out.append(f"compiler {attr}={value}: MuJoCo raises smaller masses/inertias to this bound")
-            elif attr == "balanceinertia" and value == "true":
-                out.append("compiler balanceinertia=true: MuJoCo alters inertias that violate A + B >= C")
-            elif attr == "inertiafromgeom" and value == "true":
-                out.append("compiler inertiafromgeom=true: MuJoCo computes every body's inertia from its geoms")
-    for body in root.iter("body"):
-        if body.find("inertial") is None and body.find("geom") is not None:
-            kinds = _geom_types(body, mj_model)
-            out.append(
-                f"body {body.get('name', '?')!r} has no <inertial>: its inertia comes from geoms of type "
-                f"{kinds}; a parser that ignores a geom type (e.g. mesh) gets a different inertia"
-            )
-    return out
-
-
-def _geom_types(body: ET.Element, mj_model: Any) -> list[str]:
-    """Types of a body's geoms as MuJoCo resolved them (classes included), else as written."""
-    import mujoco
-
-    b = -1 if mj_model is None else mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_BODY, body.get("name", ""))
-    if b < 0:
-        return sorted({g.get("type", "default class") for g in body.findall("geom")})
-    adr, num = int(mj_model.body_geomadr[b]), int(mj_model.body_geomnum[b])
-    types = mj_model.geom_type[adr : adr + num]
-    return sorted({mujoco.mjtGeom(int(t)).name.removeprefix("mjGEOM_").lower() for t in types})
-
-
 def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, seed: int = 0) -> ParityReport:
     """Compare what MuJoCo and Pinocchio imported from the same model.
 
@@ -459,6 +395,9 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     sa = _unit_rate_states(mj, qpos0, nv)
     sb = _in_mujoco_world(_unit_rate_states(pn, qpos0, nv), offset)
     report.total_mass = (float(sa.mass.sum()), float(sb.mass.sum()))
+    # Pinocchio lumps the links welded to the world into its universe joint: its sum is the file's whole mass
+    # (MuJoCo's compiler may have fused them away: fusestatic).
+    report.model_mass = float(sum(Y.mass for Y in pn.model.inertias))
     names_a, names_b = list(sa.names), list(sb.names)
     massless = {c.engine: set(c.segments) for c in report.causes if c.kind is Kind.SEGMENTS}
     report.massless_in_pinocchio = [n for n in names_a if n not in names_b and n in massless.get("pinocchio", ())]
@@ -524,65 +463,3 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
 def _pair_notes(pair: Any) -> list[str]:
     """The pair's load notes as lines (plain strings or typed findings)."""
     return [n if isinstance(n, str) else n.message() for n in getattr(pair, "notes", [])]
-
-
-def format_parity(report: ParityReport) -> str:
-    """Render a parity report for the terminal.
-
-    Parameters
-    ----------
-    report : ParityReport
-
-    Returns
-    -------
-    str
-    """
-    lines = [f"Import parity of {report.model} (relative tolerance {report.rtol:g})"]
-    if report.causes:
-        lines.append("\nroot causes:")
-        for c in report.causes:
-            effect = "changes the kinetic energy" if c.affects_energy else "no effect on the kinetic energy"
-            lines.append(f"  - [{c.kind.value}, {effect}] {c.message()}")
-        lines.append("")
-    lines += [
-        f"total mass: MuJoCo {report.total_mass[0]:.9g} kg, Pinocchio {report.total_mass[1]:.9g} kg; "
-        f"mass matrices differ by at most {report.mass_matrix_max_rel:.2e} relative",
-        "",
-        f"{'segment':28s} {'mass MuJoCo':>13s} {'mass Pin.':>13s} {'|ΔCOM| m':>10s} {'|ΔI|_F':>10s} "
-        f"{'|Δanchor| m':>11s}  principal moments MuJoCo / Pinocchio   verdict",
-    ]
-    for s in report.segments:
-        pm = (
-            " ".join(f"{v:.4g}" for v in s.principal_moments[0])
-            + " / "
-            + " ".join(f"{v:.4g}" for v in s.principal_moments[1])
-        )
-        verdict = "same" if not s.causes else "DIFFERS: " + ", ".join(s.causes)
-        lines.append(
-            f"{s.name[:28]:28s} {s.mass[0]:13.6g} {s.mass[1]:13.6g} {s.com_distance:10.2e} "
-            f"{s.inertia_frobenius:10.2e} {s.pole_distance:11.2e}  {pm:38s} {verdict}"
-        )
-    lines += [
-        "",
-        f"{'dof':24s} {'armature MuJoCo':>16s} {'armature Pin.':>14s} {'|ΔJacobian|':>12s}  verdict",
-    ]
-    for d in report.dofs:
-        verdict = "same" if not d.causes else "DIFFERS: " + ", ".join(d.causes)
-        lines.append(
-            f"{d.joint[:24]:24s} {shown(d.armature[0]):16.6g} {shown(d.armature[1]):14.6g} "
-            f"{d.jacobian_difference:12.2e}  {verdict}"
-        )
-    lines.append(f"(armature values below {ROUNDOFF:g} kg m² are rounding, printed as 0)")
-    if report.only_in_mujoco:
-        lines.append(f"\nsegments only in MuJoCo: {report.only_in_mujoco}")
-    if report.only_in_pinocchio:
-        lines.append(f"segments only in Pinocchio: {report.only_in_pinocchio}")
-    if report.massless_in_pinocchio:
-        lines.append(f"segments massless in Pinocchio: {report.massless_in_pinocchio}")
-    if report.massless_in_mujoco:
-        lines.append(f"segments massless in MuJoCo: {report.massless_in_mujoco}")
-    if report.findings:
-        lines.append("\nfindings:")
-        lines += [f"  - {f}" for f in report.findings]
-    lines.append("\nverdict: " + ("no import difference" if report.clean else report.headline()))
-    return "\n".join(lines)

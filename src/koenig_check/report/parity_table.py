@@ -1,0 +1,69 @@
+"""The import parity report for the terminal: root causes, then one row per segment and per dof."""
+
+from __future__ import annotations
+
+from koenig_check.diagnosis.import_parity import ParityReport
+from koenig_check.roundoff import ROUNDOFF, shown
+
+
+def format_parity(report: ParityReport) -> str:
+    """Render a parity report for the terminal.
+
+    Parameters
+    ----------
+    report : ParityReport
+
+    Returns
+    -------
+    str
+    """
+    lines = [f"Import parity of {report.model} (relative tolerance {report.rtol:g})"]
+    if report.causes:
+        lines.append("\nroot causes:")
+        for c in report.causes:
+            effect = "changes the kinetic energy" if c.affects_energy else "no effect on the kinetic energy"
+            lines.append(f"  - [{c.kind.value}, {effect}] {c.message()}")
+        lines.append("")
+    lines += [
+        f"moving mass: MuJoCo {report.total_mass[0]:.9g} kg, Pinocchio {report.total_mass[1]:.9g} kg "
+        f"(the whole model in Pinocchio: {report.model_mass:.9g} kg, static bodies included)",
+        f"mass matrices differ by at most {report.mass_matrix_max_rel:.2e} relative",
+        "",
+        f"{'segment':28s} {'mass MuJoCo':>13s} {'mass Pin.':>13s} {'|ΔCOM| m':>10s} {'|ΔI|_F':>10s} "
+        f"{'|Δanchor| m':>11s}  principal moments MuJoCo / Pinocchio   verdict",
+    ]
+    for s in report.segments:
+        pm = (
+            " ".join(f"{v:.4g}" for v in s.principal_moments[0])
+            + " / "
+            + " ".join(f"{v:.4g}" for v in s.principal_moments[1])
+        )
+        verdict = "same" if not s.causes else "DIFFERS: " + ", ".join(s.causes)
+        lines.append(
+            f"{s.name[:28]:28s} {s.mass[0]:13.6g} {s.mass[1]:13.6g} {s.com_distance:10.2e} "
+            f"{s.inertia_frobenius:10.2e} {s.pole_distance:11.2e}  {pm:38s} {verdict}"
+        )
+    lines += [
+        "",
+        f"{'dof':24s} {'armature MuJoCo':>16s} {'armature Pin.':>14s} {'|ΔJacobian|':>12s}  verdict",
+    ]
+    for d in report.dofs:
+        verdict = "same" if not d.causes else "DIFFERS: " + ", ".join(d.causes)
+        lines.append(
+            f"{d.joint[:24]:24s} {shown(d.armature[0]):16.6g} {shown(d.armature[1]):14.6g} "
+            f"{d.jacobian_difference:12.2e}  {verdict}"
+        )
+    lines.append(f"(armature values below {ROUNDOFF:g} kg m² are rounding, printed as 0)")
+    if report.only_in_mujoco:
+        lines.append(f"\nsegments only in MuJoCo: {report.only_in_mujoco}")
+    if report.only_in_pinocchio:
+        lines.append(f"segments only in Pinocchio: {report.only_in_pinocchio}")
+    if report.massless_in_pinocchio:
+        lines.append(f"segments massless in Pinocchio: {report.massless_in_pinocchio}")
+    if report.massless_in_mujoco:
+        lines.append(f"segments massless in MuJoCo: {report.massless_in_mujoco}")
+    if report.findings:
+        lines.append("\nfindings:")
+        lines += [f"  - {f}" for f in report.findings]
+    lines.append("\nverdict: " + ("no import difference" if report.clean else report.headline()))
+    return "\n".join(lines)
