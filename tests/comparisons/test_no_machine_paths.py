@@ -9,6 +9,8 @@ from common import display_name, dm_control_corpus, erd_corpus, project_corpus, 
 
 COMPARISONS = Path(__file__).resolve().parents[2] / "comparisons"
 OUTPUTS = sorted(p for p in COMPARISONS.iterdir() if p.suffix in (".md", ".json"))
+#: The documents that quote outputs: the README and the developer notes.
+DOCUMENTS = [COMPARISONS.parent / "README.md", *sorted((COMPARISONS.parent / "docs").glob("*.md"))]
 FORBIDDEN = ("/tmp/", "/home/", "/root/", "/work/", "site-packages/")
 
 
@@ -17,7 +19,7 @@ def test_outputs_are_found() -> None:
     assert {"paper_claims.md", "engine_parity.md", "inertia_forces.md", "README.md"} <= names
 
 
-@pytest.mark.parametrize("path", OUTPUTS, ids=[p.name for p in OUTPUTS])
+@pytest.mark.parametrize("path", OUTPUTS + DOCUMENTS, ids=[p.name for p in OUTPUTS + DOCUMENTS])
 def test_no_absolute_path_in_committed_output(path: Path) -> None:
     text = path.read_text(encoding="utf-8")
     found = [f for f in FORBIDDEN if f in text]
