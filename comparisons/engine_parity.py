@@ -97,7 +97,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     from koenig_check.diagnosis.import_parity import import_parity
     from koenig_check.diagnosis.reason import disagreement_cause
     from koenig_check.engines import load_model
-    from koenig_check.engines.drake.adapter import load_drake_engine
+    from koenig_check.engines.drake.building import load_drake_engine
     from koenig_check.engines.drake.loader import drake_available
     from koenig_check.engines.errors import InertiaError
     from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint

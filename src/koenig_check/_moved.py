@@ -23,7 +23,6 @@ MOVED: dict[str, str] = {
     "koenig_check.engines.pinocchio_engine": "koenig_check.engines.pinocchio.adapter",
     "koenig_check.engines.pinocchio_loader": "koenig_check.engines.pinocchio.loader",
     "koenig_check.engines.state_map": "koenig_check.engines.pinocchio.state_map",
-    "koenig_check.engines.drake_engine": "koenig_check.engines.drake.adapter",
     "koenig_check.engines.drake_loader": "koenig_check.engines.drake.loader",
     "koenig_check.engines.drake_state_map": "koenig_check.engines.drake.state_map",
     "koenig_check.engines.drake_inertia": "koenig_check.engines.drake.inertia",
@@ -49,6 +48,7 @@ MOVED: dict[str, str] = {
 
 #: Old module name -> the modules it was split into.
 SPLIT: dict[str, tuple[str, ...]] = {
+    "koenig_check.engines.drake_engine": ("koenig_check.engines.drake.adapter", "koenig_check.engines.drake.building"),
     "koenig_check.causes": (
         "koenig_check.diagnosis.pair_causes",
         "koenig_check.diagnosis.root_frame",

@@ -120,7 +120,7 @@ def test_cli_engines_option_on_compare_and_parity(capsys: pytest.CaptureFixture[
 )
 def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str) -> None:
     from koenig_check.engines import load_model
-    from koenig_check.engines.drake.adapter import load_drake_engine
+    from koenig_check.engines.drake.building import load_drake_engine
     from koenig_check.engines.drake.loader import DrakeLoadError
 
     pair = load_model(model, check=False)

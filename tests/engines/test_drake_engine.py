@@ -11,7 +11,8 @@ from koenig_check.engines import ModelPair, load_model, random_states
 
 pytest.importorskip("pydrake", reason="Drake (the optional extra [drake]) is not installed: its tests are skipped")
 
-from koenig_check.engines.drake.adapter import DrakeEngine, load_drake_engine
+from koenig_check.engines.drake.adapter import DrakeEngine
+from koenig_check.engines.drake.building import load_drake_engine
 
 RTOL = 1e-12
 #: (model, floating): project models in both formats and example-robot-data robots, fixed and floating.

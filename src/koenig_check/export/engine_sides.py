@@ -88,7 +88,7 @@ def load_side(
             side.refused["drake"] = "Drake is not installed (extra [drake])"
         else:
             try:
-                from koenig_check.engines.drake.adapter import load_drake_engine
+                from koenig_check.engines.drake.building import load_drake_engine
 
                 side.adapters["drake"] = load_drake_engine(source, mj_model)
             except Exception as err:

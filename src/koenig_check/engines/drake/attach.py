@@ -28,7 +28,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         Drake's load findings, the armature Drake's parser does not read and the ``<frame>`` elements it
         skips; or one ``ENGINE_NOT_USED`` finding with Drake's whole reason on one line.
     """
-    from koenig_check.engines.drake.adapter import load_drake_engine
+    from koenig_check.engines.drake.building import load_drake_engine
     from koenig_check.engines.drake.loader import DrakeLoadError
 
     if model.options.pinocchio_model is not None:
