@@ -30,14 +30,14 @@ import numpy as np
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
 from koenig_check.engines.mujoco.inertia_repair import Repair, repair_body
+from koenig_check.engines.mujoco.meshes import drop_mesh, fix_meshes, inertia_only
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import check_physical_inertia
-from koenig_check.sources.catalogue import ModelSource, resolve_uri
+from koenig_check.sources.catalogue import ModelSource
 
 #: Name given to the free joint added for a floating base, in both engines (Pinocchio's default).
 ROOT_JOINT_NAME = "root_joint"
 #: Mesh formats MuJoCo 4.0 has no decoder for ("no decoder found for mesh file").
-UNDECODABLE_MESH_SUFFIXES = frozenset({".dae"})
 _ELEMENT = re.compile(r"Element name '([^']*)'")
 #: Compilations tried per body under repair (the balance margin grows tenfold each time).
 MAX_REPAIR_TRIES = 3
@@ -84,59 +84,6 @@ def _spec_inertia(body: mujoco.MjsBody) -> np.ndarray:
 
 def _moments(inertia: np.ndarray) -> str:
     return ", ".join(f"{v:.6g}" for v in np.linalg.eigvalsh(0.5 * (inertia + inertia.T)))
-
-
-def _drop_mesh(spec: mujoco.MjSpec, mesh: mujoco.MjsMesh) -> list[str]:
-    """Delete a mesh and the geoms using it; return the names of the bodies that lost a geom."""
-    bodies = []
-    for geom in list(spec.geoms):
-        if geom.meshname == mesh.name:
-            parent = geom.parent
-            bodies.append(parent.name if parent is not None else "")
-            spec.delete(geom)
-    spec.delete(mesh)
-    return bodies
-
-
-def _fix_meshes(spec: mujoco.MjSpec, source: ModelSource, notes: list[Finding]) -> None:
-    meshdir = spec.compiler.meshdir or spec.meshdir or ""
-    base = source.path.parent / meshdir
-    dropped: dict[str, list[str]] = {}
-    losers: dict[str, list[str]] = {}
-    rewritten = False
-    for mesh in list(spec.meshes):
-        if not mesh.file:
-            continue
-        resolved = resolve_uri(mesh.file, base, source.package_dirs)
-        if resolved is None:
-            reason = "missing file"
-        elif resolved.suffix.lower() in UNDECODABLE_MESH_SUFFIXES:
-            reason = f"no MuJoCo decoder for {resolved.suffix}"
-        else:
-            if str(resolved) != mesh.file:
-                mesh.file = str(resolved)
-                rewritten = True
-            continue
-        dropped.setdefault(reason, []).append(mesh.file)
-        losers.setdefault(reason, []).extend(_drop_mesh(spec, mesh))
-    if rewritten:
-        spec.strippath = False
-    for reason, names in dropped.items():
-        notes.append(_inertia_only(spec, reason, names, losers[reason]))
-
-
-def _inertia_only(spec: mujoco.MjSpec, reason: str, files: list[str], bodies: list[str]) -> Finding:
-    """A LOAD finding for meshes dropped with their geoms; it changes the energy where a body has no <inertial>."""
-    explicit = {b.name: bool(b.explicitinertial) for b in spec.bodies}
-    from_geoms = sorted({b for b in bodies if not explicit.get(b, True)})
-    return Finding(
-        Kind.LOAD,
-        "mujoco",
-        "mesh " + ", ".join(Path(f).name for f in files[:5]) + (f" (+{len(files) - 5})" if len(files) > 5 else ""),
-        f"inertia-only: {len(files)} mesh file(s) dropped with their geoms ({reason})",
-        {"files": files, "bodies without <inertial>": from_geoms},
-        affects_energy=bool(from_geoms),
-    )
 
 
 def _prepend_free_joint_to_keys(spec: mujoco.MjSpec, top: mujoco.MjsBody) -> None:
@@ -240,7 +187,7 @@ def _compile(
                 refused.append(mesh.name)
                 reasons.append(message)
                 files.append(mesh.file)
-                losers += _drop_mesh(spec, mesh)
+                losers += drop_mesh(spec, mesh)
                 continue
             if "inertia" in message or "mass" in message:
                 body = spec.body(element) if element else None
@@ -263,7 +210,7 @@ def _compile(
             where = f" at element {element!r}" if element else ""
             raise ModelLoadError(f"{source.path}: MuJoCo cannot compile the model{where}: {message}") from exc
         if refused:
-            notes.append(_inertia_only(spec, "MuJoCo refused to compile them: " + "; ".join(reasons), files, losers))
+            notes.append(inertia_only(spec, "MuJoCo refused to compile them: " + "; ".join(reasons), files, losers))
         return model, refused, [(n, _repair_finding(r, m, what)) for n, (r, m) in repairs.items()]
 
 
@@ -287,7 +234,7 @@ def _balance_findings(
         spec_before.compiler.fusestatic = False
         for mesh in list(spec_before.meshes):
             if mesh.name in refused:
-                _drop_mesh(spec_before, mesh)
+                drop_mesh(spec_before, mesh)
         compiled = spec_before.compile()
     what = "link" if source.format == "urdf" else "body"
     out = []
@@ -390,7 +337,7 @@ def _load(
             raise InertiaError(f"{path}: {what} {name!r}: non-finite mass or inertia in the file (NaN or inf)")
         if mass < 0:
             raise InertiaError(f"{path}: {what} {name!r}: mass {mass:g} kg is negative")
-    _fix_meshes(spec, source, notes)
+    fix_meshes(spec, source, notes)
     if floating:
         tops = list(spec.worldbody.bodies)
         joints = list(tops[0].joints) if len(tops) == 1 else []
