@@ -30,7 +30,7 @@ parser gives them (``"<body>Joint_<k>"``, ``"<body>_free"``); anything left unpa
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import overload
 
 import mujoco
@@ -38,160 +38,12 @@ import numpy as np
 import pinocchio as pin
 from scipy.spatial.transform import Rotation
 
-from koenig_check.engines.canonical import VelocityMapped, mujoco_joint_names
-from koenig_check.engines.errors import JointMismatch
+from koenig_check.engines.canonical import VelocityMapped
+from koenig_check.engines.pinocchio.joint_pairing import JointPair, match_joints
 from koenig_check.findings import Finding, Kind
 
-_MJ_KIND = {
-    mujoco.mjtJoint.mjJNT_FREE: "free",
-    mujoco.mjtJoint.mjJNT_BALL: "ball",
-    mujoco.mjtJoint.mjJNT_SLIDE: "slide",
-    mujoco.mjtJoint.mjJNT_HINGE: "hinge",
-}
-_PIN_KIND = {
-    "JointModelFreeFlyer": "free",
-    "JointModelSpherical": "ball",
-    "JointModelRX": "revolute",
-    "JointModelRY": "revolute",
-    "JointModelRZ": "revolute",
-    "JointModelRevoluteUnaligned": "revolute",
-    "JointModelRUBX": "unbounded",
-    "JointModelRUBY": "unbounded",
-    "JointModelRUBZ": "unbounded",
-    "JointModelRevoluteUnboundedUnaligned": "unbounded",
-    "JointModelPX": "prismatic",
-    "JointModelPY": "prismatic",
-    "JointModelPZ": "prismatic",
-    "JointModelPrismaticUnaligned": "prismatic",
-}
-_COMPATIBLE = {"free": {"free"}, "ball": {"ball"}, "hinge": {"revolute", "unbounded"}, "slide": {"prismatic"}}
-_COMPOSITE_PREFIX = "Composite_"
 #: Rotation mismatch (max abs entry) under which two engines' relative rotations are "equal".
 _ROTATION_ATOL = 1e-9
-
-
-@dataclass(frozen=True)
-class JointPair:
-    """One MuJoCo joint and the Pinocchio (sub-)joint it maps to.
-
-    Parameters
-    ----------
-    name : str
-        Canonical (MuJoCo) joint name.
-    kind : str
-        MuJoCo type: ``"free"``, ``"ball"``, ``"hinge"`` or ``"slide"``.
-    pin_kind : str
-        ``"free"``, ``"ball"``, ``"revolute"``, ``"unbounded"`` (cos, sin) or ``"prismatic"``.
-    body : str
-        MuJoCo body carrying the joint.
-    qadr, vadr : int
-        Canonical position/velocity addresses.
-    pin_joint : int
-        Pinocchio joint index (the composite's index for a sub-joint).
-    pin_sub : int
-        Position inside a composite joint, ``-1`` for a plain joint.
-    pin_qadr, pin_vadr : int
-        Pinocchio position/velocity addresses.
-    q_offset : float
-        ``q_pin = q_canonical - q_offset`` (hinge/slide only).
-    """
-
-    name: str
-    kind: str
-    pin_kind: str
-    body: str
-    qadr: int
-    vadr: int
-    pin_joint: int
-    pin_sub: int
-    pin_qadr: int
-    pin_vadr: int
-    q_offset: float = 0.0
-
-
-def _pin_leaves(model: pin.Model, i: int) -> list[tuple[int, pin.JointModel]]:
-    """Return ``[(sub_index, joint_model)]`` of a Pinocchio joint (one entry unless composite)."""
-    joint = model.joints[i]
-    if joint.shortname() == "JointModelComposite":
-        return list(enumerate(joint.extract().joints))
-    return [(-1, joint)]
-
-
-def match_joints(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = "<model>") -> list[JointPair]:
-    """Pair every MuJoCo joint with a Pinocchio (sub-)joint by name.
-
-    Parameters
-    ----------
-    mj_model : mujoco.MjModel
-    pin_model : pinocchio.Model
-    path : str
-        File name for error messages.
-
-    Returns
-    -------
-    list of JointPair
-        In canonical (MuJoCo) order.
-
-    Raises
-    ------
-    JointMismatch
-        Listing the joints found in only one engine and those whose types are incompatible.
-    """
-    names = mujoco_joint_names(mj_model)
-    index = {n: j for j, n in enumerate(names)}
-    for j in range(mj_model.njnt):
-        # Pinocchio names an unnamed <freejoint/> "<body>_free" but an unnamed <joint type="free"/>
-        # "<body>Joint_<k>"; MuJoCo's compiled model keeps no trace of which one the file wrote.
-        if not mj_model.joint(j).name and mj_model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE:
-            body = int(mj_model.jnt_bodyid[j])
-            bname = mj_model.body(body).name or f"body{body}"
-            index.setdefault(f"{bname}Joint_{j - int(mj_model.body_jntadr[body])}", j)
-    pairs: dict[int, JointPair] = {}
-    only_pin: list[str] = []
-    kind_mismatch: list[str] = []
-    seen: set[int] = set()
-    for i in range(1, pin_model.njoints):
-        pname = pin_model.names[i]
-        leaves = _pin_leaves(pin_model, i)
-        if leaves[0][0] >= 0:  # composite: sub-joints follow the first joint's body in order
-            first = pname[len(_COMPOSITE_PREFIX) :] if pname.startswith(_COMPOSITE_PREFIX) else pname
-            if first not in index:
-                only_pin.append(pname)
-                continue
-            body = int(mj_model.jnt_bodyid[index[first]])
-            start, count = int(mj_model.body_jntadr[body]), int(mj_model.body_jntnum[body])
-            if index[first] != start or count != len(leaves):
-                only_pin.append(pname)
-                continue
-            targets = list(range(start, start + count))
-        else:
-            if pname not in index:
-                only_pin.append(pname)
-                continue
-            targets = [index[pname]]
-        for (sub, leaf), j in zip(leaves, targets, strict=True):
-            seen.add(j)
-            kind = _MJ_KIND[mujoco.mjtJoint(mj_model.jnt_type[j])]
-            pin_kind = _PIN_KIND.get(leaf.shortname(), leaf.shortname())
-            if pin_kind not in _COMPATIBLE[kind]:
-                kind_mismatch.append(f"{names[j]}: mujoco {kind} vs pinocchio {leaf.shortname()}")
-                continue
-            pairs[j] = JointPair(
-                name=names[j],
-                kind=kind,
-                pin_kind=pin_kind,
-                body=mj_model.body(int(mj_model.jnt_bodyid[j])).name,
-                qadr=int(mj_model.jnt_qposadr[j]),
-                vadr=int(mj_model.jnt_dofadr[j]),
-                pin_joint=i,
-                pin_sub=sub,
-                pin_qadr=int(leaf.idx_q),
-                pin_vadr=int(leaf.idx_v),
-            )
-    only_mj = [names[j] for j in range(mj_model.njnt) if j not in seen]
-    if only_mj or only_pin or kind_mismatch:
-        raise JointMismatch(path, only_mj, only_pin, kind_mismatch)
-    return [pairs[j] for j in range(mj_model.njnt)]
 
 
 class StateMap(VelocityMapped):
