@@ -150,3 +150,11 @@ def test_settotalmass_is_reported(tmp_path: Path) -> None:
         assert "mass" in s.causes and s.mass[0] / s.mass[1] == pytest.approx(5.0 / 2.6, rel=1e-9)
     assert any("same factor 1.92307692" in f for f in report.findings)
     assert np.isfinite(report.mass_matrix_max_rel)
+
+
+def test_segment_poses_that_differ_only_by_a_dropped_root_pose_say_so() -> None:
+    """Next to "no import difference", a pose difference reads as what it is: the root pose Pinocchio drops."""
+    report = import_parity(load_model(Path(__file__).resolve().parents[1] / "models" / "causes" / "posed_root.xml"))
+    assert report.clean
+    (line,) = [f for f in report.findings if "segment poses differ" in f]
+    assert line.endswith("the dropped root-body pose explains it (a constant transform, no effect on the energy)")

@@ -447,7 +447,9 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
         relative = {"axis": diff / (jac_scale * size), "armature": abs(arm_a[d] - arm_b[d]) / m_scale}
         causes = tuple(q for q, value in relative.items() if value > rtol)  # nan (segment missing) is no axis cause
         report.dofs.append(DofParity(d, joint, (float(arm_a[d]), float(arm_b[d])), diff, causes, relative))
-    report.findings = _pair_notes(pair) + compiler_findings(Path(str(mj.path)), mj_model)
+    report.findings = _pair_notes(pair, dropped_root=offset is not None) + compiler_findings(
+        Path(str(mj.path)), mj_model
+    )
     masses_a = A.mass
     masses_b = B.mass
     if len(common) > 1 and np.all(masses_b > 0):
@@ -460,6 +462,12 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     return report
 
 
-def _pair_notes(pair: Any) -> list[str]:
-    """The pair's load notes as lines (plain strings or typed findings)."""
-    return [n if isinstance(n, str) else n.message() for n in getattr(pair, "notes", [])]
+def _pair_notes(pair: Any, dropped_root: bool = False) -> list[str]:
+    """The pair's load findings as lines; segment poses that differ only by a dropped root pose say so."""
+    lines = []
+    for f in getattr(pair, "findings", []):
+        text = f.message()
+        if dropped_root and f.kind is Kind.FRAME and f.engine == "both":  # the world transform a root cause names
+            text += "; the dropped root-body pose explains it (a constant transform, no effect on the energy)"
+        lines.append(text)
+    return lines
