@@ -100,15 +100,8 @@ def assert_energy_parity(
     scale = np.maximum(np.abs(ea).sum(axis=1, keepdims=True), 1e-300)  # per pose: total energy
     err = np.abs(eb - ea) / scale
     p, b = np.unravel_index(int(np.argmax(err)), err.shape)
+    segment_off = bool(err[p, b] > rtol)
     problems: list[str] = []
-    worst_segment = None
-    if err[p, b] > rtol:
-        worst_segment = len(problems)
-        problems.append(
-            f"segment {sa.names[b]!r} at pose {poses.ids[p]}: MuJoCo {ea[p, b]:.9g} J, "
-            f"Pinocchio {eb[p, b]:.9g} J, "
-            f"difference {eb[p, b] - ea[p, b]:+.3g} J ({err[p, b]:.3g} of the pose's total energy)"
-        )
     ka = pair.mujoco.kinetic_energy(poses.qpos, poses.qvel)
     kb = pair.pinocchio.kinetic_energy(poses.qpos, poses.qvel)
     rel = np.abs(relative_error(kb.rigid, ka.rigid))
@@ -118,10 +111,12 @@ def assert_energy_parity(
             f"total rigid-body energy at pose {poses.ids[k]}: MuJoCo {ka.rigid[k]:.9g} J, "
             f"Pinocchio {kb.rigid[k]:.9g} J ({rel[k]:.3g} relative)"
         )
+    armature_off = False
     if include_armature:
         darm = np.abs(kb.armature - ka.armature)
         tot = np.maximum(np.abs(ka.rigid) + np.abs(ka.armature), 1e-300)
-        if (darm / tot).max() > rtol:
+        armature_off = bool((darm / tot).max() > rtol)
+        if armature_off:
             k = int(np.argmax(darm / tot))
             problems.append(
                 f"armature energy at pose {poses.ids[k]}: MuJoCo {ka.armature[k]:.9g} J, "
@@ -129,19 +124,23 @@ def assert_energy_parity(
             )
     diagnosis = diagnose(
         pair,
-        disagree=bool(problems),
+        disagree=segment_off or bool(problems),
         qpos=poses.qpos,
         qvel=poses.qvel,
         rtol=rtol,
         include_armature=include_armature,
     )
-    if worst_segment is not None and diagnosis.parity is not None:  # the segment as the user wrote it
+    if segment_off and diagnosis.parity is not None:  # the segment as the user wrote it, its link or body
         name = sa.names[b]
-        problems[worst_segment] = problems[worst_segment].replace(f"segment {name!r}", diagnosis.parity.label(name), 1)
         causes = diagnosis.parity.causes_for(name, above=ROUNDING_LEVEL)  # never a file's rounding
-        if causes:
-            problems[worst_segment] += f"; import parity: {', '.join(causes)} differ"
-    hint = rounding_hint(float(rel.max()), rtol) if len(problems) == 1 + (worst_segment is not None) else ""
+        problems.insert(
+            0,
+            f"{diagnosis.parity.label(name)} at pose {poses.ids[p]}: MuJoCo {ea[p, b]:.9g} J, "
+            f"Pinocchio {eb[p, b]:.9g} J, "
+            f"difference {eb[p, b] - ea[p, b]:+.3g} J ({err[p, b]:.3g} of the pose's total energy)"
+            + (f"; import parity: {', '.join(causes)} differ" if causes else ""),
+        )
+    hint = rounding_hint(float(rel.max()), rtol) if not armature_off else ""
     lead = lead_line(diagnosis.findings)
     if lead:
         problems.insert(0, lead)
