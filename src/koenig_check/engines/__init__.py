@@ -12,7 +12,7 @@ Public API
 ``list_models()``, ``resolve_model()``
     Names of the project's models and of every example-robot-data URDF.
 ``random_states(model, n, seed)``
-    Seeded random canonical states.
+    Seeded random canonical states: the package's one sampler (its distribution in ``sampling.py``).
 
 Layout: ``base.py`` (the :class:`Engine` interface), ``registry.py`` (names, optional engines),
 ``loading.py`` (:class:`LoadedModel`), ``canonical.py`` (canonical coordinates), one subpackage per engine
