@@ -42,7 +42,8 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         """Exit with status 2: the short usage line, then the error in one line."""
-        self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message} (see {self.prog} --help)\n")
+        see = "" if f"{self.prog} --help" in message else f" (see {self.prog} --help)"  # said once
+        self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message}{see}\n")
 
 
 def unrecognized(parser: argparse.ArgumentParser, extras: list[str]) -> str:
