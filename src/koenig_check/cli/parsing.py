@@ -42,8 +42,13 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         """Exit with status 2: the short usage line, then the error in one line."""
+        from koenig_check.report.line_width import LINE_LIMIT, elided_paths
+
+        line = f"{self.prog}: error: {message}"
         see = "" if f"{self.prog} --help" in message else f" (see {self.prog} --help)"  # said once
-        self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message}{see}\n")
+        if len(line + see) > LINE_LIMIT:  # one line: the help's pointer goes, then a long path's folders
+            line, see = elided_paths(line), ""
+        self.exit(2, f"{self.short_usage()}\n{line}{see}\n")
 
 
 def unrecognized(parser: argparse.ArgumentParser, extras: list[str]) -> str:

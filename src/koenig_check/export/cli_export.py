@@ -211,12 +211,12 @@ def run_export(
     except ExportRefusedError as err:
         print("\n".join(refused_lines(err, args.to)))
         return 1
-    print(f"wrote {result.path} ({result.target})")
+    print(fold_text(f"wrote {result.path} ({result.target})"))
     if result.not_carried:
         print("not carried:")
         for n in result.not_carried:
             print(fold_text(f"  - {n.message()}"))
     if result.floating_base:
-        print(f"load {result.path} with a floating base (--floating): the original's root joint is free")
+        print(fold_text(f"load {result.path} with a floating base (--floating): the original's root joint is free"))
     print_proof(result.proof)
     return 0 if result.equivalent else 1

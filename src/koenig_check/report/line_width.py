@@ -6,6 +6,7 @@ views and tables fold a long line at words onto indented continuation lines (:fu
 
 from __future__ import annotations
 
+import re
 import textwrap
 
 #: The longest line the command line prints (a single word longer than this, e.g. a path the user typed, is
@@ -25,14 +26,15 @@ def fold(line: str, width: int = LINE_LIMIT, indent: int = 4) -> list[str]:
     Returns
     -------
     list of str
-        ``[line]`` when it fits; words are never cut (a word longer than ``width`` stays whole on its line).
+        ``[line]`` when it fits; words are never cut (a word too long for its indented line is indented less, one
+        longer than ``width`` stays whole on a line of its own).
     """
     if len(line) <= width:
         return [line]
     text = line.lstrip(" ")
     lead = " " * (len(line) - len(text))
     more = " " * min(len(lead) + indent, width // 2)
-    return textwrap.wrap(
+    lines = textwrap.wrap(
         text,
         width=width,
         initial_indent=lead,
@@ -40,6 +42,15 @@ def fold(line: str, width: int = LINE_LIMIT, indent: int = 4) -> list[str]:
         break_long_words=False,
         break_on_hyphens=False,
     )
+    return [_unindented(line, width) for line in lines]
+
+
+def _unindented(line: str, width: int) -> str:
+    """A line holding one long word (a path): indented less, or not at all, so that it fits if it can."""
+    if len(line) <= width or " " in line.strip():
+        return line
+    word = line.strip()
+    return " " * max(width - len(word), 0) + word if len(word) < width else word
 
 
 def fold_text(text: str, width: int = LINE_LIMIT, indent: int = 4) -> str:
@@ -76,6 +87,30 @@ def hanging(cells: str, text: str, width: int = LINE_LIMIT) -> list[str]:
         return [cells + text]
     first, *rest = fold(" " * len(cells) + text, width, indent=0)
     return [cells + first[len(cells) :], *rest]
+
+
+def elided_paths(text: str, width: int = LINE_LIMIT) -> str:
+    """``text`` with its long paths shortened to ``…/parent/name``, longest first, until it fits ``width``.
+
+    For a one-line message that names a path the user typed and cannot fit it whole (the name and the folder
+    it is in stay).
+
+    Parameters
+    ----------
+    text : str
+    width : int
+
+    Returns
+    -------
+    str
+    """
+    paths = sorted(set(re.findall(r"/[^\s'\"]+/[^\s'\"]+/[^\s'\"]+", text)), key=len, reverse=True)
+    for path in paths:
+        if len(text) <= width:
+            break
+        parts = path.rstrip("/").split("/")
+        text = text.replace(path, "…/" + "/".join(parts[-2:]))
+    return text
 
 
 def cut(text: str, width: int) -> str:
