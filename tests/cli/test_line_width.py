@@ -116,8 +116,8 @@ def _dm_control(rel: str) -> str:
 
 
 #: Real files: (command line, its exit status).  cartpole and bolt disagree (bolt's feet: Drake departs),
-#: quadruped is refused by Pinocchio (height field), alex_psyonic_hands by MuJoCo (inertia), hopper and
-#: ball_in_cup cannot be written as URDF (several joints in one body).
+#: quadruped is refused by Pinocchio (height field), alex_psyonic_hands by MuJoCo (inertia), hopper,
+#: ball_in_cup and rodent (12 bodies) cannot be written as URDF (several joints in one body).
 REAL = {
     "cartpole compare": (["compare", "dm:suite/cartpole.xml", "--poses", "2", "--quiet"], 1),
     "cartpole parity": (["parity", "dm:suite/cartpole.xml"], 1),
@@ -125,6 +125,10 @@ REAL = {
     "quadruped parity": (["parity", "dm:suite/quadruped.xml"], 1),
     "hopper to urdf": (["export", "dm:suite/hopper.xml", "--to", "urdf", "--out", "OUT/hopper.urdf"], 1),
     "ball_in_cup to urdf": (["export", "dm:suite/ball_in_cup.xml", "--to", "urdf", "--out", "OUT/cup.urdf"], 1),
+    "rodent to urdf": (
+        ["export", "dm:locomotion/walkers/assets/rodent.xml", "--to", "urdf", "--out", "OUT/rodent.urdf"],
+        1,
+    ),
     "bolt parity": (["parity", "bolt"], 1),
     "bolt dynamics": (["dynamics", "bolt", "--poses", "2"], 1),
     "alex_psyonic_hands compare": (["compare", "alex_psyonic_hands", "--poses", "2", "--quiet"], 1),
