@@ -159,6 +159,13 @@ def test_models_and_selfcheck_fit(capfd: pytest.CaptureFixture[str]) -> None:
     assert assert_fits(capfd, "selfcheck")[0] == 0
 
 
+@pytest.mark.parametrize("command", ["compare", "parity", "models", "selfcheck", "dynamics", "export", "demo"])
+def test_help_fits_a_wide_terminal(command: str, monkeypatch: pytest.MonkeyPatch, capfd) -> None:
+    monkeypatch.setenv("COLUMNS", "400")  # argparse wraps at the terminal's width: at most 200 here too
+    status, out, _ = assert_fits(capfd, command, "--help")
+    assert status == 0 and out.startswith(f"usage: koenig-check {command}")
+
+
 USAGE = {
     "misspelt formula": ["compare", "gimbal.xml", "--formulas", "alyushin_pole:paper:eulerxyz"],
     "unknown formula": ["compare", "gimbal.xml", "--formulas", "koenig"],

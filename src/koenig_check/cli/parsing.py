@@ -120,8 +120,13 @@ def positive(text: str) -> int:
 
 
 def formatter(prog: str) -> argparse.HelpFormatter:
-    """The help formatter of every command: epilogs kept as written (examples, formula lists)."""
-    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32)
+    """The help formatter of every command: epilogs kept as written (examples, formula lists), lines within 200."""
+    import shutil
+
+    from koenig_check.report.line_width import LINE_LIMIT
+
+    width = min(shutil.get_terminal_size().columns - 2, LINE_LIMIT)
+    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32, width=width)
 
 
 def add_command(
