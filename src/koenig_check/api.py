@@ -437,7 +437,7 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
     model : str or path
         The model as the user gave it.
     label : str
-        Its label, which names the file (its resolved path is left out).
+        Its label, which names the file: the path as given is left out when the line would not fit with it.
 
     Returns
     -------
@@ -446,10 +446,15 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
     """
     from koenig_check.sources.shown_paths import as_given
 
-    def named(text: str) -> str:
-        return as_given(text, [model]).replace(f"{model}: ", "").replace(str(model), label)
+    def given(text: str) -> str:
+        return as_given(text, [model])
 
-    return f"{label}: {reason.short_error(err, reason.REASON_WIDTH - len(label) - 2, named)}"
+    def named(text: str) -> str:
+        return given(text).replace(f"{model}: ", "").replace(str(model), label)
+
+    width = reason.REASON_WIDTH - len(label) - 2
+    whole = reason.short_error(err, 10**6, given)
+    return f"{label}: {whole if len(whole) <= width else reason.short_error(err, width, named)}"
 
 
 #: The keywords of :func:`compare` passed on to :func:`compare_model` for every model.
