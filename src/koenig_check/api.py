@@ -453,7 +453,7 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
         return given(text).replace(f"{model}: ", "").replace(str(model), label)
 
     width = reason.REASON_WIDTH - len(label) - 2
-    whole = reason.short_error(err, 10**6, given)
+    whole = reason.short_error(err, 10**6, given).removeprefix(f"{label}: ")  # the file named once
     return f"{label}: {whole if len(whole) <= width else reason.short_error(err, width, named)}"
 
 
