@@ -38,7 +38,9 @@ class CrossCheck(ResultLookup):
     summaries : list of FormulaSummary
     parities : list of EngineParity
     failures : list of (str, str)
-        Models that could not be compared, with a one-line reason each.
+        Models that could not be compared, with a one-line reason each (the engine's whole reason).
+    failure_lines : dict of str to str
+        Per failed model, its reason in one sentence of at most 200 characters (:meth:`reasons`).
     rtol : float
     settings : dict
         Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
@@ -49,6 +51,7 @@ class CrossCheck(ResultLookup):
     summaries: list[FormulaSummary] = field(default_factory=list)
     parities: list[EngineParity] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
+    failure_lines: dict[str, str] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
     settings: dict[str, dict[str, Any]] = field(default_factory=dict)
 
@@ -88,16 +91,17 @@ class CrossCheck(ResultLookup):
     def reasons(self) -> list[str]:
         """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
 
-        A model that could not be checked gives its whole reason (the engine's own); a disagreeing model gives
-        the check asked for and not made or the engine that departs, the gap, and at most three root causes,
-        the most important first, within 200 characters (the details are in ``koenig-check parity``,
-        ``summary.md`` and the report).
+        A model that could not be checked gives its error and at most three root causes (:attr:`failure_lines`;
+        the engine's whole reason is in :attr:`failures`); a disagreeing model gives the check asked for and not
+        made or the engine that departs, the gap, and at most three root causes, the most important first,
+        within 200 characters (the details are in ``koenig-check parity``, ``summary.md`` and the report).
 
         Returns
         -------
         list of str
         """
-        parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in self.failures]  # once, not twice
+        lines = [(m, self.failure_lines.get(m, r)) for m, r in self.failures]
+        parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in lines]  # once, not twice
         for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
             lead = reason.lead_line(comparison.findings)
             if lead or not agreement.agrees:
@@ -418,9 +422,39 @@ def compare(
             if debug:
                 raise
             result.failures.append((label, one_line(err)))
+            result.failure_lines[label] = failure_line(err, model, label)
             continue
         result.add(comp)
     return result
+
+
+def failure_line(err: BaseException, model: Any, label: str) -> str:
+    """Why a model could not be compared, in one sentence of at most 200 characters with ``koenig-check: ``.
+
+    Parameters
+    ----------
+    err : BaseException
+    model : str or path
+        The model as the user gave it.
+    label : str
+        Its label, which names the file: the path as given is left out when the line would not fit with it.
+
+    Returns
+    -------
+    str
+        ``label: <error>; root cause: ...``.
+    """
+    from koenig_check.sources.shown_paths import as_given
+
+    def given(text: str) -> str:
+        return as_given(text, [model])
+
+    def named(text: str) -> str:
+        return given(text).replace(f"{model}: ", "").replace(str(model), label)
+
+    width = reason.REASON_WIDTH - len(label) - 2
+    whole = reason.short_error(err, 10**6, given).removeprefix(f"{label}: ")  # the file named once
+    return f"{label}: {whole if len(whole) <= width else reason.short_error(err, width, named)}"
 
 
 #: The keywords of :func:`compare` passed on to :func:`compare_model` for every model.

@@ -115,7 +115,12 @@ def _inertia_error(
     head += f"; {REPAIR_HINT}"
     if "A + B >= C" in message:
         head += " (or --balance-inertia, balance_inertia=True: MuJoCo's balanceinertia)"
-    return InertiaError(head)
+    error = InertiaError(head)
+    error.brief = (  # one line: the link, MuJoCo's reason, what loads it (the moments are in the message)
+        f"{source.path}: {what} {element!r}: MuJoCo rejects its inertia ({_refusal(message)}); "
+        "--repair-inertia loads it with the smallest change MuJoCo accepts"
+    )
+    return error
 
 
 #: What a refusal says would load the file.
