@@ -96,11 +96,12 @@ def _add_quiet(p: argparse.ArgumentParser) -> None:
 def _formulas_epilog() -> str:
     from koenig_check.arguments import POSE_KIND_HELP
     from koenig_check.formulas import FORMULAS
+    from koenig_check.report.line_width import hanging
 
     lines = ["formulas (--formulas NAME ...; the paper's equation numbers in brackets):"]
     lines += [f"  {name:30s} {f.equations}" for name, f in FORMULAS.items()]
     lines.append("pose kinds (--pose-kind):")
-    lines += [f"  {kind:11s} {text}" for kind, text in POSE_KIND_HELP.items()]
+    lines += [line for kind, text in POSE_KIND_HELP.items() for line in hanging(f"  {kind:11s} ", text)]
     return "\n".join(lines)
 
 
