@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from koenig_check.cli.parsing import add_command, load_options_of, tolerance
+from koenig_check.cli.parsing import add_command, check_models, load_options_of, tolerance
 from koenig_check.engines.load_options import add_load_arguments
 
 
@@ -46,6 +46,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.run.labels import unique_labels
 
     options = load_options_of(args)
+    check_models(args, [args.model, *([options.pinocchio_model] if options.pinocchio_model else [])])
     model = load_model(args.model, options)
     for name in asked_for(options.engines):
         model.attach(name)

@@ -79,6 +79,16 @@ def usage_error(args: argparse.Namespace, message: str) -> NoReturn:
     parser.error(message)
 
 
+def check_models(args: argparse.Namespace, models: list[str]) -> None:
+    """Refuse a model name that is neither a file nor a known model, before any work (exit status 2)."""
+    from koenig_check.sources.known_names import check_model_names
+
+    try:
+        check_model_names(models)
+    except ModelSourceError as err:
+        usage_error(args, str(err))
+
+
 def check_out(args: argparse.Namespace) -> None:
     """Refuse an unusable ``--out`` before any work."""
     from koenig_check.arguments import ArgumentValueError
