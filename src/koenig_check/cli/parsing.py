@@ -6,7 +6,7 @@ import argparse
 import difflib
 import sys
 from dataclasses import replace
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
@@ -79,7 +79,7 @@ def usage_error(args: argparse.Namespace, message: str) -> NoReturn:
     parser.error(message)
 
 
-def check_models(args: argparse.Namespace, models: list[str]) -> None:
+def check_models(args: argparse.Namespace, models: list[Any]) -> None:
     """Refuse a model name that is neither a file nor a known model, before any work (exit status 2)."""
     from koenig_check.sources.known_names import check_model_names
 

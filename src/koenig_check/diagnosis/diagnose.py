@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
+from koenig_check.diagnosis.engine_limits import limited_departures
 from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
@@ -97,7 +98,8 @@ def diagnose(
     verdicts: list[Finding] = []
     if len(model.engines) == 3:
         verdicts = _verdicts(model, parity.segment_labels, findings, qpos, qvel, rtol, include_armature)
-    unmade = policy.unmade_checks(optional, engines)
+    verdicts, unable = limited_departures(verdicts, findings, model.mujoco.model, policy.asked_for(engines))
+    unmade = unable + policy.unmade_checks(optional, engines)
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
 
 

@@ -137,7 +137,10 @@ def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     """
     unmade = "; ".join(f.message() for f in findings if f.kind is Kind.ENGINE_UNABLE)  # the engine's whole reason
     head = _departures(findings)
-    causes = [short_cause(f) for f in ordered_causes(findings)]
+    if unmade and not head and not gap:  # MuJoCo and Pinocchio agree: the check not made is the whole reason
+        return f"{label}: {unmade}"
+    unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
+    causes = [short_cause(f) for f in ordered_causes(findings) if f.engine not in unable]
     gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
     if head or causes:  # the gap may go when something else says why (the verdict table shows it)
         gaps.append("")

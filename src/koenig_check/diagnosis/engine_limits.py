@@ -1,0 +1,143 @@
+"""An optional engine (Drake) that departs through a known limit of its MJCF parser: not a disagreement.
+
+When MuJoCo and Pinocchio agree and Drake alone departs, and every cause of its departure is a construct its
+MJCF parser is known not to read, Drake did not check the model: it was given another robot.  The policy
+(:mod:`koenig_check.diagnosis.policy`) then decides:
+
+* Drake *named* by the user (``--engines mujoco,pinocchio,drake``): the check asked for was not made, so the
+  model fails, with an ``ENGINE_UNABLE`` finding saying exactly that ("Drake cannot check this model: its MJCF
+  parser ignores armature (joints: ...)"), never a verdict of the formulas or of the engines;
+* Drake consulted as tie-breaker only: the departure is not a verdict and never fails the model.
+
+The limits are read from the model's data: a Drake ``ANCHOR`` finding on a joint of a body with several
+joints (Drake's parser drops the body's ``pos`` for the first of them, which moves them all), a Drake
+``ARMATURE`` finding where Drake has none and MuJoCo has some, a Drake ``IGNORED_CONSTRUCT`` (a ``<frame>``,
+an ``<include>``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from koenig_check.engines.registry import LABEL
+from koenig_check.findings import Finding, Kind
+
+#: What an engine's MJCF parser does, by the kind of the finding that shows it.
+LIMITS = {
+    Kind.ANCHOR: "drops the body's pos for the joints of a body with several joints",
+    Kind.ARMATURE: "ignores armature",
+}
+
+
+def _of_several(mj_model: Any, joint: str) -> bool:
+    """Whether ``joint`` is one of several joints of a MuJoCo body."""
+    import mujoco
+
+    k = mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_JOINT, joint)
+    if k < 0:
+        return False
+    body = int(mj_model.jnt_bodyid[k])
+    return int(mj_model.body_jntnum[body]) > 1
+
+
+def _drake_has_none(finding: Finding) -> bool:
+    values = finding.values
+    if finding.engine not in values or "mujoco" not in values:
+        return False
+    return bool(np.all(np.asarray(values[finding.engine], dtype=float) == 0)) and bool(
+        np.any(np.asarray(values["mujoco"], dtype=float) != 0)
+    )
+
+
+def parser_limit(finding: Finding, mj_model: Any) -> str | None:
+    """What a finding shows the engine's MJCF parser does not read, or ``None`` when it is not a known limit.
+
+    Parameters
+    ----------
+    finding : Finding
+        A finding of an optional engine.
+    mj_model : mujoco.MjModel
+        MuJoCo's compiled model (the reference reading of the file).
+
+    Returns
+    -------
+    str or None
+        E.g. ``"ignores armature"``.
+    """
+    name = finding.element.split(" ", 1)[-1]
+    if finding.kind is Kind.ANCHOR and finding.element.startswith("joint ") and _of_several(mj_model, name):
+        return LIMITS[Kind.ANCHOR]
+    if finding.kind is Kind.ARMATURE and _drake_has_none(finding):
+        return LIMITS[Kind.ARMATURE]
+    if finding.kind is Kind.IGNORED_CONSTRUCT:
+        return f"ignores {finding.element.split(' ', 1)[0]}"
+    return None
+
+
+def limited_departures(
+    verdicts: Sequence[Finding], findings: Sequence[Finding], mj_model: Any, asked: Sequence[str]
+) -> tuple[list[Finding], list[Finding]]:
+    """Split off the verdicts in which an optional engine departs only through known limits of its parser.
+
+    Parameters
+    ----------
+    verdicts : sequence of Finding
+        The three-engine verdicts (``VERDICT``: the engine named departs, the other two agree).
+    findings : sequence of Finding
+        The model's findings (the optional engine's own among them).
+    mj_model : mujoco.MjModel
+    asked : sequence of str
+        The optional engines the user named (:func:`koenig_check.diagnosis.policy.asked_for`).
+
+    Returns
+    -------
+    (list of Finding, list of Finding)
+        The verdicts kept, and one ``ENGINE_UNABLE`` finding per named engine whose departure is a parser
+        limit (an engine only consulted gets none: its departure is dropped from the verdicts).
+    """
+    kept: list[Finding] = []
+    unable: dict[str, Finding] = {}
+    for verdict in verdicts:
+        engine = verdict.engine
+        own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
+        limits = [(f, parser_limit(f, mj_model)) for f in own]
+        if engine not in LABEL or engine in ("mujoco", "pinocchio") or not own or any(w is None for _, w in limits):
+            kept.append(verdict)
+            continue
+        if engine in asked and engine not in unable:
+            unable[engine] = unable_finding(engine, limits)
+    return kept, list(unable.values())
+
+
+def unable_finding(engine: str, limits: Sequence[tuple[Finding, str | None]]) -> Finding:
+    """The ``ENGINE_UNABLE`` finding of an engine whose parser does not read what the model uses.
+
+    Parameters
+    ----------
+    engine : str
+    limits : sequence of (Finding, str)
+        Each finding of the engine with the limit it shows.
+
+    Returns
+    -------
+    Finding
+        ``"Drake cannot check this model: its MJCF parser ignores armature (joints: a, b)"``.
+    """
+    by_limit: dict[str, list[str]] = {}
+    for finding, limit in limits:
+        by_limit.setdefault(str(limit), []).append(finding.element.split(" ", 1)[-1])
+    parts = []
+    for limit, names in by_limit.items():
+        shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more" if len(names) > 4 else "")
+        parts.append(f"{limit} ({'joints' if limit in LIMITS.values() else 'elements'}: {shown})")
+    return Finding(
+        Kind.ENGINE_UNABLE,
+        engine,
+        "model",
+        f"{LABEL[engine]} cannot check this model: its MJCF parser " + "; ".join(parts),
+        segments=tuple(name for names in by_limit.values() for name in names),
+        hint="check the model without it (--engines mujoco,pinocchio)",
+    )

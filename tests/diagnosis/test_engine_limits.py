@@ -1,0 +1,53 @@
+"""Drake departing through a known limit of its MJCF parser: the check not made when named, no verdict when consulted.
+
+The model is a body with two hinges placed off the body frame: Drake 1.51's MJCF parser drops the body's pos for
+the first one (Drake turns it about another point), while MuJoCo and Pinocchio read the file alike.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import koenig_check
+from koenig_check.diagnosis.diagnose import diagnose
+from koenig_check.engines import load_model
+from koenig_check.findings import Kind
+from koenig_check.run.poses import random_pose_range
+
+pytest.importorskip("pydrake")
+
+MODEL = Path(__file__).resolve().parents[1] / "models" / "parser_limits" / "joints_with_pos_in_one_body.xml"
+NAMED = ["mujoco", "pinocchio", "drake"]
+
+
+def test_mujoco_and_pinocchio_agree_and_drake_gets_another_robot() -> None:
+    """The premise, from the engines' own energies: Drake's energy differs, MuJoCo's and Pinocchio's do not."""
+    model = load_model(MODEL, engines=NAMED)
+    model.attach("drake")
+    poses = random_pose_range(model.mujoco.model, 0, 8, 0, 1.0)
+    energy = {name: e.kinetic_energy(poses.qpos, poses.qvel).rigid for name, e in model.engines.items()}
+    np.testing.assert_allclose(energy["pinocchio"], energy["mujoco"], rtol=1e-12)
+    assert np.max(np.abs(energy["drake"] - energy["mujoco"]) / energy["mujoco"]) > 1e-3
+
+
+def test_drake_named_fails_the_model_saying_it_could_not_check_it() -> None:
+    check = koenig_check.compare(MODEL, n_poses=8, engines=NAMED)
+    findings = check.comparisons[0].findings
+    assert not check.ok and not [f for f in findings if f.kind is Kind.VERDICT]
+    (unable,) = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
+    assert unable.engine == "drake" and unable.segments == ("arm_x",)
+    assert unable.summary.startswith("Drake cannot check this model: its MJCF parser drops the body's pos")
+    (reason,) = check.reasons()
+    assert "Drake cannot check this model" in reason and "departs" not in reason and "root cause" not in reason
+
+
+def test_drake_consulted_as_tie_breaker_never_fails_an_agreeing_model() -> None:
+    model = load_model(MODEL)
+    poses = random_pose_range(model.mujoco.model, 0, 8, 0, 1.0)
+    diagnosis = diagnose(model, disagree=True, qpos=poses.qpos, qvel=poses.qvel)  # Drake consulted
+    assert "drake" in diagnosis.engines
+    assert not [f for f in diagnosis.findings if f.kind in (Kind.VERDICT, Kind.ENGINE_UNABLE)]
+    assert koenig_check.compare(MODEL, n_poses=8).ok
