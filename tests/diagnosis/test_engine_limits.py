@@ -51,3 +51,32 @@ def test_drake_consulted_as_tie_breaker_never_fails_an_agreeing_model() -> None:
     assert "drake" in diagnosis.engines
     assert not [f for f in diagnosis.findings if f.kind in (Kind.VERDICT, Kind.ENGINE_UNABLE)]
     assert koenig_check.compare(MODEL, n_poses=8).ok
+
+
+#: Files of the corpus Drake 1.51's MJCF parser reads as another robot, with what it does not read.
+LIMITED = [
+    (MODEL, "drops the body's pos for the joints of a body with several joints (joints: arm_x)"),
+    (
+        MODEL.parents[1] / "causes" / "class_joint_pos_explicit.xml",
+        "drops the body's pos for the joints of a body with several joints (joints: vertebra_1_extend)",
+    ),
+    (MODEL.parents[2] / "engines" / "models" / "hinge_armature.xml", "ignores armature (joints: spin)"),
+]
+
+
+@pytest.mark.parametrize(("path", "limit"), LIMITED, ids=lambda x: getattr(x, "name", "limit"))
+def test_a_parser_limit_is_said_exactly_when_drake_is_named(path: Path, limit: str) -> None:
+    check = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=NAMED)
+    assert not check.ok
+    (reason,) = check.reasons()
+    assert reason == (
+        f"{path.name}: drake: model: Drake cannot check this model: its MJCF parser {limit}; "
+        "check the model without it (--engines mujoco,pinocchio)"
+    )
+
+
+def test_drake_reading_more_than_the_others_still_departs() -> None:
+    """A URDF's rotor inertia, which Drake reads and MuJoCo's armature does not match, is not a parser limit."""
+    path = MODEL.parents[1] / "tiebreak" / "rotor_inertia.urdf"
+    check = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=NAMED)
+    assert check.reason().startswith("rotor_inertia.urdf: Drake departs")

@@ -52,8 +52,8 @@ def _drake_has_none(finding: Finding) -> bool:
     )
 
 
-def parser_limit(finding: Finding, mj_model: Any) -> str | None:
-    """What a finding shows the engine's MJCF parser does not read, or ``None`` when it is not a known limit.
+def parser_limit(finding: Finding, mj_model: Any) -> tuple[str, list[str]] | None:
+    """What a finding shows the engine's MJCF parser does not read, and the joints concerned; ``None`` otherwise.
 
     Parameters
     ----------
@@ -64,16 +64,20 @@ def parser_limit(finding: Finding, mj_model: Any) -> str | None:
 
     Returns
     -------
-    str or None
-        E.g. ``"ignores armature"``.
+    (str, list of str) or None
+        E.g. ``("ignores armature", ["spin"])``; for a construct that is not a joint's attribute (a
+        ``<frame>``), the element itself (``("ignores <frame>", ["frame f in body b"])``).
     """
-    name = finding.element.split(" ", 1)[-1]
-    if finding.kind is Kind.ANCHOR and finding.element.startswith("joint ") and _of_several(mj_model, name):
-        return LIMITS[Kind.ANCHOR]
+    tag, _, name = finding.element.partition(" ")
+    if finding.kind is Kind.ANCHOR and tag == "joint" and _of_several(mj_model, name):
+        return LIMITS[Kind.ANCHOR], [name]
     if finding.kind is Kind.ARMATURE and _drake_has_none(finding):
-        return LIMITS[Kind.ARMATURE]
+        return LIMITS[Kind.ARMATURE], [name]
     if finding.kind is Kind.IGNORED_CONSTRUCT:
-        return f"ignores {finding.element.split(' ', 1)[0]}"
+        joints = finding.values.get("joints")
+        if tag == "joint" and name and joints:  # an attribute of joints ("joint armature")
+            return f"ignores {name}", [str(j) for j in joints]
+        return f"ignores <{tag}>", [finding.element]
     return None
 
 
@@ -103,8 +107,9 @@ def limited_departures(
     for verdict in verdicts:
         engine = verdict.engine
         own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
-        limits = [(f, parser_limit(f, mj_model)) for f in own]
-        if engine not in LABEL or engine in ("mujoco", "pinocchio") or not own or any(w is None for _, w in limits):
+        read = [parser_limit(f, mj_model) for f in own]
+        limits = [r for r in read if r is not None]
+        if engine not in LABEL or engine in ("mujoco", "pinocchio") or not own or len(limits) < len(read):
             kept.append(verdict)
             continue
         if engine in asked and engine not in unable:
@@ -112,14 +117,14 @@ def limited_departures(
     return kept, list(unable.values())
 
 
-def unable_finding(engine: str, limits: Sequence[tuple[Finding, str | None]]) -> Finding:
+def unable_finding(engine: str, limits: Sequence[tuple[str, list[str]]]) -> Finding:
     """The ``ENGINE_UNABLE`` finding of an engine whose parser does not read what the model uses.
 
     Parameters
     ----------
     engine : str
-    limits : sequence of (Finding, str)
-        Each finding of the engine with the limit it shows.
+    limits : sequence of (str, list of str)
+        What the engine's parser does not read and the joints (or elements) concerned, per finding.
 
     Returns
     -------
@@ -127,12 +132,13 @@ def unable_finding(engine: str, limits: Sequence[tuple[Finding, str | None]]) ->
         ``"Drake cannot check this model: its MJCF parser ignores armature (joints: a, b)"``.
     """
     by_limit: dict[str, list[str]] = {}
-    for finding, limit in limits:
-        by_limit.setdefault(str(limit), []).append(finding.element.split(" ", 1)[-1])
+    for limit, names in limits:
+        known = by_limit.setdefault(limit, [])
+        known += [n for n in names if n not in known]
     parts = []
     for limit, names in by_limit.items():
         shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more" if len(names) > 4 else "")
-        parts.append(f"{limit} ({'joints' if limit in LIMITS.values() else 'elements'}: {shown})")
+        parts.append(f"{limit} ({'elements' if limit.startswith('ignores <') else 'joints'}: {shown})")
     return Finding(
         Kind.ENGINE_UNABLE,
         engine,
