@@ -80,3 +80,16 @@ def test_drake_reading_more_than_the_others_still_departs() -> None:
     path = MODEL.parents[1] / "tiebreak" / "rotor_inertia.urdf"
     check = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=NAMED)
     assert check.reason().startswith("rotor_inertia.urdf: Drake departs")
+
+
+def test_an_anchor_of_a_one_joint_body_is_no_parser_limit() -> None:
+    """Only joints of a body with several joints are misplaced by the parser; elsewhere an anchor is a departure."""
+    from koenig_check.diagnosis.engine_limits import parser_limit
+    from koenig_check.findings import Finding
+
+    def anchor(joint: str) -> Finding:
+        return Finding(Kind.ANCHOR, "drake", f"joint {joint}", "Drake turns the joint about another point", {})
+
+    several = load_model(MODEL).mujoco.model
+    assert parser_limit(anchor("arm_y"), several) is not None
+    assert parser_limit(anchor("base_z"), several) is None  # the only joint of its body
