@@ -93,3 +93,15 @@ def test_an_anchor_of_a_one_joint_body_is_no_parser_limit() -> None:
     several = load_model(MODEL).mujoco.model
     assert parser_limit(anchor("arm_y"), several) is not None
     assert parser_limit(anchor("base_z"), several) is None  # the only joint of its body
+
+
+def test_parity_with_drake_named_fails_the_same_way_and_shows_drake_after_the_table(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    from koenig_check.cli import main
+
+    assert main(["parity", str(MODEL), "--engines", "mujoco,pinocchio,drake"]) == 1
+    out, err = capsys.readouterr()
+    assert err.startswith(f"koenig-check: {MODEL.name}: drake: model: Drake cannot check this model: its MJCF parser")
+    assert out.startswith("Import parity of ")  # the title first; Drake's part (its parser's words) under it
+    assert out.index("The third engine (Drake)") < out.index("drake: joint arm_x: Drake turns the joint")

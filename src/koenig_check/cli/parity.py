@@ -53,12 +53,12 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     diagnosis = diagnose(model, rtol=args.rtol)
     report = diagnosis.parity
     assert report is not None
-    for f in diagnosis.findings:
-        if f.kind is Kind.VERDICT:
-            print(f"three engines: {f.message()}")
-        elif f in diagnosis.optional_findings:
-            print(f.message())
     print(format_parity(report))
+    third = [f"three engines: {f.message()}" for f in diagnosis.findings if f.kind is Kind.VERDICT]
+    third += [f.message() for f in diagnosis.findings if f in diagnosis.optional_findings]
+    if third:  # the optional engine's part, after MuJoCo's and Pinocchio's: its verdicts, its parser's words
+        print("\nThe third engine (Drake): verdicts and what its parser said")
+        print("\n".join(f"  {line}" for line in third))
     lead = lead_line(diagnosis.findings)
     if report.clean and not lead:
         return 0

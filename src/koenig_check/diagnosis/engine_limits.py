@@ -99,22 +99,29 @@ def limited_departures(
     Returns
     -------
     (list of Finding, list of Finding)
-        The verdicts kept, and one ``ENGINE_UNABLE`` finding per named engine whose departure is a parser
-        limit (an engine only consulted gets none: its departure is dropped from the verdicts).
+        The verdicts kept (an engine that departs only through limits of its parser is no verdict), and one
+        ``ENGINE_UNABLE`` finding per named engine whose parser does not read a construct the model uses
+        (whether or not it departs on the poses compared: ``parity`` compares none).
     """
     kept: list[Finding] = []
-    unable: dict[str, Finding] = {}
-    for verdict in verdicts:
-        engine = verdict.engine
-        own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
+    unable: list[Finding] = []
+    only_limits: set[str] = set()
+    for engine in dict.fromkeys(f.engine for f in findings):
+        if engine not in LABEL or engine in ("mujoco", "pinocchio"):
+            continue
+        own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind not in _NOT_READINGS]
         read = [parser_limit(f, mj_model) for f in own]
         limits = [r for r in read if r is not None]
-        if engine not in LABEL or engine in ("mujoco", "pinocchio") or not own or len(limits) < len(read):
-            kept.append(verdict)
-            continue
-        if engine in asked and engine not in unable:
-            unable[engine] = unable_finding(engine, limits)
-    return kept, list(unable.values())
+        if limits and engine in asked:  # named, and its parser does not read what the model uses
+            unable.append(unable_finding(engine, limits))
+        if own and len(limits) == len(read):
+            only_limits.add(engine)
+    kept = [v for v in verdicts if v.engine not in only_limits]
+    return kept, unable
+
+
+#: Findings that are not an engine's reading of the file.
+_NOT_READINGS = (Kind.VERDICT, Kind.ENGINE_UNABLE, Kind.ENGINE_NOT_USED)
 
 
 def unable_finding(engine: str, limits: Sequence[tuple[str, list[str]]]) -> Finding:
