@@ -27,7 +27,7 @@ from koenig_check.findings import Finding, Kind
 
 #: What an engine's MJCF parser does, by the kind of the finding that shows it.
 LIMITS = {
-    Kind.ANCHOR: "drops the body's pos for the joints of a body with several joints",
+    Kind.ANCHOR: "drops the pos of multi-joint bodies",
     Kind.ARMATURE: "ignores armature",
 }
 
@@ -144,7 +144,7 @@ def unable_finding(engine: str, limits: Sequence[tuple[str, list[str]]]) -> Find
         known += [n for n in names if n not in known]
     parts = []
     for limit, names in by_limit.items():
-        shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more" if len(names) > 4 else "")
+        shown = ", ".join(names[:2]) + (f" and {len(names) - 2} more" if len(names) > 2 else "")
         parts.append(f"{limit} ({'elements' if limit.startswith('ignores <') else 'joints'}: {shown})")
     return Finding(
         Kind.ENGINE_UNABLE,
@@ -152,5 +152,5 @@ def unable_finding(engine: str, limits: Sequence[tuple[str, list[str]]]) -> Find
         "model",
         f"{LABEL[engine]} cannot check this model: its MJCF parser " + "; ".join(parts),
         segments=tuple(name for names in by_limit.values() for name in names),
-        hint="check the model without it (--engines mujoco,pinocchio)",
+        hint="without Drake: --engines mujoco,pinocchio",
     )

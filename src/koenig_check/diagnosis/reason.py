@@ -141,7 +141,8 @@ def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     unmade = "; ".join(f.message() for f in findings if f.kind is Kind.ENGINE_UNABLE)  # the engine's whole reason
     head = _departures(findings)
     if unmade and not head and not gap:  # MuJoCo and Pinocchio agree: the check not made is the whole reason
-        return f"{label}: {unmade}"
+        alone = [f"{f.summary}; {f.hint}" if f.hint else f.summary for f in findings if f.kind is Kind.ENGINE_UNABLE]
+        return f"{label}: " + "; ".join(alone)  # the summary names the engine: no "drake: model:" before it
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
     causes = [short_cause(f) for f in ordered_causes(findings) if f.engine not in unable]
     gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
