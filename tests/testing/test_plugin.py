@@ -59,7 +59,8 @@ def load_model(model, options=None, **kwargs):
 
 
 def compare(models, **kwargs):
-    _record("compare", [pathlib.Path(str(models)).name, kwargs.get("rtol"), kwargs.get("n_poses"), kwargs.get("seed")])
+    model = next(iter(models.values())) if isinstance(models, dict) else models  # {label: model} from the plugin
+    _record("compare", [pathlib.Path(str(model)).name, kwargs.get("rtol"), kwargs.get("n_poses"), kwargs.get("seed")])
     return _compare(models, **kwargs)
 
 
@@ -203,3 +204,9 @@ def test_two_files_with_one_name_are_two_items_labelled_as_one_run_labels_them(p
     expected = unique_labels([str(pytester.path / m) for m in models])
     assert len(set(expected)) == 3
     result.stdout.fnmatch_lines([f"pyproject.toml::{label}" for label in expected])
+    # the run's report holds each model once, under its item's label (not three models called arm.xml)
+    run = pytester.runpytest_subprocess("--koenig-check", "--koenig-check-report", "report", "pyproject.toml")
+    run.assert_outcomes(passed=3)
+    summary = (pytester.path / "report" / "summary.md").read_text()
+    for label in expected:
+        assert summary.count(f"\n## {label}\n") == 1, label
