@@ -16,6 +16,8 @@ import numpy as np
 from koenig_check.diagnosis import policy, three_way
 from koenig_check.diagnosis.engine_limits import limited_departures
 from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
+from koenig_check.diagnosis.import_parity import _in_mujoco_world as in_mujoco_world
+from koenig_check.diagnosis.root_frame import root_frame_offset
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
@@ -125,6 +127,8 @@ def _verdicts(
     q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in model.engines.items()}
+    offset, _ = root_frame_offset(model)  # a root pose Pinocchio drops is no departure: compare in MuJoCo's world
+    states["pinocchio"] = in_mujoco_world(states["pinocchio"], offset)
     return out + three_way.import_verdicts(states, findings, rtol, labels)
 
 
