@@ -54,8 +54,23 @@ def _one_line_naming(err: BaseException, *needles: str) -> str:
         ({"mass": -2}, ["forearm", "mass"]),
         ({"ixx": 0.01, "iyy": 0.01, "izz": 0.05}, ["forearm", "A + B >= C", "principal moments"]),
         ({"ixx": -0.01}, ["forearm", "principal moments"]),
+        ({"mass": "nan"}, ['<link name="forearm"> <mass> value="nan"']),
+        ({"mass": "inf"}, ["link 'forearm'", "mass inf kg", "not finite"]),
+        ({"mass": "-inf"}, ["link 'forearm'", "mass -inf kg", "not finite"]),
+        ({"ixy": "NaN"}, ['<link name="forearm"> <inertia> ixy="NaN"']),
+        ({"ixy": "inf"}, ["link 'forearm'", "inertia (ixx iyy izz ixy ixz iyz) 0.01 0.02 0.02 inf 0 0"]),
     ],
-    ids=["zero-mass", "negative-mass", "triangle-inequality", "not-positive-definite"],
+    ids=[
+        "zero-mass",
+        "negative-mass",
+        "triangle-inequality",
+        "not-positive-definite",
+        "nan-mass",
+        "inf-mass",
+        "minus-inf-mass",
+        "nan-inertia",
+        "inf-inertia",
+    ],
 )
 def test_non_physical_links_are_named_with_their_moments(tmp_path: Path, arm: dict, needles: list[str]) -> None:
     path = _urdf(tmp_path, arm)
@@ -113,7 +128,7 @@ def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
         (
             '<robot name="r"><link name="base"/><link name="arm"><inertial><mass value="1"/>'
             '<inertia ixx="0.1" iyy="NaN" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
-            ['<inertia> iyy="NaN"', "NaN"],
+            ['<link name="arm"> <inertia> iyy="NaN"', "NaN"],
         ),
         (
             '<mujoco><worldbody><body name="link" pos="0 nan 1"><joint type="hinge"/>'

@@ -105,3 +105,19 @@ def test_every_exception_survives_pickling(name: str) -> None:
             ["hip_pin"],
             ["knee: hinge vs prismatic"],
         )
+
+
+def test_drakes_failed_condition_is_kept_whole_without_its_build_location() -> None:
+    """Drake's own message, from Drake: the condition and the function stay, the bazel-out path goes."""
+    pydrake_plant = pytest.importorskip("pydrake.multibody.plant")
+    import numpy as np
+
+    plant = pydrake_plant.MultibodyPlant(0.0)
+    plant.Finalize()
+    with pytest.raises(SystemExit) as info:  # pydrake's way of failing a C++ check
+        plant.SetPositions(plant.CreateDefaultContext(), np.zeros(3))
+    raw = str(info.value)
+    assert raw.startswith("Failure at ") and ".h:" in raw  # what Drake says, location first
+    text = exceptions.one_line(info.value)
+    assert text == "SetPositions(): condition 'q.size() == num_positions()' failed."
+    assert exceptions.one_line(ValueError("Failure at the gate")) == "Failure at the gate"  # not a location

@@ -22,6 +22,9 @@ USAGE_ERRORS = {
     "zero duration": ["compare", "gimbal.xml", "--pose-kind", "trajectory", "--duration", "0"],
     "bad tolerance": ["compare", "gimbal.xml", "--rtol", "abc"],
     "demo zero poses": ["demo", "--poses", "0"],
+    "unknown model name": ["compare", "gimbal.xml", "no_such_robot"],
+    "unknown twin name": ["compare", "gimbal.xml", "--pinocchio-model", "no_such_twin"],
+    "missing pose file": ["compare", "gimbal.xml", "--pose-file", "no_such_dir/poses.csv"],
 }
 
 
@@ -114,6 +117,7 @@ API_VALUE_ERRORS = {
     "grid without joints": {"pose_kind": "grid"},
     "records mode": {"records": "all"},
     "negative seed": {"seed": -3},
+    "missing pose file": {"pose_file": "no_such_dir/poses.csv"},
 }
 
 

@@ -306,7 +306,7 @@ def _verdict_sample(loaded: Any, pose_set: poses.PoseSet | None, random: pipelin
 
 @suggest_keywords
 def compare(
-    models: str | Path | Sequence[str | Path],
+    models: str | Path | Sequence[str | Path] | Mapping[str, str | Path],
     *,
     rtol: float = DEFAULT_RTOL,
     progress: Callable[[str], None] | None = None,
@@ -339,8 +339,9 @@ def compare(
 
     Parameters
     ----------
-    models : str, Path or sequence of them
-        Model files or names (``koenig-check models``).
+    models : str, Path, sequence of them, or mapping of label to them
+        Model files or names (``koenig-check models``); labelled by :func:`koenig_check.run.labels.unique_labels`
+        unless given as ``{label: model}`` (the pytest plugin labels each model as the whole run does).
     rtol : float
         Tolerance of "agrees" (engines with each other and with ``exact``; formulas).
     progress : callable, optional
@@ -403,6 +404,8 @@ def compare(
     overrides = {name: given[name] for name in LoadOptions.names() if given[name] is not None}
     if isinstance(models, str | Path):
         models = [models]
+    given_labels = list(models.keys()) if isinstance(models, Mapping) else None
+    models = list(models.values()) if isinstance(models, Mapping) else models
     check_compare_arguments(rtol, options)
     load = load_options_from(load_options, overrides)
     check_engines(load.engines)
@@ -412,7 +415,8 @@ def compare(
     prepare([*models, *([load.pinocchio_model] if load.pinocchio_model else [])])  # extras, names, downloads
     result = CrossCheck(rtol=rtol)
     advance = getattr(progress, "advance", None)
-    for model, label in zip(models, unique_labels(models, load.floating, load.xacro_args), strict=True):
+    labels = given_labels or unique_labels(models, load.floating, load.xacro_args)
+    for model, label in zip(models, labels, strict=True):
         if progress:
             progress(label)
         result.settings[label] = {k: options[k] for k in _SETTINGS}

@@ -234,6 +234,24 @@ def unknown_name(what: str, name: str, valid: Sequence[str], listed: str) -> str
     return f"unknown {what} {name!r}{hint} ({len(valid)} {what}s: {listed})"
 
 
+def check_pose_file(pose_file: Any) -> None:
+    """Refuse a pose file that does not exist, before any model is loaded.
+
+    Parameters
+    ----------
+    pose_file : str, path or None
+
+    Raises
+    ------
+    ArgumentValueError
+        Naming the file, in one line.
+    """
+    from pathlib import Path
+
+    if pose_file is not None and not Path(pose_file).expanduser().is_file():
+        raise ArgumentValueError(f"{pose_file}: pose file not found (pose_file, --pose-file)")
+
+
 def check_compare_arguments(rtol: Any, options: Mapping[str, Any]) -> None:
     """Check the arguments of :func:`koenig_check.compare` before any model is loaded.
 
@@ -262,6 +280,7 @@ def check_compare_arguments(rtol: Any, options: Mapping[str, Any]) -> None:
         if name in options:
             check_positive(options[name], name)
     check_formulas(options.get("formulas"))
+    check_pose_file(options.get("pose_file"))
     if kind == "grid" and not has_poses:
         joints = options.get("grid_joints")
         if joints is None or isinstance(joints, str) or len(joints) != 2:

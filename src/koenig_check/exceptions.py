@@ -25,6 +25,7 @@ Hierarchy::
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
@@ -239,4 +240,25 @@ def one_line(err: BaseException) -> str:
     -------
     str
     """
-    return " ".join(str(err).split()) or type(err).__name__
+    return without_build_location(" ".join(str(err).split())) or type(err).__name__
+
+
+#: Where a C++ check of Drake failed in Drake's build tree (``Failure at bazel-out/.../file.h:2896 in F(): ``).
+_BUILD_LOCATION = re.compile(r"Failure at \S+:\d+ in (?=\S+\(\): )")
+
+
+def without_build_location(text: str) -> str:
+    """An engine's message without the source location of the C++ check that failed, its reason kept whole.
+
+    ``Failure at bazel-out/k8-opt/.../multibody_plant.h:2896 in SetPositions(): condition 'q.size() ==
+    num_positions()' failed.`` becomes ``SetPositions(): condition 'q.size() == num_positions()' failed.``
+
+    Parameters
+    ----------
+    text : str
+
+    Returns
+    -------
+    str
+    """
+    return _BUILD_LOCATION.sub("", text)

@@ -99,3 +99,20 @@ def test_usage_errors_exit_2_before_any_work(tmp_path: Path, argv: list[str]) ->
 def test_refusal_exits_1_naming_the_joint(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["export", str(MODELS / "ball.xml"), "--to", "urdf", "--out", str(tmp_path / "b.urdf")]) == 1
     assert "ball joint (joints socket)" in capsys.readouterr().out
+
+
+def test_check_only_names_the_frame_that_hides_joints_from_an_engine(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """An MJCF export that keeps a <frame>: the engines whose parser skips it are told why its joints are missing."""
+    causes = Path(__file__).resolve().parents[1] / "models" / "causes"
+    export = tmp_path / "export.xml"
+    export.write_text((causes / "frame_body.xml").read_text())
+    main(["export", "--check-only", str(causes / "frame_body.xml"), str(export), "--engines", "mujoco,pinocchio"])
+    out = capsys.readouterr().out
+    (line,) = [t for t in out.splitlines() if t.startswith("  not compared: pinocchio:")]
+    assert "only in MuJoCo: ['j2']" in line  # Pinocchio's own reason, whole
+    assert line.endswith(
+        "root cause: frame #1 in body base: <frame> not read by Pinocchio's MJCF parser: what it holds is missing "
+        "(1 bodies, 1 joints) (joints j2)"
+    )

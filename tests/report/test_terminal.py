@@ -204,10 +204,10 @@ def test_every_line_compare_prints_on_stdout_fits_200_characters(tmp_path: Path,
     reason="Drake (extra [drake]) not installed",
 )
 def test_a_model_failed_by_a_departing_engine_is_not_agree_on_its_row(capsys) -> None:
-    """The row says what the exit status says: Drake departs on armature_chain (its parser reads no armature)."""
+    """The row says what the exit status says: named Drake cannot check armature_chain: no armature read."""
     from koenig_check.cli import main
 
     argv = ["compare", "armature_chain", "--poses", "2", "--formulas", "exact", "--engines", "mujoco,pinocchio,drake"]
     assert main(argv) == 1
     row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("armature_chain"))
-    assert row.split()[1] == "DISAGREE" and "Drake departs" in row
+    assert row.split()[1] == "DISAGREE" and "Drake cannot check" in row

@@ -67,3 +67,12 @@ def test_cli_keeps_two_files_with_one_name_apart(
     assert "a/robot.xml" in html and "b/robot.xml" in html and "DISAGREE" in html
     records = koenig_check.read_records(out / "records.parquet")
     assert sorted(set(records.columns["model"].tolist())) == ["a/robot.xml", "b/robot.xml"]
+
+
+def test_models_given_with_their_labels_keep_them() -> None:
+    """``compare({label: model})``: the label the caller chose (the pytest plugin's item id) names every result."""
+    import koenig_check
+
+    check = koenig_check.compare({"left/arm.xml": "gimbal.xml"}, n_poses=2, formulas=["exact"])
+    assert [c.model for c in check.comparisons] == ["left/arm.xml"] and check["left/arm.xml"] is check.comparisons[0]
+    assert {s.model for s in check.summaries} == {"left/arm.xml"} and list(check.settings) == ["left/arm.xml"]

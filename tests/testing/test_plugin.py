@@ -59,7 +59,8 @@ def load_model(model, options=None, **kwargs):
 
 
 def compare(models, **kwargs):
-    _record("compare", [pathlib.Path(str(models)).name, kwargs.get("rtol"), kwargs.get("n_poses"), kwargs.get("seed")])
+    model = next(iter(models.values())) if isinstance(models, dict) else models  # {label: model} from the plugin
+    _record("compare", [pathlib.Path(str(model)).name, kwargs.get("rtol"), kwargs.get("n_poses"), kwargs.get("seed")])
     return _compare(models, **kwargs)
 
 
@@ -189,3 +190,23 @@ def test_report_directory_that_is_a_file_is_a_usage_error(pytester):
     result = pytester.runpytest_subprocess("--koenig-check", "--koenig-check-report", "report")
     assert result.ret == pytest.ExitCode.USAGE_ERROR
     result.stderr.fnmatch_lines(["*--koenig-check-report*is a file*"])
+
+
+def test_two_files_with_one_name_are_two_items_labelled_as_one_run_labels_them(pytester):
+    for folder in ("left", "right"):
+        (pytester.path / folder).mkdir()
+        shutil.copy(AGREES, pytester.path / folder / "arm.xml")
+    models = ["left/arm.xml", "right/arm.xml", "left/arm.xml"]
+    pytester.makepyprojecttoml("[tool.koenig-check]\nmodels = [" + ", ".join(f'"{m}"' for m in models) + "]\n")
+    result = pytester.runpytest_subprocess("--koenig-check", "--collect-only", "-q", "pyproject.toml")
+    from koenig_check.run.labels import unique_labels
+
+    expected = unique_labels([str(pytester.path / m) for m in models])
+    assert len(set(expected)) == 3
+    result.stdout.fnmatch_lines([f"pyproject.toml::{label}" for label in expected])
+    # the run's report holds each model once, under its item's label (not three models called arm.xml)
+    run = pytester.runpytest_subprocess("--koenig-check", "--koenig-check-report", "report", "pyproject.toml")
+    run.assert_outcomes(passed=3)
+    summary = (pytester.path / "report" / "summary.md").read_text()
+    for label in expected:
+        assert summary.count(f"\n## {label}\n") == 1, label

@@ -13,6 +13,7 @@ from koenig_check.cli.parsing import (
     DEFAULT_OUT,
     add_command,
     add_out,
+    check_models,
     check_out,
     load_options_of,
     positive,
@@ -124,10 +125,11 @@ def _finish(check, out: str | None, extra_figures: dict | None = None, records=N
 
 def _check_compare_usage(args: argparse.Namespace) -> None:
     """Every usage error of ``compare`` / ``demo``, before any model is loaded or any file written."""
-    from koenig_check.arguments import ArgumentTypeError, ArgumentValueError, check_formulas
+    from koenig_check.arguments import ArgumentTypeError, ArgumentValueError, check_formulas, check_pose_file
 
     try:
         check_formulas(getattr(args, "formulas", None))
+        check_pose_file(getattr(args, "pose_file", None))
     except (ArgumentValueError, ArgumentTypeError) as err:
         usage_error(args, str(err))
     if getattr(args, "pose_kind", None) == "grid" and not args.grid_joints and not args.pose_file:
@@ -149,6 +151,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
 
     _check_compare_usage(args)
     load_options = load_options_of(args)
+    check_models(args, [*args.models, *([load_options.pinocchio_model] if load_options.pinocchio_model else [])])
     from koenig_check.sources.external import prepare
 
     prepare([*args.models, *([load_options.pinocchio_model] if load_options.pinocchio_model else [])])

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from koenig_check.cli.parsing import add_command, add_out, check_out, load_options_of, positive, tolerance
+from koenig_check.cli.parsing import add_command, add_out, check_models, check_out, load_options_of, positive, tolerance
 
 
 def add(sub: argparse._SubParsersAction) -> None:
@@ -47,6 +47,8 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
     from koenig_check.implied_dynamics.markdown import terminal_lines, write_dynamics
 
     check_out(args)
+    load_options = load_options_of(args)
+    check_models(args, [args.model, *([load_options.pinocchio_model] if load_options.pinocchio_model else [])])
     result = dynamics(
         args.model,
         n_poses=args.poses,
@@ -55,7 +57,7 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         m_rtol=args.m_rtol,
         q_rtol=args.q_rtol,
         rtol=args.rtol,
-        load_options=load_options_of(args),
+        load_options=load_options,
     )
     from koenig_check.report.line_width import LINE_LIMIT, cut, fold_text
     from koenig_check.sources.shown_paths import as_given

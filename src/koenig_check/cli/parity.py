@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from koenig_check.cli.parsing import add_command, load_options_of, tolerance
+from koenig_check.cli.parsing import add_command, check_models, load_options_of, tolerance
 from koenig_check.engines.load_options import add_load_arguments
 
 
@@ -46,24 +46,27 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.run.labels import unique_labels
 
     options = load_options_of(args)
+    check_models(args, [args.model, *([options.pinocchio_model] if options.pinocchio_model else [])])
     model = load_model(args.model, options)
     for name in asked_for(options.engines):
         model.attach(name)
     diagnosis = diagnose(model, rtol=args.rtol)
     report = diagnosis.parity
     assert report is not None
+    from koenig_check.engines.registry import label, optional
     from koenig_check.report.line_width import fold_text
     from koenig_check.sources.shown_paths import as_given
 
     def shown(text: str) -> str:  # the file as the user named it; a long cause folded under its line
         return fold_text(as_given(text, [args.model]))
 
-    for f in diagnosis.findings:
-        if f.kind is Kind.VERDICT:
-            print(shown(f"three engines: {f.message()}"))
-        elif f in diagnosis.optional_findings:
-            print(shown(f.message()))
     print(shown(format_parity(report, args.model)))
+    third = [f"three engines: {f.message()}" for f in diagnosis.findings if f.kind is Kind.VERDICT]
+    third += [f.message() for f in diagnosis.findings if f in diagnosis.optional_findings]
+    if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
+        names = ", ".join(label(e) for e in optional())
+        print(f"\nThe third engine ({names}): verdicts and what its parser said")
+        print("\n".join(shown(f"  {line}") for line in third))
     lead = lead_line(diagnosis.findings)
     if report.clean and not lead:
         return 0

@@ -6,7 +6,7 @@ import argparse
 import difflib
 import sys
 from dataclasses import replace
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from koenig_check.arguments import ArgumentTypeError, ArgumentValueError
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
@@ -83,6 +83,16 @@ def usage_error(args: argparse.Namespace, message: str) -> NoReturn:
         print(f"koenig-check: error: {message}", file=sys.stderr)
         raise SystemExit(2)
     parser.error(message)
+
+
+def check_models(args: argparse.Namespace, models: list[Any]) -> None:
+    """Refuse a model name that is neither a file nor a known model, before any work (exit status 2)."""
+    from koenig_check.sources.known_names import check_model_names
+
+    try:
+        check_model_names(models)
+    except ModelSourceError as err:
+        usage_error(args, str(err))
 
 
 def check_out(args: argparse.Namespace) -> None:

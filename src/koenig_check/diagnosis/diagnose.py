@@ -14,7 +14,10 @@ from typing import Any
 import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
+from koenig_check.diagnosis.engine_limits import limited_departures
 from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
+from koenig_check.diagnosis.import_parity import _in_mujoco_world as in_mujoco_world
+from koenig_check.diagnosis.root_frame import root_frame_offset
 from koenig_check.engines import registry
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
@@ -98,7 +101,8 @@ def diagnose(
     verdicts: list[Finding] = []
     if len(model.engines) >= 3:  # a majority can then say which engine departs
         verdicts = _verdicts(model, parity.segment_labels, findings, qpos, qvel, rtol, include_armature)
-    unmade = policy.unmade_checks(optional, engines)
+    verdicts, unable = limited_departures(verdicts, findings, model.mujoco.model, policy.asked_for(engines))
+    unmade = unable + policy.unmade_checks(optional, engines)
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
 
 
@@ -124,6 +128,8 @@ def _verdicts(
     q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in model.engines.items()}
+    offset, _ = root_frame_offset(model)  # a root pose Pinocchio drops is no departure: compare in MuJoCo's world
+    states["pinocchio"] = in_mujoco_world(states["pinocchio"], offset)
     return out + three_way.import_verdicts(states, findings, rtol, labels)
 
 

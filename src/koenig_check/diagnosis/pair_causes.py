@@ -22,6 +22,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
+from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.diagnosis.root_frame import FrameOffset, _vec, root_frame_offset
 from koenig_check.engines.canonical import segment_by_body_id, segment_of_body
 from koenig_check.engines.parser_traps import file_causes
@@ -361,4 +362,4 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     causes += massless_causes(pair)
     if frame is not None:
         causes.append(frame)
-    return sorted(causes, key=lambda f: not f.affects_energy), offset
+    return by_effect(sorted(causes, key=lambda f: not f.affects_energy)), offset  # the largest effect first

@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Sequence
 
+from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.findings import Finding, Kind, root_causes
 
 #: Kinds of per-segment import differences (symptoms, after the root causes in a reason).
@@ -30,9 +31,11 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
     """The findings that explain a change of energy, the most important first; rounding-level ones left out.
 
     Root causes that change the energy come first (a repaired or compiler-altered inertia, a construct one
-    parser ignores), then the per-segment import differences no root cause explains, the largest relative
-    difference first, then each engine's inconsistencies with itself.  A symptom whose relative difference
-    is at the level of a written file's rounding (:data:`ROUNDING_LEVEL`) is never listed.
+    parser ignores), those whose values show their effect ordered by it, the largest first
+    (:func:`koenig_check.diagnosis.cause_effect.by_effect`); then the per-segment import differences no root
+    cause explains, the largest relative difference first; then each engine's inconsistencies with itself.
+    A symptom whose relative difference is at the level of a written file's rounding
+    (:data:`ROUNDING_LEVEL`) is never listed.
 
     Parameters
     ----------
@@ -43,7 +46,7 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
     list of Finding
     """
     energy = [f for f in findings if f.affects_energy]
-    roots = [f for f in root_causes(energy) if f.affects_energy]
+    roots = by_effect([f for f in root_causes(energy) if f.affects_energy])  # the largest change of energy first
     symptoms = [f for f in energy if f.kind in _SYMPTOMS and f not in roots]
     symptoms = [f for f in symptoms if "relative difference" not in f.values or _relative(f) > ROUNDING_LEVEL]
     symptoms.sort(key=lambda f: -_relative(f))
@@ -152,7 +155,11 @@ def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     """
     unmade = "; ".join(f.message() for f in findings if f.kind is Kind.ENGINE_UNABLE)  # the engine's whole reason
     head = _departures(findings)
-    causes = [short_cause(f) for f in ordered_causes(findings)]
+    if unmade and not head and not gap:  # MuJoCo and Pinocchio agree: the check not made is the whole reason
+        alone = [f"{f.summary}; {f.hint}" if f.hint else f.summary for f in findings if f.kind is Kind.ENGINE_UNABLE]
+        return f"{label}: " + "; ".join(alone)  # the summary names the engine: no "drake: model:" before it
+    unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
+    causes = [short_cause(f) for f in ordered_causes(findings) if f.engine not in unable]
     gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
     if head or causes:  # the gap may go when something else says why (the verdict table shows it)
         gaps.append("")

@@ -27,6 +27,7 @@ from koenig_check.engines.sampling import random_states
 from koenig_check.export.engine_sides import EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
+from koenig_check.export.unread_constructs import refusal_with_frames
 from koenig_check.sources.catalogue import detect_format
 
 #: Default relative tolerance of the proof.
@@ -97,7 +98,8 @@ def compare_engine(
     """
     qpos, qvel = states
     if engine in export.refused:
-        return EngineProof(engine, np.nan, np.nan, 0, False, f"cannot load the export: {export.refused[engine]}"), []
+        reason = refusal_with_frames(export.refused[engine], export.path, export.mj_model, engine)
+        return EngineProof(engine, np.nan, np.nan, 0, False, f"cannot load the export: {reason}"), []
     reference, b = original.adapters["mujoco"], export.adapters[engine]
     qx, vx = pairing.export_states(qpos, qvel, export.mj_model)
     dm, de, di = _differences(reference, b, pairing, states, (qx, vx))

@@ -75,14 +75,22 @@ _WORD_ATTRIBUTES = frozenset(
 )
 
 
-def _refuse_nan(path: Path, elem: ET.Element) -> None:
-    """Refuse a number written as NaN: MuJoCo only warns, then uses a default (a geom's mass from its density)."""
+def _refuse_nan(path: Path, elem: ET.Element, ancestors: list[ET.Element] | None = None) -> None:
+    """Refuse a number written as NaN: MuJoCo only warns, then uses a default (a geom's mass from its density).
+
+    An element without a name (``<mass>``, ``<inertia>``) is named by its nearest named ancestor
+    (``<link name="forearm"> <mass> value="nan"``).
+    """
     for key, value in elem.attrib.items():
         if key in _WORD_ATTRIBUTES or "nan" not in value.lower():
             continue
         if any(token.lower().lstrip("+-") == "nan" for token in value.split()):
             label = f' name="{elem.attrib["name"]}"' if "name" in elem.attrib else ""
-            raise ModelFileError(f'{path}: <{elem.tag}{label}> {key}="{value}": NaN is not a number a model can use')
+            owner = next((a for a in reversed(ancestors or []) if "name" in a.attrib), None) if not label else None
+            within = f'<{owner.tag} name="{owner.attrib["name"]}"> ' if owner is not None else ""
+            raise ModelFileError(
+                f'{path}: {within}<{elem.tag}{label}> {key}="{value}": NaN is not a number a model can use'
+            )
 
 
 def _root_format(path: Path, data: bytes) -> str:
@@ -183,6 +191,7 @@ def _parse(path: Path, data: bytes) -> str:
     parser: ET.XMLPullParser[ET.Element] = ET.XMLPullParser(events=("start", "end"))
     depth = 0
     root_tag = None
+    open_elements: list[ET.Element] = []
     try:
         # Feed in chunks so that a pathological depth is caught before the tree is built.
         for i in range(0, len(data), 1 << 16):
@@ -195,9 +204,11 @@ def _parse(path: Path, data: bytes) -> str:
                         root_tag = elem.tag
                     if depth > MAX_DEPTH:
                         raise ModelFileError(f"{path}: element <{elem.tag}> nested deeper than {MAX_DEPTH} levels")
-                    _refuse_nan(path, elem)
+                    _refuse_nan(path, elem, open_elements)
+                    open_elements.append(elem)
                 else:
                     depth -= 1
+                    open_elements.pop()
                     elem.clear()
         parser.close()
     except ET.ParseError as err:

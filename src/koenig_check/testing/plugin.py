@@ -194,7 +194,7 @@ class ModelItem(pytest.Item):
         run = self.config.stash[_RUN]
         records = "totals" if run.report else "none"
         try:
-            check = compare(entry.model, records=records, **entry.compare_options())
+            check = compare({self.name: entry.model}, records=records, **entry.compare_options())  # the run's label
         except DrakeUnavailableError as err:
             pytest.skip(str(err))
         except ModelSourceError as err:

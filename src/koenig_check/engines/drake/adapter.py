@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.base import Engine, as_batches, check_points, symmetrize
+from koenig_check.engines.drake.failures import drake_failures_raised
 from koenig_check.engines.drake.state_map import DrakeStateMap
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.findings import Finding, Kind
@@ -185,6 +186,7 @@ class DrakeEngine(Engine):
         anchor = o + np.einsum("pbij,bj->pbi", R, self._anchor_local)
         return {"R": R, "origin": o, "omega": w, "v_origin": vo, "anchor": anchor}
 
+    @drake_failures_raised
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return Drake's segment states for a batch of canonical states."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
@@ -208,6 +210,7 @@ class DrakeEngine(Engine):
             pole_ref=ref["anchor"][0],
         )
 
+    @drake_failures_raised
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
         """Return the world velocity of points fixed in the segments, from Drake's translational Jacobians."""
         from pydrake.multibody.tree import JacobianWrtVariable
@@ -229,6 +232,7 @@ class DrakeEngine(Engine):
         return out
 
     # ------------------------------------------------------------- dynamics
+    @drake_failures_raised
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
         """Return ``CalcKineticEnergy``, the same with rotor inertias zero, and the reflected inertia as armature."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
@@ -242,6 +246,7 @@ class DrakeEngine(Engine):
             rigid[p] = self.plant.CalcKineticEnergy(self._rigid)
         return EnergyParts(rigid=rigid, armature=0.5 * (v**2) @ self._reflected, reported=reported)
 
+    @drake_failures_raised
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return ``CalcMassMatrix`` (reflected inertia included) in canonical velocity coordinates."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
@@ -252,6 +257,7 @@ class DrakeEngine(Engine):
             M[p] = self.plant.CalcMassMatrix(self._context)
         return self.state_map.matrix_to_canonical(qpos, M)
 
+    @drake_failures_raised
     def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Return ``CalcInverseDynamics`` (gravity, damping and applied forces zero) in canonical coordinates."""
         from pydrake.multibody.tree import MultibodyForces
@@ -288,11 +294,13 @@ class DrakeEngine(Engine):
                 out[p.vadr] = self._reflected[p.dv]
         return out
 
+    @drake_failures_raised
     def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return the reflected inertia :meth:`armature_per_dof` on the diagonal."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         return np.broadcast_to(np.diag(self.armature_per_dof()), (qpos.shape[0], self.nv, self.nv))
 
+    @drake_failures_raised
     def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates."""
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)

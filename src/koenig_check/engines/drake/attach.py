@@ -33,8 +33,15 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
 
     if model.options.pinocchio_model is not None:
         return None, [not_used("drake", "Pinocchio was given another file (--pinocchio-model)")]
+    from koenig_check.engines.drake.failures import failed_check
+
     try:
         engine = load_drake_engine(model.source, model.mujoco.model)
+    except SystemExit as exit_:  # a failed C++ check of Drake's: its reason, not the end of the run
+        reason = failed_check(exit_)
+        if reason is None:
+            raise
+        return None, [not_used("drake", f"{model.source.path}: Drake cannot load the model: {reason}")]
     except DrakeLoadError as err:
         return None, [not_used("drake", one_line(err))]
     except ImportError as err:  # installed but not importable

@@ -41,7 +41,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from koenig_check.exceptions import DrakeLoadError
+from koenig_check.exceptions import DrakeLoadError, without_build_location
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
@@ -123,7 +123,7 @@ def one_line_reason(text: str, path: Path) -> str:
         if m:
             line = f"line {m['line']}: " + line[m.end() :]
         out.append(line.replace(str(path), path.name))
-    return "; ".join(out).replace("ERROR: ", "")
+    return without_build_location("; ".join(out).replace("ERROR: ", ""))
 
 
 def _element_at(path: Path, line: int) -> str:

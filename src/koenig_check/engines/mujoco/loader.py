@@ -339,7 +339,9 @@ def _load(
     }
     for name, (mass, inertia) in file_inertia.items():
         if not (np.isfinite(mass) and np.all(np.isfinite(inertia))):
-            raise InertiaError(f"{path}: {what} {name!r}: non-finite mass or inertia in the file (NaN or inf)")
+            entries = " ".join(f"{inertia[i, j]:g}" for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)))
+            value = f"mass {mass:g} kg" if not np.isfinite(mass) else f"inertia (ixx iyy izz ixy ixz iyz) {entries}"
+            raise InertiaError(f"{path}: {what} {name!r}: {value} is not finite (NaN or inf) in the file")
         if mass < 0:
             raise InertiaError(f"{path}: {what} {name!r}: mass {mass:g} kg is negative")
     fix_meshes(spec, source, notes)
