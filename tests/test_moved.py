@@ -55,3 +55,17 @@ def test_the_moved_module_keeps_its_own_name_and_reloads(tmp_path: Path, monkeyp
     assert new.VALUE == 1
     monkeypatch.delitem(sys.modules, "_moved_reload_target")
     monkeypatch.delitem(sys.modules, "koenig_check._old_name_for_reload")
+
+
+#: (old module, name, new home): names a split moved out of a module that keeps its other names.
+SPLIT_OUT = [
+    ("koenig_check.parity", "ParityReport", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.diagnosis.import_parity", "PARITY_RTOL", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.diagnosis.import_parity", "SegmentParity", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.diagnosis.import_parity", "DofParity", "koenig_check.diagnosis.parity_report"),
+]
+
+
+@pytest.mark.parametrize(("old", "name", "home"), SPLIT_OUT)
+def test_a_name_split_out_of_a_module_still_imports_from_it(old: str, name: str, home: str) -> None:
+    assert getattr(importlib.import_module(old), name) is getattr(importlib.import_module(home), name)

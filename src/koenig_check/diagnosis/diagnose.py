@@ -14,7 +14,8 @@ from typing import Any
 import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
-from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
+from koenig_check.diagnosis.import_parity import import_parity
+from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
