@@ -63,6 +63,9 @@ SPLIT_OUT = [
     ("koenig_check.diagnosis.import_parity", "PARITY_RTOL", "koenig_check.diagnosis.parity_report"),
     ("koenig_check.diagnosis.import_parity", "SegmentParity", "koenig_check.diagnosis.parity_report"),
     ("koenig_check.diagnosis.import_parity", "DofParity", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.engines.mujoco_loader", "BodyFinding", "koenig_check.engines.mujoco.mass_changes"),
+    ("koenig_check.engines.mujoco.loader", "REPAIR_HINT", "koenig_check.engines.mujoco.compiling"),
+    ("koenig_check.engines.mujoco.loader", "MAX_REPAIR_TRIES", "koenig_check.engines.mujoco.compiling"),
 ]
 
 
