@@ -66,6 +66,7 @@ SPLIT_OUT = [
     ("koenig_check.engines.mujoco_loader", "BodyFinding", "koenig_check.engines.mujoco.mass_changes"),
     ("koenig_check.engines.mujoco.loader", "REPAIR_HINT", "koenig_check.engines.mujoco.compiling"),
     ("koenig_check.engines.mujoco.loader", "MAX_REPAIR_TRIES", "koenig_check.engines.mujoco.compiling"),
+    ("koenig_check.engines.pinocchio_engine", "placement_view", "koenig_check.engines.pinocchio.placements"),
 ]
 
 
