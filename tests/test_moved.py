@@ -67,6 +67,9 @@ SPLIT_OUT = [
     ("koenig_check.engines.mujoco.loader", "REPAIR_HINT", "koenig_check.engines.mujoco.compiling"),
     ("koenig_check.engines.mujoco.loader", "MAX_REPAIR_TRIES", "koenig_check.engines.mujoco.compiling"),
     ("koenig_check.engines.pinocchio_engine", "placement_view", "koenig_check.engines.pinocchio.placements"),
+    ("koenig_check.api", "CrossCheck", "koenig_check.run.cross_check"),
+    ("koenig_check.api", "make_poses", "koenig_check.run.pose_kinds"),
+    ("koenig_check.api", "load_options_from", "koenig_check.engines.load_options"),
 ]
 
 
