@@ -70,6 +70,10 @@ SPLIT_OUT = [
     ("koenig_check.api", "CrossCheck", "koenig_check.run.cross_check"),
     ("koenig_check.api", "make_poses", "koenig_check.run.pose_kinds"),
     ("koenig_check.api", "load_options_from", "koenig_check.engines.load_options"),
+    *[
+        ("koenig_check.pipeline", name, "koenig_check.run.chunk_tasks")
+        for name in ("ChunkTask", "ModelSource", "RandomRange", "PROBE_POSES", "chunk_size", "plan", "probe_normals")
+    ],
 ]
 
 
