@@ -74,6 +74,11 @@ SPLIT_OUT = [
         ("koenig_check.pipeline", name, "koenig_check.run.chunk_tasks")
         for name in ("ChunkTask", "ModelSource", "RandomRange", "PROBE_POSES", "chunk_size", "plan", "probe_normals")
     ],
+    ("koenig_check.engines.sources", "model_names", "koenig_check.sources.model_names"),
+    ("koenig_check.engines.sources", "ModelName", "koenig_check.sources.model_names"),
+    ("koenig_check.engines.sources", "resolve_uri", "koenig_check.sources.uris"),
+    ("koenig_check.engines.sources", "resolve_model", "koenig_check.sources.catalogue"),
+    ("koenig_check.sources.catalogue", "resolve_uri", "koenig_check.sources.uris"),
 ]
 
 
