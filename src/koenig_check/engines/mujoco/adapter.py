@@ -27,11 +27,11 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from koenig_check.engines.base import Engine, as_batches, check_points, rows, symmetrize
+from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.mujoco.dynamics import MujocoDynamics, energy_model, inverse_dynamics_model
 from koenig_check.findings import Finding, Kind
-from koenig_check.kernels import body_point_velocities, cross, rotate, rotate_points
+from koenig_check.kernels import cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates
 
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
@@ -250,10 +250,7 @@ class MujocoEngine(MujocoDynamics, Engine):
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         s = self._sweep(qpos, qvel, energies=True)
         states = self._states(s, trusted=True)
-        pv = None
-        if points is not None:
-            pts = check_points(points, len(self.segment_names))
-            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
+        pv = states_point_velocities(states, points)
         return states, pv, s["rigid"], s["armature"]
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:

@@ -53,8 +53,11 @@ def captured_warnings(notes: list[Finding]) -> Iterator[None]:
         notes.extend(_warning(m) for m in dict.fromkeys(seen))
 
 
-def one_line(exc: BaseException) -> str:
-    """MuJoCo's message on one line: every line joined with '; ' (the element and line number are kept).
+def mujoco_reason(exc: BaseException) -> str:
+    """MuJoCo's message on one line, without its ``Error:``: every line joined with '; ' (element and line kept).
+
+    Unlike :func:`koenig_check.exceptions.one_line`, the lines stay apart (``; ``): :func:`compile_spec` reads the
+    refusal before ``; Element name``.
 
     Parameters
     ----------
@@ -139,7 +142,7 @@ def compile_spec(
                 model = (spec.copy() if repair else spec).compile()
             notes.extend(_warning(str(w.message)) for w in caught)
         except ValueError as exc:
-            message = one_line(exc)
+            message = mujoco_reason(exc)
             match = _ELEMENT.search(str(exc))
             element = match.group(1) if match else ""
             mesh = next(

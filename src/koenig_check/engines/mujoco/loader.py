@@ -30,11 +30,12 @@ from koenig_check.engines.mujoco.compiling import (
     REPAIR_HINT,
     captured_warnings,
     compile_spec,
-    one_line,
+    mujoco_reason,
 )
 from koenig_check.engines.mujoco.mass_changes import BodyFinding, altered_by_compiler, balance_findings
 from koenig_check.engines.mujoco.meshes import fix_meshes
 from koenig_check.findings import Finding, Kind
+from koenig_check.segments import principal_moments
 from koenig_check.sources.catalogue import ModelSource
 
 __all__ = ["MAX_REPAIR_TRIES", "REPAIR_HINT", "ROOT_JOINT_NAME", "BodyFinding", "load_mujoco", "root_free_joint"]
@@ -50,10 +51,6 @@ def _spec_inertia(body: mujoco.MjsBody) -> np.ndarray:
         xx, yy, zz, xy, xz, yz = full
         return np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
     return np.diag(np.asarray(body.inertia, dtype=float))
-
-
-def _moments(inertia: np.ndarray) -> str:
-    return ", ".join(f"{v:.6g}" for v in np.linalg.eigvalsh(0.5 * (inertia + inertia.T)))
 
 
 def _prepend_free_joint_to_keys(spec: mujoco.MjSpec, top: mujoco.MjsBody) -> None:
@@ -115,7 +112,7 @@ def _load(
     try:
         spec = mujoco.MjSpec.from_file(str(path))
     except ValueError as exc:
-        raise ModelLoadError(f"{path}: MuJoCo cannot parse the file: {one_line(exc)}") from exc
+        raise ModelLoadError(f"{path}: MuJoCo cannot parse the file: {mujoco_reason(exc)}") from exc
     what = "link" if source.format == "urdf" else "body"
     if source.format == "urdf":
         spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
@@ -192,7 +189,7 @@ def _load(
     diffs: list[BodyFinding] = []
     ghost = [n for n in fused if n in file_inertia and file_inertia[n][0] == 0 and np.any(file_inertia[n][1])]
     for n in ghost:
-        moments = np.linalg.eigvalsh(0.5 * (file_inertia[n][1] + file_inertia[n][1].T))
+        moments = principal_moments(file_inertia[n][1])
         diffs.append(
             (
                 survivor(n),

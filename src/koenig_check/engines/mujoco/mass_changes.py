@@ -12,7 +12,7 @@ import numpy as np
 from koenig_check.engines.mujoco.inertia_repair import Repair
 from koenig_check.engines.mujoco.meshes import drop_mesh
 from koenig_check.findings import Finding, Kind
-from koenig_check.segments import check_physical_inertia
+from koenig_check.segments import check_physical_inertia, principal_moments
 from koenig_check.sources.catalogue import ModelSource
 
 #: A body's mass-property change with the body it concerns (mapped to its segment by the engine adapter).
@@ -30,7 +30,7 @@ def moments_text(inertia: np.ndarray) -> str:
     -------
     str
     """
-    return ", ".join(f"{v:.6g}" for v in np.linalg.eigvalsh(0.5 * (inertia + inertia.T)))
+    return ", ".join(f"{v:.6g}" for v in principal_moments(inertia))
 
 
 def repair_finding(repair: Repair, message: str, what: str) -> Finding:
@@ -100,7 +100,7 @@ def balance_findings(
     """
     bad = {}
     for name, (mass, inertia) in file_inertia.items():
-        lam = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
+        lam = principal_moments(inertia)
         if mass > 0 and (check_physical_inertia(mass, inertia) is not None or lam[0] <= 0):
             bad[name] = lam
     if not bad:
@@ -154,7 +154,7 @@ def altered_by_compiler(model: mujoco.MjModel, file_inertia: dict[str, tuple[flo
         bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
         if bid < 0:
             continue
-        moments = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
+        moments = principal_moments(inertia)
         compiled = np.sort(model.body_inertia[bid])
         scale = max(np.abs(moments).max(), 1e-300)
         if abs(model.body_mass[bid] - mass) > 1e-12 * max(mass, 1e-300) or np.abs(compiled - moments).max() > (

@@ -22,12 +22,12 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from koenig_check.engines.base import Engine, as_batches, check_points, rows, symmetrize
+from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
 from koenig_check.engines.pinocchio.dynamics import PinocchioDynamics
 from koenig_check.engines.pinocchio.placements import placement_view, rotations_origins
 from koenig_check.engines.pinocchio.state_map import StateMap
 from koenig_check.findings import Finding, Kind
-from koenig_check.kernels import body_point_velocities, cross, rotate
+from koenig_check.kernels import cross, rotate
 from koenig_check.segments import SegmentStates
 
 __all__ = ["PinocchioEngine", "placement_view"]
@@ -216,10 +216,7 @@ class PinocchioEngine(PinocchioDynamics, Engine):
         R, origin, T, rigid = self._sweep_world(q, v, energies=True)
         assert rigid is not None  # energies=True always evaluates the energies
         states = self._states(R, origin, T, trusted=True)
-        pv = None
-        if points is not None:
-            pts = check_points(points, len(self.segment_names))
-            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
+        pv = states_point_velocities(states, points)
         armature = 0.5 * (v**2) @ np.asarray(self.model.armature)
         return states, pv, rigid, armature
 
