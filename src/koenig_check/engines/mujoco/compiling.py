@@ -17,10 +17,10 @@ import numpy as np
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
 from koenig_check.engines.mujoco.inertia_repair import Repair, repair_body
-from koenig_check.engines.mujoco.mass_changes import BodyFinding, moments_text, repair_finding
+from koenig_check.engines.mujoco.mass_changes import BodyFinding, repair_finding
 from koenig_check.engines.mujoco.meshes import drop_mesh, inertia_only
 from koenig_check.findings import Finding, Kind
-from koenig_check.segments import check_physical_inertia
+from koenig_check.segments import check_physical_inertia, principal_moments
 from koenig_check.sources.catalogue import ModelSource
 
 _ELEMENT = re.compile(r"Element name '([^']*)'")
@@ -75,6 +75,10 @@ def mujoco_reason(exc: BaseException) -> str:
     return "; ".join(lines) if lines else type(exc).__name__
 
 
+def _moments_text(inertia: np.ndarray) -> str:
+    return ", ".join(f"{v:.6g}" for v in principal_moments(inertia))
+
+
 def _inertia_error(
     source: ModelSource, element: str, message: str, file_inertia: dict[str, tuple[float, np.ndarray]]
 ) -> InertiaError:
@@ -84,7 +88,7 @@ def _inertia_error(
         mass, inertia = file_inertia[element]
         reason = check_physical_inertia(mass, inertia)
         if reason is None:
-            reason = f"principal moments {moments_text(inertia)}, MuJoCo requires them strictly positive"
+            reason = f"principal moments {_moments_text(inertia)}, MuJoCo requires them strictly positive"
         head += f"; {reason}"
     head += f"; {REPAIR_HINT}"
     if "A + B >= C" in message:

@@ -19,20 +19,6 @@ from koenig_check.sources.catalogue import ModelSource
 BodyFinding = tuple[str, Finding]
 
 
-def moments_text(inertia: np.ndarray) -> str:
-    """The principal moments of an inertia tensor, ascending, as text.
-
-    Parameters
-    ----------
-    inertia : ndarray, shape (3, 3)
-
-    Returns
-    -------
-    str
-    """
-    return ", ".join(f"{v:.6g}" for v in principal_moments(inertia))
-
-
 def repair_finding(repair: Repair, message: str, what: str) -> Finding:
     """The ``REPAIR`` finding of a body repaired so that MuJoCo accepts it.
 
