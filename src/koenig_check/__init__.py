@@ -74,7 +74,7 @@ def export(
     poses: int = 10,
     seed: int = 0,
     rtol: float = 1e-9,
-    engines: tuple[str, ...] = ("mujoco", "pinocchio", "drake"),
+    engines: tuple[str, ...] | None = None,
 ) -> ExportResult:
     """Write a model as URDF or portable MJCF and prove, in every engine, that it is the same robot.
 
@@ -95,8 +95,8 @@ def export(
         URDF: write armature as Drake's ``drake:rotor_inertia``.
     poses, seed, rtol
         The proof: seeded random poses and the relative tolerance.
-    engines : tuple of str
-        Engines the proof uses (those not installed are reported as not compared).
+    engines : tuple of str, optional
+        Engines the proof uses (those not installed are reported as not compared); default: every engine.
 
     Returns
     -------

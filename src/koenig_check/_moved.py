@@ -42,6 +42,7 @@ MOVED: dict[str, str] = {
     "koenig_check.pytest_plugin": "koenig_check.testing.plugin",
     "koenig_check.project_config": "koenig_check.testing.project_config",
     "koenig_check.failure_text": "koenig_check.testing.failure_text",
+    "koenig_check.implied_dynamics.drake_column": "koenig_check.implied_dynamics.engine_columns",
 }
 
 

@@ -21,8 +21,10 @@ POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
 
 #: One line per pose kind, for ``--help`` and the report's glossary.
 POSE_KIND_HELP = {
-    "random": "N random joint positions within limits, random joint rates (normal, std --velocity-scale)",
-    "keyframes": "the model's own keyframes, with random joint rates",
+    "random": "N random joint positions, uniform within limits (unlimited: hinges over [-pi, pi], slides and "
+    "free-joint positions within +-1 of the reference), orientations uniform; joint rates normal, std "
+    "--velocity-scale",
+    "keyframes": "the model's own keyframes; one at rest gets the joint rates of the random pose of its index",
     "grid": "an N x N sweep of the two --grid-joints over their range, unit rate on each, other joints at rest",
     "trajectory": "N samples of a torque-free MuJoCo simulation (gravity off) of --duration seconds",
 }

@@ -17,15 +17,36 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from enum import Enum
 from types import MappingProxyType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from koenig_check.engines import specs
 from koenig_check.exceptions import KoenigCheckError as KoenigCheckError  # its old import path
 from koenig_check.roundoff import fmt
 
-#: The engines a finding can concern.  ``both`` is a finding about the pair (a joint mapping, a
+#: What a finding can concern besides one engine.  ``both`` is a finding about the pair (a joint mapping, a
 #: coupling both engines ignore); ``all`` is a three-engine verdict where every engine differs; ``file`` is a
 #: construct of the file itself.
-ENGINES = ("mujoco", "pinocchio", "drake", "both", "all", "file")
+NOT_ONE_ENGINE = ("both", "all", "file")
+
+if TYPE_CHECKING:
+    ENGINES: tuple[str, ...]  # read through __getattr__: the engines of the specs, then NOT_ONE_ENGINE
+
+
+def concerned() -> tuple[str, ...]:
+    """What a finding can concern: every engine (:func:`~koenig_check.engines.specs.names`), both, all, file.
+
+    Returns
+    -------
+    tuple of str
+    """
+    return (*specs.names(), *NOT_ONE_ENGINE)
+
+
+def __getattr__(name: str) -> tuple[str, ...]:
+    """``ENGINES``, the tuple of earlier versions: :func:`concerned`, read when asked."""
+    if name == "ENGINES":
+        return concerned()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class Kind(str, Enum):
@@ -68,7 +89,7 @@ class Finding:
     kind : Kind
         What it is about.
     engine : str
-        One of :data:`ENGINES`: the engine concerned (the one that departs, ignores or was changed).
+        One of :func:`concerned`: the engine concerned (the one that departs, ignores or was changed).
     element : str
         What in the model it concerns, as ``"<tag> <name>"`` (``"geom pole"``, ``"link base"``,
         ``"joint hip"``, ``"include arm.xml"``, ``"compiler settotalmass"``), or ``"model"``.
@@ -100,8 +121,8 @@ class Finding:
     def __post_init__(self) -> None:
         if not isinstance(self.kind, Kind):
             object.__setattr__(self, "kind", Kind(self.kind))
-        if self.engine not in ENGINES:
-            raise ValueError(f"Finding.engine must be one of {ENGINES}, got {self.engine!r}")
+        if self.engine not in concerned():
+            raise ValueError(f"Finding.engine must be one of {concerned()}, got {self.engine!r}")
         if not self.element or not self.summary:
             raise ValueError("Finding needs an element and a summary")
         object.__setattr__(self, "values", MappingProxyType(dict(self.values)))

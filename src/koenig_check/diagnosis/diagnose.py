@@ -2,7 +2,7 @@
 
 :func:`diagnose` gathers what is known about why the engines may see different robots in one file: the
 engines' own load findings, the import parity (computed once), the optional engines where the checker's
-policy uses them (:mod:`koenig_check.diagnosis.policy`), and, with three engines, the verdicts that say
+policy uses them (:mod:`koenig_check.diagnosis.policy`), and, with three engines or more, the verdicts that say
 which engine departs (:mod:`koenig_check.diagnosis.three_way`).
 """
 
@@ -16,6 +16,7 @@ import numpy as np
 from koenig_check.diagnosis import policy, three_way
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
+from koenig_check.engines import registry
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
@@ -33,7 +34,7 @@ class Diagnosis:
     parity : ParityReport
         Import parity of MuJoCo and Pinocchio.
     verdicts : list of Finding
-        The three-engine verdicts (empty without a third engine).
+        The verdicts of three engines or more (empty without a third engine).
     engines : tuple of str
         The engines that checked the model.
     """
@@ -46,7 +47,7 @@ class Diagnosis:
     @property
     def optional_findings(self) -> list[Finding]:
         """The findings about the optional engines (what they found, or why they were not used)."""
-        return [f for f in self.findings if f.engine in policy.OPTIONAL and f not in self.verdicts]
+        return [f for f in self.findings if f.engine in registry.optional() and f not in self.verdicts]
 
 
 def diagnose(
@@ -85,7 +86,7 @@ def diagnose(
         disagree = not parity.clean
     engines = model.options.engines
     optional: list[Finding] = []
-    for name in policy.OPTIONAL:
+    for name in registry.optional():
         if name in model.engines:
             continue
         why = policy.to_consult(name, engines, disagree)
@@ -96,7 +97,7 @@ def diagnose(
     optional = model.optional_findings + optional
     findings = list(model.findings) + parity.as_findings() + optional
     verdicts: list[Finding] = []
-    if len(model.engines) == 3:
+    if len(model.engines) >= 3:  # a majority can then say which engine departs
         verdicts = _verdicts(model, parity.segment_labels, findings, qpos, qvel, rtol, include_armature)
     unmade = policy.unmade_checks(optional, engines)
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))

@@ -27,6 +27,7 @@ from koenig_check.diagnosis.pair_causes import model_causes
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, DofParity, ParityReport, SegmentParity
 from koenig_check.diagnosis.root_frame import FrameOffset
 from koenig_check.engines.canonical import mujoco_coordinate_names
+from koenig_check.engines.sampling import random_states
 from koenig_check.findings import Kind
 from koenig_check.modelfile.compiler import compiler_findings
 from koenig_check.segments import SegmentStates
@@ -104,8 +105,6 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     -------
     ParityReport
     """
-    from koenig_check.run.poses import random_qpos
-
     mj, pn = pair.mujoco, pair.pinocchio
     mj_model = mj.model
     qpos0 = np.array(mj_model.qpos0, dtype=float)
@@ -149,8 +148,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     own = {name: k for k, name in enumerate(common)}
     dof_segment = mj.dof_segments()
     jac_scale = max(float(np.abs(np.concatenate([A.omega, A.v_pole], axis=-1)).max(initial=0.0)), 1.0)
-    rng = np.random.default_rng(seed)
-    q_check = np.vstack([qpos0, random_qpos(mj_model, extra_poses, rng)])
+    q_check = np.vstack([qpos0, random_states(mj_model, extra_poses, seed)[0]])
     Ma, Mb = mj.mass_matrix(q_check), pn.mass_matrix(q_check)
     denom = max(float(np.abs(Ma).max(initial=0.0)), 1e-300)
     report.mass_matrix_max_rel = float(np.abs(Ma - Mb).max(initial=0.0) / denom)

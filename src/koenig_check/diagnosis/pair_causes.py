@@ -14,7 +14,7 @@ from :mod:`koenig_check.engines.parser_traps`; the file is read through :mod:`ko
 from __future__ import annotations
 
 from collections.abc import Set as AbstractSet
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +25,7 @@ from koenig_check.diagnosis.root_frame import FrameOffset, _vec, root_frame_offs
 from koenig_check.engines.canonical import segment_by_body_id, segment_of_body
 from koenig_check.engines.parser_traps import file_causes
 from koenig_check.findings import Finding, Kind, shown_names
+from koenig_check.modelfile.compiler import compiler_options, option_text
 from koenig_check.modelfile.mjcf import ClassValue, class_values, read_mjcf
 
 #: Lengths (m) and masses (kg) under which both engines are taken to agree, relative to the model's size.
@@ -243,7 +244,9 @@ def _mass_values(spec: mujoco.MjSpec, geoms: list[Any]) -> dict[str, float]:
 def compiler_causes(pair: Any) -> list[Finding]:
     """Compiler options MuJoCo applies and Pinocchio's MJCF parser does not (``settotalmass``).
 
-    Reported when the engines' total masses differ and MuJoCo's equals the option's value.
+    Read from :func:`koenig_check.modelfile.compiler.compiler_options` (the one reading of the file's compiler
+    options, which import parity's notes share); reported when the engines' total masses differ and MuJoCo's
+    equals the option's value.
 
     Parameters
     ----------
@@ -253,28 +256,23 @@ def compiler_causes(pair: Any) -> list[Finding]:
     -------
     list of Finding
     """
-    root = read_mjcf(Path(str(pair.mujoco.path)))
-    if root is None:
-        return []
     out = []
-    for compiler in root.iter("compiler"):
-        value = compiler.get("settotalmass")
-        if value is None or float(value) <= 0:
+    for option in compiler_options(Path(str(pair.mujoco.path))):
+        if "settotalmass" not in option.values:
             continue
         m_mj = float(np.asarray(pair.mujoco.model.body_mass).sum())
         m_pin = float(sum(Y.mass for Y in pair.pinocchio.model.inertias))
         scale = max(m_mj, m_pin, 1e-300)
-        if abs(m_mj - float(value)) <= RTOL * scale and abs(m_mj - m_pin) > RTOL * scale:
+        if abs(m_mj - option.values["settotalmass"]) <= RTOL * scale and abs(m_mj - m_pin) > RTOL * scale:
             out.append(
-                Finding(
-                    Kind.COMPILER,
-                    "pinocchio",
-                    "compiler settotalmass",
-                    f"settotalmass={value}: MuJoCo rescales every mass and inertia to this total, Pinocchio does not",
+                replace(
+                    option,
+                    engine="pinocchio",
+                    summary=f"{option_text(option)}: {option.summary}, Pinocchio does not",
                     values={"mujoco": m_mj, "pinocchio": m_pin},
-                    affects_energy=True,
                     root_cause=True,
                     segments=tuple(pair.mujoco.segment_names),
+                    hint="",
                 )
             )
     return out

@@ -10,12 +10,21 @@ engine is not used, an ``ENGINE_NOT_USED`` finding says why.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from koenig_check.engines.registry import ENGINE_NAMES, LABEL, REQUIRED, install_hint, installed, not_used
+from koenig_check.engines import registry
+from koenig_check.engines.registry import install_hint, label, not_used, optional
 from koenig_check.findings import Finding, Kind
 
-#: The optional engines, in report order.
-OPTIONAL = tuple(n for n in ENGINE_NAMES if n not in REQUIRED)
+if TYPE_CHECKING:
+    OPTIONAL: tuple[str, ...]  # read through __getattr__, from the specs
+
+
+def __getattr__(name: str) -> tuple[str, ...]:
+    """``OPTIONAL``, the tuple of earlier versions: the optional engines in report order, read when asked."""
+    if name == "OPTIONAL":
+        return optional()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def asked_for(engines: Sequence[str] | None) -> tuple[str, ...]:
@@ -30,7 +39,7 @@ def asked_for(engines: Sequence[str] | None) -> tuple[str, ...]:
     -------
     tuple of str
     """
-    return tuple(n for n in OPTIONAL if engines is not None and n in engines)
+    return tuple(n for n in optional() if engines is not None and n in engines)
 
 
 def to_consult(name: str, engines: Sequence[str] | None, disagree: bool) -> Finding | None:
@@ -51,7 +60,7 @@ def to_consult(name: str, engines: Sequence[str] | None, disagree: bool) -> Find
     """
     if engines is not None and name not in engines:
         return not_used(name, "not asked for (engines: " + ", ".join(engines) + ")")
-    if not installed(name):
+    if not registry.installed(name):
         return not_used(name, f"not installed ({install_hint(name)})")
     if engines is None and not disagree:
         return not_used(name, "not needed, MuJoCo and Pinocchio agree")
@@ -79,8 +88,8 @@ def unmade_checks(findings: Sequence[Finding], engines: Sequence[str] | None) ->
             Kind.ENGINE_UNABLE,
             f.engine,
             "model",
-            f"{LABEL[f.engine]} asked for (--engines) but it could not check the model: "
-            + f.summary.removeprefix(f"{LABEL[f.engine]} not used: "),
+            f"{label(f.engine)} asked for (--engines) but it could not check the model: "
+            + f.summary.removeprefix(f"{label(f.engine)} not used: "),
             {"asked": list(asked)},
             hint="check the model without it (--engines mujoco,pinocchio), or fix what it refuses",
         )

@@ -201,22 +201,23 @@ def lead_line(findings: Sequence[Finding]) -> str:
     return "; ".join(f.message() for f in ordered)
 
 
-def engine_usage(findings: Sequence[Finding], engine: str = "drake") -> str:
+def engine_usage(findings: Sequence[Finding], engine: str | None = None) -> str:
     """Why an optional engine was not used on a model, from its findings (empty when it was used).
 
     Parameters
     ----------
     findings : sequence of Finding
-    engine : str
+    engine : str, optional
+        One optional engine; by default each optional engine not used, in report order, joined by ``"; "``.
 
     Returns
     -------
     str
     """
-    for f in findings:
-        if f.engine == engine and f.kind is Kind.ENGINE_NOT_USED:
-            return f.summary
-    return ""
+    from koenig_check.engines.registry import optional
+
+    why = {f.engine: f.summary for f in reversed(findings) if f.kind is Kind.ENGINE_NOT_USED}  # the first kept
+    return "; ".join(why[e] for e in ((engine,) if engine else optional()) if e in why)
 
 
 def changes_line(findings: Sequence[Finding], shown: int = 4) -> str:

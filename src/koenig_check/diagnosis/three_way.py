@@ -1,11 +1,12 @@
-"""Three engines compared: when two agree and the third departs, which one, and the construct responsible.
+"""Three engines or more compared: when a majority agrees and the others depart, which, and the construct responsible.
 
 Two engines that disagree cannot say which is right; three can.  For each comparison (rigid-body
-energy, reflected-inertia/armature energy, and per segment mass, COM and central inertia) the three
-engines' values are compared pairwise: when two agree and the third departs, a ``VERDICT`` finding
-names the engine that departs and the construct responsible where one is known (a compiler option
+energy, reflected-inertia/armature energy, and per segment mass, COM and central inertia) the engines'
+values are compared pairwise: when a majority agrees (two of three) and the others depart, a ``VERDICT``
+finding per departing engine names it and the construct responsible where one is known (a compiler option
 MuJoCo honours alone, a class value or an ``<include>`` Pinocchio ignores alone, an armature Drake's
-MJCF parser does not read); when all three differ, the finding says so (engine ``"all"``).  Reports
+MJCF parser does not read); when no majority agrees (all three differ), the finding says so (engine
+``"all"``).  Reports
 and the one-line reason lead with these findings (they are not root causes themselves: the construct a
 verdict names is, and the two-engine cause that follows in the reason keeps its place).
 
@@ -15,12 +16,13 @@ When Drake runs (on every pose, or only where MuJoCo and Pinocchio disagree) is 
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
+from itertools import combinations
 from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.registry import ENGINE_NAMES, LABEL
+from koenig_check.engines.registry import label, names
 from koenig_check.findings import Finding, Kind
 
 #: Default relative tolerance under which two engines "agree".
@@ -32,21 +34,37 @@ def _close(a: np.ndarray, b: np.ndarray, rtol: float, scale: np.ndarray | float 
     return np.abs(a - b) <= rtol * np.maximum(ref, 1e-300)
 
 
-def _odd_one_out(values: dict[str, np.ndarray], rtol: float, scale: Any = None) -> str | None:
-    """``None`` when all agree, the engine that departs when two agree, ``"all"`` when all differ."""
-    names = list(values)
-    agree: dict[tuple[str, ...], bool] = {
-        (a, b): bool(np.all(_close(values[a], values[b], rtol, scale)))
-        for i, a in enumerate(names)
-        for b in names[i + 1 :]
+def _departing(values: dict[str, np.ndarray], rtol: float, scale: Any = None) -> tuple[str, ...] | None:
+    """``None`` when all agree; the engines that depart when the others, a majority, agree; ``("all",)`` else.
+
+    The fewest departing engines are looked for first, in report order (of three: the first engine whose two
+    others agree).
+    """
+    engines = list(values)
+    agree: dict[frozenset[str], bool] = {
+        frozenset((a, b)): bool(np.all(_close(values[a], values[b], rtol, scale))) for a, b in combinations(engines, 2)
     }
     if all(agree.values()):
         return None
-    for odd in names:
-        rest = [n for n in names if n != odd]
-        if agree[tuple(rest)] if tuple(rest) in agree else agree[(rest[1], rest[0])]:
-            return odd
-    return "all"
+    for k in range(1, (len(engines) + 1) // 2):  # the others (more than half) must all agree with each other
+        for departing in combinations(engines, k):
+            rest = [e for e in engines if e not in departing]
+            if all(agree[frozenset(pair)] for pair in combinations(rest, 2)):
+                return departing
+    return ("all",)
+
+
+def _ordered(engines: Iterable[str]) -> list[str]:
+    """Engines in report order (names the registry does not know last, as given)."""
+    given = list(engines)
+    known = names()
+    return [e for e in known if e in given] + [e for e in given if e not in known]
+
+
+def _listed(engines: Sequence[str]) -> str:
+    """``"MuJoCo and Pinocchio"``, ``"MuJoCo, Pinocchio and Drake"``."""
+    labels = [label(e) for e in engines]
+    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
 
 
 def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence[str] = ()) -> Finding | None:
@@ -98,32 +116,53 @@ def _construct(cause: Finding) -> str:
     return cause.element
 
 
-def _verdict(
-    what: str, odd: str, values: dict[str, float], findings: Sequence[Finding], segments: Sequence[str] = ()
-) -> Finding:
-    """A ``VERDICT`` finding: who departs on ``what`` and why, or that all three differ."""
-    if odd == "all":
+def _verdicts(
+    what: str,
+    departing: Sequence[str],
+    values: dict[str, Any],
+    findings: Sequence[Finding],
+    segments: Sequence[str] = (),
+) -> list[Finding]:
+    """``VERDICT`` findings: who departs on ``what`` and why (one per departing engine), or that no majority agrees."""
+    if tuple(departing) == ("all",):
         causes = {e: departure_cause(findings, e, segments) for e in values}
-        known = "; ".join(f"{LABEL[e]}: {_construct(c)} ({c.kind.value})" for e, c in causes.items() if c is not None)
-        return Finding(
-            Kind.VERDICT,
-            "all",
-            what,
-            "all three engines differ" + (f"; constructs: {known}" if known else ""),
-            values,
-            affects_energy=True,
-            segments=tuple(segments),
-        )
-    others = " and ".join(LABEL[e] for e in values if e != odd)
+        known = "; ".join(f"{label(e)}: {_construct(c)} ({c.kind.value})" for e, c in causes.items() if c is not None)
+        head = "all three engines differ" if len(values) == 3 else f"no majority of the {len(values)} engines agrees"
+        return [
+            Finding(
+                Kind.VERDICT,
+                "all",
+                what,
+                head + (f"; constructs: {known}" if known else ""),
+                values,
+                affects_energy=True,
+                segments=tuple(segments),
+            )
+        ]
+    agreeing = [e for e in values if e not in departing]
+    return [_departure(what, odd, agreeing, values, findings, segments) for odd in departing]
+
+
+def _departure(
+    what: str,
+    odd: str,
+    agreeing: Sequence[str],
+    values: dict[str, Any],
+    findings: Sequence[Finding],
+    segments: Sequence[str],
+) -> Finding:
+    """One ``VERDICT`` finding: ``odd`` departs on ``what`` from the engines that agree, and why."""
+    others = _listed(agreeing)
     cause = departure_cause(findings, odd, segments)
-    summary = f"{LABEL[odd]} departs ({others} agree)"
+    summary = f"{label(odd)} departs ({others} agree)"
     if cause is not None:
         summary += f"; construct responsible: {_construct(cause)}"
-    else:  # the two that agree may skip the same construct: then the odd one reads the file as written
-        shared = _shared_cause([e for e in values if e != odd], findings, segments)
+    else:  # the engines that agree may skip the same construct: then the odd one reads the file as written
+        shared = _shared_cause(agreeing, findings, segments)
         if shared is not None:
             cause = shared
-            summary += f"; {others} both skip {_construct(shared)}: {LABEL[odd]} reads the file as written"
+            every = "both" if len(agreeing) == 2 else "all"
+            summary += f"; {others} {every} skip {_construct(shared)}: {label(odd)} reads the file as written"
     return Finding(
         Kind.VERDICT,
         odd,
@@ -137,12 +176,13 @@ def _verdict(
 
 
 def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: float = TIEBREAK_RTOL) -> list[Finding]:
-    """Three-way verdicts on the rigid-body energy and the armature (reflected-inertia) energy.
+    """Verdicts of three engines or more on the rigid-body energy and the armature (reflected-inertia) energy.
 
     Parameters
     ----------
     runs : dict of str to EngineRun
-        Needs ``"mujoco"``, ``"pinocchio"`` and ``"drake"``; otherwise nothing is said.
+        Each engine's energies (``rigid``, ``armature``): needs ``"mujoco"`` and at least two others;
+        otherwise nothing is said.
     findings : sequence of Finding
         The model's findings (causes are looked up there).
     rtol : float
@@ -150,22 +190,24 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
     Returns
     -------
     list of Finding
-        At most one per quantity, with the values at the pose of largest spread.
+        Per quantity, one per departing engine (or one saying no majority agrees), with the values at the pose
+        of largest spread.
     """
-    if not all(e in runs for e in ENGINE_NAMES):
+    if len(runs) < 3 or "mujoco" not in runs:
         return []
+    engines = _ordered(runs)
     out = []
-    rigid = {e: np.asarray(runs[e].rigid, dtype=float) for e in ENGINE_NAMES}
-    odd = _odd_one_out(rigid, rtol)
-    if odd is not None:
+    rigid = {e: np.asarray(runs[e].rigid, dtype=float) for e in engines}
+    departing = _departing(rigid, rtol)
+    if departing is not None:
         k = int(np.argmax(np.ptp(np.stack(list(rigid.values())), axis=0)))
-        out.append(_verdict("rigid-body energy", odd, {e: float(v[k]) for e, v in rigid.items()}, findings))
-    arm = {e: np.asarray(runs[e].armature, dtype=float) for e in ENGINE_NAMES}
+        out += _verdicts("rigid-body energy", departing, {e: float(v[k]) for e, v in rigid.items()}, findings)
+    arm = {e: np.asarray(runs[e].armature, dtype=float) for e in engines}
     scale = np.abs(rigid["mujoco"]) + np.abs(arm["mujoco"])
-    odd = _odd_one_out(arm, rtol, scale)
-    if odd is not None:
+    departing = _departing(arm, rtol, scale)
+    if departing is not None:
         k = int(np.argmax(np.ptp(np.stack(list(arm.values())), axis=0)))
-        out.append(_verdict("armature energy", odd, {e: float(v[k]) for e, v in arm.items()}, findings))
+        out += _verdicts("armature energy", departing, {e: float(v[k]) for e, v in arm.items()}, findings)
     return out
 
 
@@ -175,7 +217,7 @@ def import_verdicts(
     rtol: float = TIEBREAK_RTOL,
     labels: Mapping[str, str] | None = None,
 ) -> list[Finding]:
-    """Three-way verdicts on each segment's mass, COM and central inertia (world axes) in one state.
+    """Verdicts of three engines or more on each segment's mass, COM and central inertia (world axes) in one state.
 
     Frames are not compared (each engine has its own segment frame: a body, a joint frame), only what
     the mass distribution is in the world at the same canonical state.
@@ -183,7 +225,8 @@ def import_verdicts(
     Parameters
     ----------
     states : dict of str to SegmentStates
-        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``).
+        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``): needs
+        ``"mujoco"``, ``"pinocchio"`` and at least one other; otherwise nothing is said.
     findings : sequence of Finding
     rtol : float
     labels : mapping of str to str, optional
@@ -194,12 +237,13 @@ def import_verdicts(
     list of Finding
         One per quantity and departing engine (segments grouped), with the worst segment's values.
     """
-    if not all(e in states for e in ENGINE_NAMES):
+    if len(states) < 3 or not {"mujoco", "pinocchio"} <= set(states):
         return []
-    common = [n for n in states["mujoco"].names if all(n in states[e].names for e in ENGINE_NAMES)]
+    engines = _ordered(states)
+    common = [n for n in states["mujoco"].names if all(n in states[e].names for e in engines)]
     if not common:
         return []
-    sel = {e: states[e].select(segments=common) for e in ENGINE_NAMES}
+    sel = {e: states[e].select(segments=common) for e in engines}
     world_inertia = {
         e: np.einsum("bij,bjk,blk->bil", s.rotation[0], s.inertia_body, s.rotation[0]) for e, s in sel.items()
     }
@@ -209,24 +253,24 @@ def import_verdicts(
         "inertia": (world_inertia, "inertia"),
     }
     size = max(float(np.abs(sel["mujoco"].com[0]).max()), 1.0)
-    grouped: dict[tuple[str, str], list[tuple[str, dict[str, Any]]]] = {}
-    for label, (vals, kind) in quantities.items():
+    grouped: dict[tuple[str, tuple[str, ...]], list[tuple[str, dict[str, Any]]]] = {}
+    for quantity, (vals, kind) in quantities.items():
         for b, name in enumerate(common):
             per = {e: np.asarray(v[b], dtype=float) for e, v in vals.items()}
             scale = size if kind == "length" else None
             if kind == "inertia":
                 scale = max(float(np.abs(per["mujoco"]).max()), float(np.abs(per["pinocchio"]).max()))
-            odd = _odd_one_out(per, rtol, scale)
-            if odd is not None:
+            departing = _departing(per, rtol, scale)
+            if departing is not None:
                 shown = {e: _shown(v) for e, v in per.items()}
-                grouped.setdefault((label, odd), []).append((name, shown))
+                grouped.setdefault((quantity, departing), []).append((name, shown))
     out = []
-    for (label, odd), items in grouped.items():
+    for (quantity, departing), items in grouped.items():
         segments = [n for n, _ in items]
-        what = "principal moments" if label == "inertia" else label
+        what = "principal moments" if quantity == "inertia" else quantity
         first = (labels or {}).get(segments[0], f"segment {segments[0]}")  # the link or body the user wrote
         element = f"{first} {what}" + (f" (+{len(segments) - 1} segments)" if len(segments) > 1 else "")
-        out.append(_verdict(element, odd, items[0][1], findings, segments))
+        out += _verdicts(element, departing, items[0][1], findings, segments)
     return out
 
 

@@ -12,12 +12,14 @@ Public API
 ``list_models()``, ``resolve_model()``
     Names of the project's models and of every example-robot-data URDF.
 ``random_states(model, n, seed)``
-    Seeded random canonical states.
+    Seeded random canonical states: the package's one sampler (its distribution in ``sampling.py``).
 
-Layout: ``base.py`` (the :class:`Engine` interface), ``registry.py`` (names, optional engines),
-``loading.py`` (:class:`LoadedModel`), ``canonical.py`` (canonical coordinates), one subpackage per engine
-(``mujoco/``, ``pinocchio/``, ``drake/``: loader, adapter, state map).  Names are imported on first use, so
-that importing one engine's module does not import the others.
+Layout: ``base.py`` (the :class:`Engine` interface), ``specs.py`` (:class:`EngineSpec`, and the engines found
+among the subpackages), ``registry.py`` (names, optional engines, attaching one), ``loading.py``
+(:class:`LoadedModel`), ``canonical.py`` (canonical coordinates), one subpackage per engine (``mujoco/``,
+``pinocchio/``, ``drake/``: loader, adapter, state map; its ``SPEC`` in ``__init__.py``).  A new engine is one
+subpackage: its adapter derives from :class:`Engine`, its ``__init__.py`` declares ``SPEC = EngineSpec(...)``.
+Names are imported on first use, so that importing one engine's module does not import the others.
 """
 
 from __future__ import annotations

@@ -81,37 +81,114 @@ class Engine(ABC):
         pv = None if points is None else self.point_velocities(qpos, qvel, points)
         return states, pv, np.asarray(energy.rigid), np.asarray(energy.armature)
 
+    # The contract of each method (parameters, shapes, returns) is documented here once; an adapter's
+    # override says in one line only how its engine answers.
     @abstractmethod
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
-        """Return the engine's segment states."""
+        """Return the engine's segment states (pose, velocity, mass properties of each segment) per pose.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        SegmentStates
+        """
 
     @abstractmethod
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """Return world velocities (P, B, K, 3) of points (B, K, 3) fixed in the segments."""
+        """Return the world velocity of points fixed in the segments.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+        points : ndarray, shape (B, K, 3)
+            Offsets from each segment's COM, in the segment's axes.
+
+        Returns
+        -------
+        ndarray, shape (P, B, K, 3)
+        """
 
     @abstractmethod
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
-        """Return the engine's kinetic energy, armature separate."""
+        """Return the engine's kinetic energy, the rigid-body part and the armature part apart.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        EnergyParts
+        """
 
     @abstractmethod
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the mass matrix (P, nv, nv) in canonical velocity coordinates."""
+        """Return the mass matrix, armature included, in canonical velocity coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
 
     @abstractmethod
     def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return generalized forces (P, nv), gravity off, canonical coordinates."""
+        """Return the generalized forces (gravity, damping and applied forces zero), canonical coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel, qacc : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
 
     @abstractmethod
     def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the armature part (P, nv, nv) of :meth:`mass_matrix`."""
+        """Return the armature part of :meth:`mass_matrix`, canonical coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+
+        Returns
+        -------
+        ndarray, shape (P, nv, nv)
+        """
 
     @abstractmethod
     def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part (P, nv) of :meth:`inverse_dynamics`."""
+        """Return the armature part of :meth:`inverse_dynamics`, canonical coordinates.
+
+        Parameters
+        ----------
+        qpos : ndarray, shape (P, nq)
+        qvel, qacc : ndarray, shape (P, nv)
+
+        Returns
+        -------
+        ndarray, shape (P, nv)
+        """
 
     @abstractmethod
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
-        """Return canonical dof indices grouped by joint kind."""
+        """Return canonical dof indices grouped by the engine's joint kind.
+
+        Returns
+        -------
+        dict of str to ndarray of int
+        """
 
 
 #: The former name of :class:`Engine`.

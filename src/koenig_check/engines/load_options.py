@@ -12,10 +12,12 @@ import os
 import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-#: The engines koenig-check can run, in report order (Drake only with the optional extra ``[drake]``).
-ENGINE_NAMES = ("mujoco", "pinocchio", "drake")
+from koenig_check.engines import specs as engine_specs
+
+if TYPE_CHECKING:
+    ENGINE_NAMES: tuple[str, ...]  # read through __getattr__, from the specs
 
 #: What the deprecated ``allow_coupled`` / ``--allow-coupled`` is told.
 ALLOW_COUPLED_DEPRECATION = (
@@ -130,20 +132,29 @@ def parse_engines(text: str) -> tuple[str, ...]:
     Returns
     -------
     tuple of str
-        In :data:`ENGINE_NAMES` order.
+        In report order (:func:`koenig_check.engines.specs.names`).
 
     Raises
     ------
     ValueError
         On an unknown name, or a list without MuJoCo and Pinocchio.
     """
-    names = [n.strip().lower() for n in text.split(",") if n.strip()]
-    unknown = [n for n in names if n not in ENGINE_NAMES]
+    asked = [n.strip().lower() for n in text.split(",") if n.strip()]
+    known = engine_specs.names()
+    unknown = [n for n in asked if n not in known]
     if unknown:
-        raise ValueError(f"engines: unknown {unknown}; choose among {list(ENGINE_NAMES)}")
-    if not {"mujoco", "pinocchio"} <= set(names):
-        raise ValueError(f"engines: mujoco and pinocchio are always run, got {names}")
-    return tuple(n for n in ENGINE_NAMES if n in names)
+        raise ValueError(f"engines: unknown {unknown}; choose among {list(known)}")
+    required = [s.name for s in engine_specs.specs() if s.required]
+    if not set(required) <= set(asked):
+        raise ValueError(f"engines: {' and '.join(required)} are always run, got {asked}")
+    return tuple(n for n in known if n in asked)
+
+
+def __getattr__(name: str) -> tuple[str, ...]:
+    """``ENGINE_NAMES``, the tuple of earlier versions: every engine, in report order, read when asked."""
+    if name == "ENGINE_NAMES":
+        return engine_specs.names()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def parse_xacro_args(value: Mapping[str, Any] | Iterable[Any] | None) -> tuple[tuple[str, str], ...]:

@@ -110,7 +110,7 @@ class LoadedModel:
         Parameters
         ----------
         name : str
-            An optional engine (:data:`koenig_check.engines.registry.ATTACH`).
+            An optional engine (:func:`koenig_check.engines.registry.optional`).
 
         Returns
         -------

@@ -19,6 +19,7 @@ from typing import Any, TypeVar, cast
 import mujoco
 
 from koenig_check.engines.canonical import segment_of_body
+from koenig_check.engines.registry import label
 from koenig_check.exceptions import (
     CoupledJointsError,
     InertiaError,
@@ -53,7 +54,7 @@ def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocc
     list of Finding
         One ``IGNORED_CONSTRUCT`` root cause per outermost frame that holds a body or a geom.
     """
-    parser = {"pinocchio": "Pinocchio's", "drake": "Drake's"}.get(engine, engine)
+    parser = f"{label(engine)}'s"
     out = []
     for fr in frames(root):
         if not fr.bodies and not fr.geoms:

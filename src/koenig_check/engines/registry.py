@@ -1,34 +1,142 @@
 """The engines koenig-check can run: their names, how people call them, which are optional, how each is attached.
 
-MuJoCo and Pinocchio load every model (:func:`koenig_check.engines.load_model`); an optional engine is
-attached to a loaded model by the function :data:`ATTACH` names for it.  A new engine is one subpackage
-under ``engines/`` and one line in each table here.
+Each engine's facts are declared once, in its own subpackage (``SPEC = EngineSpec(...)`` in
+``engines/<name>/__init__.py``, :mod:`koenig_check.engines.specs`); this module answers from those
+declarations.  MuJoCo and Pinocchio load every model (:func:`koenig_check.engines.load_model`); an optional
+engine is attached to a loaded model by the function its spec names (:func:`attach`).  A new engine is one
+subpackage under ``engines/``: nothing here changes.
+
+The tables of earlier versions (:data:`ENGINE_NAMES`, :data:`REQUIRED`, :data:`OPTIONAL`, :data:`LABEL`,
+:data:`ATTACH`) are still here, derived from the specs each time they are read.
 """
 
 from __future__ import annotations
 
 import importlib
 import importlib.util
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines.errors import EngineUnavailableError
+from koenig_check.engines.specs import EngineSpec, names, spec, specs
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
     from koenig_check.engines.base import Engine
 
-#: Every engine, in report order.
-ENGINE_NAMES = ("mujoco", "pinocchio", "drake")
-#: The engines every model is loaded in.
-REQUIRED = ("mujoco", "pinocchio")
-#: How engines are named for people.
-LABEL = {"mujoco": "MuJoCo", "pinocchio": "Pinocchio", "drake": "Drake"}
-#: The Python module each engine needs, and how to install an optional one.
-_MODULE = {"mujoco": "mujoco", "pinocchio": "pinocchio", "drake": "pydrake"}
-_INSTALL = {"drake": "pip install 'koenig-check[drake]'"}
+    ENGINE_NAMES: tuple[str, ...]  # read through __getattr__, from the specs
+    REQUIRED: tuple[str, ...]
+    OPTIONAL: tuple[str, ...]
+
+__all__ = [  # and ENGINE_NAMES, REQUIRED, OPTIONAL (module __getattr__)
+    "ATTACH",
+    "LABEL",
+    "EngineSpec",
+    "attach",
+    "check_engines",
+    "install_hint",
+    "installed",
+    "label",
+    "load_function",
+    "names",
+    "not_used",
+    "optional",
+    "required",
+    "spec",
+    "specs",
+]
+
+
+def required() -> tuple[str, ...]:
+    """The engines every model is loaded in, in report order.
+
+    Returns
+    -------
+    tuple of str
+    """
+    return tuple(s.name for s in specs() if s.required)
+
+
+def optional() -> tuple[str, ...]:
+    """The engines attached to a loaded model when used, in report order.
+
+    Returns
+    -------
+    tuple of str
+    """
+    return tuple(s.name for s in specs() if not s.required)
+
+
+def label(name: str) -> str:
+    """How an engine is named for people (``"MuJoCo"``); an unknown name is returned as it is.
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    str
+    """
+    try:
+        return spec(name).label
+    except KeyError:
+        return name
+
+
+class _Table(Mapping[str, str]):
+    """A table of earlier versions (engine -> one fact), read from the specs at each look-up."""
+
+    def __init__(self, fact: Callable[[EngineSpec], str]) -> None:
+        self._fact = fact
+
+    def _items(self) -> dict[str, str]:
+        return {s.name: self._fact(s) for s in specs() if self._fact(s)}
+
+    def __getitem__(self, name: str) -> str:
+        return self._items()[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items())
+
+    def __len__(self) -> int:
+        return len(self._items())
+
+    def __repr__(self) -> str:
+        return repr(self._items())
+
+
+#: How engines are named for people (engine -> label).
+LABEL: Mapping[str, str] = _Table(lambda s: s.label)
 #: Optional engine -> "module:function" that attaches it to a loaded model (see :func:`attach`).
-ATTACH = {"drake": "koenig_check.engines.drake.attach:attach"}
+ATTACH: Mapping[str, str] = _Table(lambda s: s.attach)
+#: The Python module each engine needs, and how to install an optional one.
+_MODULE: Mapping[str, str] = _Table(lambda s: s.module)
+_INSTALL: Mapping[str, str] = _Table(lambda s: s.install_hint)
+
+
+def __getattr__(name: str) -> tuple[str, ...]:
+    """The tuples of earlier versions, derived from the specs: ``ENGINE_NAMES``, ``REQUIRED``, ``OPTIONAL``."""
+    derived = {"ENGINE_NAMES": names, "REQUIRED": required, "OPTIONAL": optional}
+    if name in derived:
+        return derived[name]()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def load_function(path: str) -> Callable[..., Any]:
+    """The function a spec names as ``"module:function"``.
+
+    Parameters
+    ----------
+    path : str
+
+    Returns
+    -------
+    callable
+    """
+    module, function = path.split(":")
+    found = getattr(importlib.import_module(module), function)
+    return found
 
 
 def installed(name: str) -> bool:
@@ -43,8 +151,8 @@ def installed(name: str) -> bool:
     bool
     """
     try:
-        return importlib.util.find_spec(_MODULE[name]) is not None
-    except (ImportError, ValueError):
+        return importlib.util.find_spec(spec(name).module) is not None
+    except (ImportError, ValueError, KeyError):
         return False
 
 
@@ -59,7 +167,7 @@ def install_hint(name: str) -> str:
     -------
     str
     """
-    return _INSTALL.get(name, "")
+    return spec(name).install_hint
 
 
 def check_engines(engines: Sequence[str] | None) -> None:
@@ -74,9 +182,10 @@ def check_engines(engines: Sequence[str] | None) -> None:
     EngineUnavailableError
     """
     for name in engines or ():
-        if name not in REQUIRED and not installed(name):
+        if name not in required() and not installed(name):
+            module = spec(name).module
             raise EngineUnavailableError(
-                f"engines: {name} asked for but {_MODULE[name]} is not installed ({install_hint(name)})", engine=name
+                f"engines: {name} asked for but {module} is not installed ({install_hint(name)})", engine=name
             )
 
 
@@ -94,7 +203,7 @@ def not_used(name: str, why: str, **values: Any) -> Finding:
     -------
     Finding
     """
-    return Finding(Kind.ENGINE_NOT_USED, name, "model", f"{LABEL[name]} not used: {why}", values)
+    return Finding(Kind.ENGINE_NOT_USED, name, "model", f"{label(name)} not used: {why}", values)
 
 
 def attach(name: str, model: Any) -> tuple[Engine | None, list[Finding]]:
@@ -103,7 +212,7 @@ def attach(name: str, model: Any) -> tuple[Engine | None, list[Finding]]:
     Parameters
     ----------
     name : str
-        An optional engine (a key of :data:`ATTACH`).
+        An optional engine (its spec's :attr:`~koenig_check.engines.specs.EngineSpec.attach`).
     model : koenig_check.engines.LoadedModel
 
     Returns
@@ -116,8 +225,5 @@ def attach(name: str, model: Any) -> tuple[Engine | None, list[Finding]]:
     """
     if not installed(name):
         return None, [not_used(name, f"not installed ({install_hint(name)})")]
-    module, function = ATTACH[name].split(":")
-    attach_engine: Callable[[Any], tuple[Engine | None, list[Finding]]] = getattr(
-        importlib.import_module(module), function
-    )
+    attach_engine: Callable[[Any], tuple[Engine | None, list[Finding]]] = load_function(spec(name).attach)
     return attach_engine(model)

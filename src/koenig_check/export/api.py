@@ -6,7 +6,7 @@ import os
 from pathlib import Path
 
 from koenig_check.arguments import ArgumentValueError
-from koenig_check.engines.load_options import ENGINE_NAMES, LoadOptions
+from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import load_mujoco
 from koenig_check.export.carried import NotCarried
 from koenig_check.export.mjcf_from_urdf import write_mjcf_from_urdf
@@ -60,7 +60,7 @@ def export_model(
     poses: int = PROOF_POSES,
     seed: int = 0,
     rtol: float = PROOF_RTOL,
-    engines: tuple[str, ...] = ENGINE_NAMES,
+    engines: tuple[str, ...] | None = None,
 ) -> ExportResult:
     """Write ``model`` as URDF or portable MJCF, load it back and compare it with the original.
 
@@ -78,8 +78,8 @@ def export_model(
         URDF: write armature as Drake's ``drake:rotor_inertia``.
     poses, seed, rtol
         The proof's seeded random poses and relative tolerance.
-    engines : tuple of str
-        Engines the proof uses (those not installed are reported, not run).
+    engines : tuple of str, optional
+        Engines the proof uses (those not installed are reported, not run); default: every engine.
 
     Returns
     -------
@@ -113,6 +113,6 @@ def export_model(
     else:
         text, not_carried = write_portable_mjcf(mj_model, out, model_name=name, model_dir=source.path.parent)
     Path(out).write_text(text, encoding="utf-8")
-    proof = prove(source.path, out, options, poses=poses, seed=seed, rtol=rtol, engines=tuple(engines))
+    proof = prove(source.path, out, options, poses=poses, seed=seed, rtol=rtol, engines=engines)
     floating_base = any(n.construct == "floating base" for n in not_carried)
     return ExportResult(Path(out), to, tuple(not_carried), proof, floating_base)

@@ -139,7 +139,7 @@ def run_export(
             problem = str(err)
     if problem:
         usage_error(args, problem)
-    engines = options.engines or ("mujoco", "pinocchio", "drake")
+    engines = options.engines  # None: every engine
     if args.check_only:
         original, export = args.check_only
         proof = prove(original, export, options, poses=args.poses, seed=args.seed, rtol=args.rtol, engines=engines)

@@ -8,14 +8,19 @@ from typing import Any
 
 import mujoco
 
+from koenig_check.engines import registry
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.adapter import MujocoEngine
-from koenig_check.engines.mujoco.loader import load_mujoco, root_free_joint
+from koenig_check.engines.mujoco.loader import load_mujoco
 from koenig_check.exceptions import one_line
 from koenig_check.sources.catalogue import resolve_model
 
-#: The engines a proof compares, in report order.
-PROOF_ENGINES = ("mujoco", "pinocchio", "drake")
+
+def __getattr__(name: str) -> tuple[str, ...]:
+    """``PROOF_ENGINES``, the engines a proof compares by default: every engine, in report order, read when asked."""
+    if name == "PROOF_ENGINES":
+        return registry.names()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @dataclass
@@ -39,18 +44,18 @@ class EngineSide:
     refused: dict[str, str] = field(default_factory=dict)
 
 
-def load_side(
-    path: str | os.PathLike[str], options: LoadOptions, engines: tuple[str, ...] = PROOF_ENGINES
-) -> EngineSide:
+def load_side(path: str | os.PathLike[str], options: LoadOptions, engines: tuple[str, ...] | None = None) -> EngineSide:
     """Load a file in MuJoCo (required: it defines the state layout), then in each other engine.
 
     Parameters
     ----------
     path : path or model name
     options : LoadOptions
-        ``floating``, ``balance_inertia``, ``repair_inertia`` apply to MuJoCo; Pinocchio and Drake get
+        ``floating``, ``balance_inertia``, ``repair_inertia`` apply to MuJoCo; the other engines get
         a free root exactly where MuJoCo's model has one.
-    engines : tuple of str
+    engines : tuple of str, optional
+        Default: every engine (:func:`koenig_check.engines.registry.names`).  Each is loaded by the function
+        its spec names (:attr:`~koenig_check.engines.specs.EngineSpec.load_alone`).
 
     Returns
     -------
@@ -70,27 +75,15 @@ def load_side(
     )
     side = EngineSide(str(source.path), mj_model)
     side.adapters["mujoco"] = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
-    if "pinocchio" in engines:
+    for name in registry.names() if engines is None else engines:
+        if name == "mujoco":
+            continue
+        if not registry.installed(name):
+            extra = registry.spec(name).extra
+            side.refused[name] = f"{registry.label(name)} is not installed ({f'extra [{extra}]' if extra else name})"
+            continue
         try:
-            from koenig_check.engines.pinocchio.adapter import PinocchioEngine
-            from koenig_check.engines.pinocchio.loader import load_pinocchio
-            from koenig_check.engines.pinocchio.state_map import build_state_map
-
-            pin_model, pin_findings = load_pinocchio(source, root_joint=root_free_joint(mj_model))
-            state_map = build_state_map(mj_model, pin_model, str(source.path))
-            side.adapters["pinocchio"] = PinocchioEngine(pin_model, state_map, source.path, pin_findings)
+            side.adapters[name] = registry.load_function(registry.spec(name).load_alone)(source, mj_model)
         except Exception as err:  # an engine's refusal is a result, not a crash
-            side.refused["pinocchio"] = one_line(err)
-    if "drake" in engines:
-        from koenig_check.engines.drake.loader import drake_available
-
-        if not drake_available():
-            side.refused["drake"] = "Drake is not installed (extra [drake])"
-        else:
-            try:
-                from koenig_check.engines.drake.building import load_drake_engine
-
-                side.adapters["drake"] = load_drake_engine(source, mj_model)
-            except Exception as err:
-                side.refused["drake"] = one_line(err)
+            side.refused[name] = one_line(err)
     return side

@@ -19,11 +19,12 @@ from pathlib import Path
 
 import numpy as np
 
+from koenig_check.engines import registry
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
 from koenig_check.engines.sampling import random_states
-from koenig_check.export.engine_sides import PROOF_ENGINES, EngineSide, load_side
+from koenig_check.export.engine_sides import EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
 from koenig_check.sources.catalogue import detect_format
@@ -186,7 +187,7 @@ def prove(
     poses: int = PROOF_POSES,
     seed: int = 0,
     rtol: float = PROOF_RTOL,
-    engines: tuple[str, ...] = PROOF_ENGINES,
+    engines: tuple[str, ...] | None = None,
 ) -> Proof:
     """Load the original and the export in every engine and compare them at seeded random states.
 
@@ -201,12 +202,14 @@ def prove(
     seed : int
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
-    engines : tuple of str
+    engines : tuple of str, optional
+        Default: every engine (:func:`koenig_check.engines.registry.names`).
 
     Returns
     -------
     Proof
     """
+    engines = registry.names() if engines is None else tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)

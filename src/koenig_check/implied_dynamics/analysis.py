@@ -30,8 +30,8 @@ from koenig_check.engines.load_options import LoadOptions
 from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.findings import Finding, Kind
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
-from koenig_check.implied_dynamics.drake_column import add_drake_column
 from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix
+from koenig_check.implied_dynamics.engine_columns import add_engine_columns
 from koenig_check.implied_dynamics.errors import Discrepancy, discrepancy
 from koenig_check.implied_dynamics.kane import kane_mujoco, kane_pinocchio
 from koenig_check.implied_dynamics.lagrange import lagrange_inertia_forces
@@ -345,5 +345,5 @@ def dynamics(
     qacc = velocity_scale * _random_accelerations(pair.mujoco.nv, n_poses, seed)
     result = dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)
     result.rtol = rtol
-    add_drake_column(result, pair, options.engines, ENGINE_PARITY)
+    add_engine_columns(result, pair, options.engines, ENGINE_PARITY)
     return result

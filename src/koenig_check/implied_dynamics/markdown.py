@@ -14,7 +14,7 @@ from koenig_check.implied_dynamics.lagrange import CONFIGURATION_STEP, TIME_STEP
 
 
 def _columns(result: DynamicsResult) -> list[tuple[str, str]]:
-    """``(quantity, engine)`` columns: both engines, and Drake where it was run."""
+    """``(quantity, engine)`` columns: both engines, and each optional engine (Drake) where it was run."""
     engines = [*ENGINES, *(e for e in result.engine_mass if e not in ENGINES)]
     return [(q, e) for q in ("M", "Q*") for e in engines]
 
@@ -59,15 +59,10 @@ def terminal_lines(result: DynamicsResult) -> list[str]:
             continue
         cells = " ".join(f"{_cell(result, formula, q, e):>15s}" for q, e in columns)
         lines.append(f"{formula:30s} {cells}  {_describe(result, _worst(result.errors_of(formula)))}")
-    lines.append(
-        f"{'engines (mujoco vs pinocchio)':30s} "
-        f"{_cell(result, ENGINE_PARITY, 'M', 'pinocchio'):>15s} {'':>15s} "
-        f"{_cell(result, ENGINE_PARITY, 'Q*', 'pinocchio'):>15s}"
-    )
-    if "drake" in result.engine_mass:
+    for other in [e for e in result.engine_mass if e != "mujoco"]:  # Pinocchio, then each optional engine run
         lines.append(
-            f"{'engines (mujoco vs drake)':30s} {_cell(result, ENGINE_PARITY, 'M', 'drake'):>15s} {'':>15s} "
-            f"{_cell(result, ENGINE_PARITY, 'Q*', 'drake'):>15s}"
+            f"{f'engines (mujoco vs {other})':30s} {_cell(result, ENGINE_PARITY, 'M', other):>15s} {'':>15s} "
+            f"{_cell(result, ENGINE_PARITY, 'Q*', other):>15s}"
         )
     lines += [f.message() for f in result.findings if f.kind is Kind.ENGINE_NOT_USED]
     return lines

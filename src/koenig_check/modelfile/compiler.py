@@ -6,7 +6,81 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Any
 
-from koenig_check.modelfile.validate import parse_xml
+from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.mjcf import read_mjcf
+
+#: The compiler options with which MuJoCo changes masses or inertias while compiling: what it does, and the
+#: hint for a reader of the parity report.  An option is in effect when its value is > 0 (a number) or "true".
+MASS_OPTIONS = {
+    "settotalmass": (
+        "MuJoCo rescales every mass and inertia to this total",
+        "check whether Pinocchio's MJCF parser does the same (total masses below)",
+    ),
+    "boundmass": ("MuJoCo raises smaller masses/inertias to this bound", ""),
+    "boundinertia": ("MuJoCo raises smaller masses/inertias to this bound", ""),
+    "balanceinertia": ("MuJoCo alters inertias that violate A + B >= C", ""),
+    "inertiafromgeom": ("MuJoCo computes every body's inertia from its geoms", ""),
+}
+
+
+def compiler_options(path: Path) -> list[Finding]:
+    """The compiler options an MJCF file sets with which MuJoCo changes masses or inertias.
+
+    The one reading of these options: import parity's notes (:func:`compiler_findings`) and the root
+    causes (:func:`koenig_check.diagnosis.pair_causes.compiler_causes`) both start from these records.
+
+    Parameters
+    ----------
+    path : Path
+
+    Returns
+    -------
+    list of Finding
+        One per option in effect, in file order: kind ``COMPILER``, engine ``mujoco`` (the engine that
+        applies it), element ``compiler NAME``, summary what MuJoCo does, values ``{NAME: value, "as written":
+        text}`` (a float, or ``True`` for a flag, and the attribute's text); none for a file that is not MJCF
+        or cannot be read.
+    """
+    root = read_mjcf(path)
+    if root is None:
+        return []
+    out = []
+    for comp in root.iter("compiler"):
+        for name, (effect, hint) in MASS_OPTIONS.items():
+            written = comp.get(name)
+            value = _in_effect(written)
+            if value is not None:
+                values = {name: value, "as written": written}
+                out.append(Finding(Kind.COMPILER, "mujoco", f"compiler {name}", effect, values, True, hint=hint))
+    return out
+
+
+def option_text(option: Finding) -> str:
+    """``NAME=VALUE`` of a compiler option record, as the file writes it (``settotalmass=14``).
+
+    Parameters
+    ----------
+    option : Finding
+        A record of :func:`compiler_options`.
+
+    Returns
+    -------
+    str
+    """
+    return f"{option.element.removeprefix('compiler ')}={option.values['as written']}"
+
+
+def _in_effect(written: str | None) -> float | bool | None:
+    """An option's value when it changes what MuJoCo compiles (> 0, or ``true``), else ``None``."""
+    if written is None:
+        return None
+    if written.strip() == "true":
+        return True
+    try:
+        value = float(written)
+    except ValueError:
+        return None
+    return value if value > 0 else None
 
 
 def compiler_findings(path: Path, mj_model: Any = None) -> list[str]:
@@ -22,37 +96,15 @@ def compiler_findings(path: Path, mj_model: Any = None) -> list[str]:
     Returns
     -------
     list of str
+        The options of :func:`compiler_options` (``compiler NAME=VALUE: what MuJoCo does[; hint]``), then
+        the bodies without ``<inertial>``.
     """
-    try:
-        root = parse_xml(path).getroot()
-    except (ET.ParseError, OSError):
-        return []
-    if root.tag != "mujoco":
-        return []
-    out = []
-    for comp in root.iter("compiler"):
-        for attr in (
-            "settotalmass",
-            "boundmass",
-            "boundinertia",
-            "balanceinertia",
-            "inertiafromgeom",
-            "inertiagrouprange",
-        ):
-            value = comp.get(attr)
-            if value is None:
-                continue
-            if attr == "settotalmass" and float(value) > 0:
-                out.append(
-                    f"compiler settotalmass={value}: MuJoCo rescales every mass and inertia to this total; "
-                    "check whether Pinocchio's MJCF parser does the same (total masses below)"
-                )
-            elif attr in ("boundmass", "boundinertia") and float(value) > 0:
-                out.append(f"compiler {attr}={value}: MuJoCo raises smaller masses/inertias to this bound")
-            elif attr == "balanceinertia" and value == "true":
-                out.append("compiler balanceinertia=true: MuJoCo alters inertias that violate A + B >= C")
-            elif attr == "inertiafromgeom" and value == "true":
-                out.append("compiler inertiafromgeom=true: MuJoCo computes every body's inertia from its geoms")
+    out = [
+        f"compiler {option_text(o)}: {o.summary}" + (f"; {o.hint}" if o.hint else "") for o in compiler_options(path)
+    ]
+    root = read_mjcf(path)
+    if root is None:
+        return out
     for body in root.iter("body"):
         if body.find("inertial") is None and body.find("geom") is not None:
             kinds = _geom_types(body, mj_model)

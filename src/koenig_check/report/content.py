@@ -39,12 +39,13 @@ _CONVENTION_TEXT = {
 
 #: Pose labels, as they appear in tables, records and figures.
 POSE_LABELS = {
-    "random-i": "the i-th random pose: joint positions uniform within limits, joint rates normal (std: the "
-    "velocity scale), drawn from the seed",
+    "random-i": "the i-th random pose: joint positions uniform within limits (unlimited hinges over [-π, π], "
+    "unlimited slides and free-joint positions within ±1 of the reference), orientations uniform, joint rates "
+    "normal (std: the velocity scale), drawn from the seed",
     "grid-i": "the i-th pose of an N × N sweep of two joints (the first joint varies slowest); the swept joints "
     "turn at a fixed rate, the others rest",
     "traj-i": "the i-th sample of a torque-free MuJoCo simulation with gravity off, from the reference pose",
-    "key:NAME": "the model's keyframe NAME, with random joint rates when the keyframe is at rest",
+    "key:NAME": "the model's keyframe NAME; at rest, it gets the joint rates of the random pose of its index",
 }
 
 #: The columns of the per-model tables.

@@ -24,13 +24,38 @@ from matplotlib.figure import Figure
 from matplotlib.text import Text
 from matplotlib.ticker import MaxNLocator
 
+from koenig_check.engines.specs import spec, specs
 from koenig_check.report.engine_energies import EngineEnergies
 from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.stats import QuantileSketch, relative_error
 
-#: Engine colours, the same in every figure.
-ENGINE_COLORS = {"mujoco": "tab:blue", "pinocchio": "tab:orange", "drake": "tab:green"}
+
+def engine_color(engine: str) -> str:
+    """An engine's colour, the same in every figure (declared in its spec, :mod:`koenig_check.engines.specs`).
+
+    Parameters
+    ----------
+    engine : str
+
+    Returns
+    -------
+    str
+        A Matplotlib colour; grey for a name no engine has.
+    """
+    try:
+        return spec(engine).color
+    except KeyError:
+        return "tab:gray"
+
+
+def __getattr__(name: str) -> dict[str, str]:
+    """``ENGINE_COLORS``, the table of earlier versions (engine -> colour), read from the specs when asked."""
+    if name == "ENGINE_COLORS":
+        return {s.name: s.color for s in specs()}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 #: Where the rounding band is drawn (log10 units), left of the axis proper.
 _BAND = np.log10(ROUNDOFF) - 2.0
 #: Width (inches) of the figures shown beside a model's table in report.html.
@@ -137,7 +162,7 @@ def error_distribution_figure(
     ax = fig.add_subplot()
     top = max([_position(s.quantile(1.0)) for s in pooled.values() if s.n] + [np.log10(rtol) + 1, 0.0])
     for k, engine in enumerate(engines):
-        color = ENGINE_COLORS.get(engine, "tab:gray")
+        color = engine_color(engine)
         offset = (k - (len(engines) - 1) / 2) * 0.36
         boxes, exact = [], []  # boxes: (row, min, q1, median, q3, max) in axis units
         for i, f in enumerate(formulas):
@@ -228,7 +253,7 @@ def engine_gap_figure(
         worst = int(np.argmax(np.nan_to_num(gap, nan=np.inf)))
         largest = fmt(float(gap[worst]), ".2g") if n else ""  # below ROUNDOFF: 0, as everywhere in the report
         label = f"{engine} vs mujoco: largest {largest} at {energies.poses[worst]}" if n else engine
-        color = ENGINE_COLORS.get(engine, "tab:gray")
+        color = engine_color(engine)
         ax.plot(x, y, "o", color=color, markersize=size, markeredgewidth=0, label=label, rasterized=n > 2000)
     ax.axhspan(_BAND - 0.6, _BAND + 0.6, color="0.92", zorder=0)
     ax.axhline(np.log10(rtol), color="tab:red", linestyle="--", linewidth=1.2, label=f"tolerance {rtol:g}")
@@ -340,7 +365,7 @@ def trajectory_figure(
     }
     for engine, rigid in energy.items():
         if len(rigid):
-            ax.plot(times, rigid, linewidth=4, alpha=0.4, color=ENGINE_COLORS.get(engine), label=f"{engine} energy")
+            ax.plot(times, rigid, linewidth=4, alpha=0.4, color=engine_color(engine), label=f"{engine} energy")
     mj = energy.get("mujoco", np.empty(0))
     palette = dict(zip(formulas, (f"C{k + 2}" for k in range(10)), strict=False))
     for formula in formulas:

@@ -1,8 +1,8 @@
 """The table printed on the terminal, within 100 columns: one row per model, then one row per formula.
 
-When Drake ran on a model (on every pose, or as tie-breaker where MuJoCo and Pinocchio disagree), the model
-rows have a column for its gap to MuJoCo.  No line is longer than :data:`LINE_LIMIT` characters, whatever the
-length of a model's label or of a word in its cause.
+When an optional engine (Drake) ran on a model (on every pose, or as tie-breaker where MuJoCo and Pinocchio
+disagree), the model rows have a column for its gap to MuJoCo, one per optional engine that ran.  No line is
+longer than :data:`LINE_LIMIT` characters, whatever the length of a model's label or of a word in its cause.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from koenig_check.api import CrossCheck
+from koenig_check.engines.registry import label, optional
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.stats import relative_error
@@ -23,8 +24,6 @@ from koenig_check.run.summaries import FormulaSummary
 WIDTH = 100
 #: No printed line is longer than this, even with a model label or a word longer than :data:`WIDTH`.
 LINE_LIMIT = 200
-#: The optional engine that gets a column when it ran.
-_OPTIONAL = "drake"
 
 
 def _number(value: float) -> str:
@@ -59,29 +58,37 @@ def _row(model: str, width: int, cells: str, text: str) -> list[str]:
     return _fold([model]) + _wrap(f"{'':{width}s}  {cells}", text)
 
 
-def optional_gap(comparison: ModelComparison) -> tuple[float, bool] | None:
-    """Drake's largest relative gap to MuJoCo's rigid-body energy on a model, if Drake ran on it.
+def optional_gap(comparison: ModelComparison, engine: str | None = None) -> tuple[float, bool] | None:
+    """An optional engine's largest relative gap to MuJoCo's rigid-body energy on a model, if it ran on it.
 
     Parameters
     ----------
     comparison : ModelComparison
+    engine : str, optional
+        An optional engine (:func:`koenig_check.engines.registry.optional`); by default the first one.
 
     Returns
     -------
     (float, bool) or None
-        The gap, and whether Drake ran on every pose (False: as tie-breaker on the poses of the three-engine
-        verdict, the gap at the pose where the engines differ most); None when Drake did not run.
+        The gap, and whether the engine ran on every pose (False: as tie-breaker on the poses of the
+        three-engine verdict, the gap at the pose where the engines differ most); None when it did not run.
     """
     from koenig_check.findings import Kind
 
-    gap = comparison.stats.parity.gaps.get(_OPTIONAL) if comparison.stats is not None else None
+    engine = engine or optional()[0]
+    gap = comparison.stats.parity.gaps.get(engine) if comparison.stats is not None else None
     if gap is not None and gap.where:
         return gap.value, True
     for f in comparison.findings:
-        if f.kind is Kind.VERDICT and f.element == "rigid-body energy" and {"mujoco", _OPTIONAL} <= set(f.values):
-            mujoco, other = float(f.values["mujoco"]), float(f.values[_OPTIONAL])
+        if f.kind is Kind.VERDICT and f.element == "rigid-body energy" and {"mujoco", engine} <= set(f.values):
+            mujoco, other = float(f.values["mujoco"]), float(f.values[engine])
             return float(np.abs(relative_error(np.array([other]), np.array([mujoco])))[0]), False
     return None
+
+
+def _gap_cell(gap: tuple[float, bool] | None) -> str:
+    """An optional engine's gap as printed: ``—`` where it did not run, ``*`` where it ran as tie-breaker."""
+    return "—" if gap is None else _number(gap[0]) + ("" if gap[1] else "*")
 
 
 def _cause(check: CrossCheck, model: str) -> str:
@@ -145,11 +152,12 @@ def terminal_table(check: CrossCheck) -> str:
     """Render a cross-check for a 100-column terminal.
 
     First one row per model: do MuJoCo and Pinocchio agree (the largest relative difference of their
-    rigid-body kinetic energies, "engine gap"), and Drake where it ran (its gap to MuJoCo, a column of its
-    own), does ``exact`` on each engine's segment states reproduce that engine's energy, and the root cause
-    when they disagree (wrapped at :data:`WIDTH`; a word is cut only beyond :data:`LINE_LIMIT`).  Then one row per
-    formula: the worst relative error of its total energy over every model, pose and engine (each
-    engine's states against its own energy), on how many models it is exact, and where the worst is.
+    rigid-body kinetic energies, "engine gap"), and each optional engine where it ran (Drake: its gap to
+    MuJoCo, a column of its own), does ``exact`` on each engine's segment states reproduce that engine's energy,
+    and the root cause when they disagree (wrapped at :data:`WIDTH`; a word is cut only beyond
+    :data:`LINE_LIMIT`).  Then one row per formula: the worst relative error of its total energy over every
+    model, pose and engine (each engine's states against its own energy), on how many models it is exact, and
+    where the worst is.
     Values below :data:`~koenig_check.roundoff.ROUNDOFF` print as 0.
 
     Parameters
@@ -163,41 +171,44 @@ def terminal_table(check: CrossCheck) -> str:
     rtol = check.rtol
     names = [p.model for p in check.parities] + [m for m, _ in check.failures]
     mw = min(max([len(n) for n in names] + [5]), 40)
-    gaps = [optional_gap(c) for c in check.comparisons]
-    drake = any(g is not None for g in gaps)
+    gaps = {e: [optional_gap(c, e) for c in check.comparisons] for e in optional()}
+    ran = [e for e, per_model in gaps.items() if any(g is not None for g in per_model)]  # a column each
+    widths = {e: max(10, len(e) + 4) for e in ran}
     scale = f"(tolerance {rtol:g} relative; 0: below {ROUNDOFF:g}, rounding)"
-    if drake:
+    if ran:
+        engines = ", ".join(label(e) for e in ("mujoco", "pinocchio", *ran[:-1])) + f" and {label(ran[-1])}"
+        columns = "".join(f"{e + ' gap':>{widths[e]}s}  " for e in ran)
         lines = [
-            f"Models: do MuJoCo, Pinocchio and Drake agree? {scale}",
+            f"Models: do {engines} agree? {scale}",
             "gap: largest relative difference of the engine's rigid-body energy from MuJoCo's",
-            f"{'model':{mw}s}  {'verdict':8s}  {'pinocchio gap':>13s}  {'drake gap':>10s}  {'exact vs own':>12s}  "
-            "root cause",
+            f"{'model':{mw}s}  {'verdict':8s}  {'pinocchio gap':>13s}  {columns}{'exact vs own':>12s}  root cause",
         ]
     else:
         lines = [
             f"Models: do MuJoCo and Pinocchio agree? {scale}",
             f"{'model':{mw}s}  {'verdict':8s}  {'engine gap':>10s}  {'exact vs own':>12s}  root cause",
         ]
-    tiebreak = False
+    tiebreak: list[str] = []  # the engines that ran as tie-breaker on some model
     from koenig_check.diagnosis.reason import lead_line
 
-    for p, gap, comparison in zip(check.parities, gaps, check.comparisons, strict=True):
+    for i, (p, comparison) in enumerate(zip(check.parities, check.comparisons, strict=True)):
         # The row says what the exit status says: an engine that departs, or a check asked for and not made,
         # fails the model even where MuJoCo and Pinocchio agree.
         status = "agree" if p.agrees and not lead_line(comparison.findings) else "DISAGREE"
         exact = max(p.exact_vs_engine.values(), default=0.0)
-        if drake:
-            shown_gap = "—" if gap is None else _number(gap[0]) + ("" if gap[1] else "*")
-            tiebreak |= gap is not None and not gap[1]
-            cells = f"{status:8s}  {_number(p.rigid_max_rel):>13s}  {shown_gap:>10s}  {_number(exact):>12s}  "
+        if ran:
+            row_gaps = {e: gaps[e][i] for e in ran}
+            tiebreak += [e for e, g in row_gaps.items() if g is not None and not g[1] and e not in tiebreak]
+            columns = "".join(f"{_gap_cell(g):>{widths[e]}s}  " for e, g in row_gaps.items())
+            cells = f"{status:8s}  {_number(p.rigid_max_rel):>13s}  {columns}{_number(exact):>12s}  "
         else:
             cells = f"{status:8s}  {_number(p.rigid_max_rel):>10s}  {_number(exact):>12s}  "
         lines += _row(p.model, mw, cells, _cause(check, p.model) or "—")
-    blank = f"{'':>13s}  {'':>10s}" if drake else f"{'':>10s}"
+    blank = f"{'':>13s}  " + "  ".join(f"{'':>{widths[e]}s}" for e in ran) if ran else f"{'':>10s}"
     for model, reason in check.failures:
         lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", reason)
-    if tiebreak:
-        lines.append("*: Drake as tie-breaker on the first poses: its gap where the three engines differ most")
+    for e in [e for e in ran if e in tiebreak]:
+        lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the three engines differ most")
     if not check.summaries:
         return "\n".join(lines)
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})

@@ -1,10 +1,10 @@
 """Pose and trajectory samplers, in the canonical state convention (MuJoCo ``qpos``/``qvel``).
 
-Every sampler is seeded and returns a :class:`PoseSet`.  Random poses respect joint
-limits; unlimited hinges are drawn over [-π, π]; free and ball joints get uniformly
-random orientations.  Trajectories are simulated by MuJoCo itself, with gravity and
-contacts off unless asked for, so that the ``integrated`` angle convention of eq. (36)
-has a real path to integrate along.
+Every sampler is seeded and returns a :class:`PoseSet`.  Random states (random poses, the velocities
+of keyframes at rest, a trajectory's start) all come from the package's one sampler,
+:mod:`koenig_check.engines.sampling`, whose docstring gives the distribution.  Trajectories are
+simulated by MuJoCo itself, with gravity and contacts off unless asked for, so that the
+``integrated`` angle convention of eq. (36) has a real path to integrate along.
 """
 
 from __future__ import annotations
@@ -16,6 +16,12 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.coupling import apply_joint_relations, joint_relations
+from koenig_check.engines.sampling import (
+    check_pose_count,
+    check_velocity_scale,
+    random_state_range,
+    random_states,
+)
 
 _FREE, _BALL, _SLIDE, _HINGE = (
     int(mujoco.mjtJoint.mjJNT_FREE),
@@ -78,47 +84,6 @@ class PoseSet:
         return PoseSet(self.qpos[start:stop], self.qvel[start:stop], self.ids[start:stop], self.kind)
 
 
-def _random_quaternions(rng: np.random.Generator, n: int) -> np.ndarray:
-    q = rng.normal(size=(n, 4))
-    q /= np.linalg.norm(q, axis=1, keepdims=True)
-    return q * np.where(q[:, :1] < 0, -1.0, 1.0)  # w >= 0, (w, x, y, z)
-
-
-def random_qpos(model: mujoco.MjModel, n: int, rng: np.random.Generator) -> np.ndarray:
-    """Random configurations within the joint limits.
-
-    Parameters
-    ----------
-    model : mujoco.MjModel
-    n : int
-    rng : numpy.random.Generator
-
-    Returns
-    -------
-    ndarray, shape (n, nq)
-        Limited hinges and slides uniform in their range; unlimited hinges uniform over
-        [-π, π]; unlimited slides normal about ``qpos0`` (unit scale); free joints: position
-        normal about ``qpos0``, orientation uniform; ball joints: orientation uniform.
-    """
-    qpos = np.tile(model.qpos0, (n, 1))
-    for j in range(model.njnt):
-        adr, jtype = model.jnt_qposadr[j], int(model.jnt_type[j])
-        limited = bool(model.jnt_limited[j])
-        lo, hi = model.jnt_range[j]
-        if jtype == _FREE:
-            qpos[:, adr : adr + 3] += rng.normal(size=(n, 3))
-            qpos[:, adr + 3 : adr + 7] = _random_quaternions(rng, n)
-        elif jtype == _BALL:
-            qpos[:, adr : adr + 4] = _random_quaternions(rng, n)
-        elif limited and hi > lo:
-            qpos[:, adr] = rng.uniform(lo, hi, size=n)
-        elif jtype == _HINGE:
-            qpos[:, adr] = rng.uniform(-np.pi, np.pi, size=n)
-        else:
-            qpos[:, adr] += rng.normal(size=n)
-    return qpos
-
-
 def random_poses(model: mujoco.MjModel, n: int, seed: int = 0, velocity_scale: float = 1.0) -> PoseSet:
     """Random poses within joint limits and normal random velocities.
 
@@ -137,7 +102,7 @@ def random_poses(model: mujoco.MjModel, n: int, seed: int = 0, velocity_scale: f
         Joints coupled to others (URDF mimic, MJCF joint equalities) follow their leaders, in
         position and velocity; the notes say so.
     """
-    _check_count(n)
+    check_pose_count(n)
     return random_pose_range(model, 0, n, seed=seed, velocity_scale=velocity_scale)
 
 
@@ -153,15 +118,10 @@ def check_random(n: int, seed: int, velocity_scale: float) -> None:
     velocity_scale : float
         > 0.
     """
-    _check_count(n)
-    _check_scale(velocity_scale)
+    check_pose_count(n)
+    check_velocity_scale(velocity_scale)
     if seed < 0:
         raise ValueError(f"seed must be >= 0, got {seed}")
-
-
-#: Random poses are drawn in blocks of this many, each block from its own seed, so that any range of
-#: poses can be drawn without the others (chunks, processes, cluster workers) and gives the same poses.
-RANDOM_BLOCK = 1024
 
 
 def random_pose_range(
@@ -169,8 +129,8 @@ def random_pose_range(
 ) -> PoseSet:
     """Poses ``start`` to ``stop − 1`` of the seeded random sequence of :func:`random_poses`.
 
-    Pose ``i`` depends only on ``(seed, i)``: block ``i // RANDOM_BLOCK`` is drawn from the
-    generator seeded with ``(seed, block)``.
+    The states are those of :func:`koenig_check.engines.sampling.random_state_range`, the package's one
+    sampler (its docstring gives the distribution); pose ``i`` depends only on ``(seed, i)``.
 
     Parameters
     ----------
@@ -186,24 +146,15 @@ def random_pose_range(
     PoseSet
         Ids ``random-i``.
     """
-    _check_scale(velocity_scale)
-    if not 0 <= start < stop:
-        raise ValueError(f"random poses: need 0 <= start < stop, got {start}, {stop}")
-    if seed < 0:
-        raise ValueError(f"seed must be >= 0, got {seed}")
-    first, last = start // RANDOM_BLOCK, (stop - 1) // RANDOM_BLOCK
-    qpos, qvel = [], []
-    for block in range(first, last + 1):
-        rng = np.random.default_rng([seed, block])
-        qpos.append(random_qpos(model, RANDOM_BLOCK, rng))
-        qvel.append(velocity_scale * rng.normal(size=(RANDOM_BLOCK, model.nv)))
-    cut = slice(start - first * RANDOM_BLOCK, stop - first * RANDOM_BLOCK)
-    qpos_all, qvel_all, notes = apply_joint_relations(model, np.concatenate(qpos)[cut], np.concatenate(qvel)[cut])
-    return PoseSet(qpos_all, qvel_all, tuple(f"random-{i}" for i in range(start, stop)), "random", notes=tuple(notes))
+    qpos, qvel, notes = random_state_range(model, start, stop, seed, velocity_scale)
+    return PoseSet(qpos, qvel, tuple(f"random-{i}" for i in range(start, stop)), "random", notes=tuple(notes))
 
 
 def keyframe_poses(model: mujoco.MjModel, seed: int = 0, velocity_scale: float = 1.0) -> PoseSet:
-    """The model's keyframes; keyframes at rest get seeded random velocities (noted).
+    """The model's keyframes; keyframe ``k`` at rest gets the velocities of random pose ``k`` (noted).
+
+    The velocities are those of :func:`random_states` with the same seed and scale, so keyframe ``k`` at
+    rest moves as random pose ``k`` of ``--pose-kind random`` does.
 
     Parameters
     ----------
@@ -216,17 +167,18 @@ def keyframe_poses(model: mujoco.MjModel, seed: int = 0, velocity_scale: float =
     PoseSet
         Empty (zero poses) when the model has no keyframe.
     """
-    _check_scale(velocity_scale)
-    rng = np.random.default_rng(seed)
+    check_velocity_scale(velocity_scale)
     qpos = np.array(model.key_qpos, dtype=float).reshape(model.nkey, model.nq)
     qvel = np.array(model.key_qvel, dtype=float).reshape(model.nkey, model.nv)
+    at_rest = ~np.any(qvel, axis=1)
+    if at_rest.any():
+        qvel[at_rest] = random_states(model, model.nkey, seed, velocity_scale)[1][at_rest]
     notes = []
     ids = []
     for k in range(model.nkey):
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_KEY, k) or str(k)
         ids.append(f"key:{name}")
-        if not np.any(qvel[k]):
-            qvel[k] = velocity_scale * rng.normal(size=model.nv)
+        if at_rest[k]:
             notes.append(f"keyframe {name!r} is at rest: random velocities (seed {seed}) were drawn for it")
     qpos, qvel, coupled = apply_joint_relations(model, qpos, qvel)
     notes += coupled
@@ -271,7 +223,7 @@ def grid_poses(
     PoseSet
         With ``grid = {"joints": (a, b), "values": (values_a, values_b), "shape": (n, n)}``.
     """
-    _check_count(n)
+    check_pose_count(n)
     values = []
     joints = [_joint(model, joint_a), _joint(model, joint_b)]
     for j in joints:
@@ -346,7 +298,7 @@ def trajectory_poses(
         raise ValueError(f"a trajectory needs at least 2 samples, got {samples}")
     if not duration > 0:
         raise ValueError(f"trajectory duration must be > 0, got {duration}")
-    _check_scale(velocity_scale)
+    check_velocity_scale(velocity_scale)
     sim = copy.deepcopy(model)
     if not gravity:
         sim.opt.gravity[:] = 0.0
@@ -383,16 +335,3 @@ def trajectory_poses(
     return PoseSet(
         qpos, qvel, tuple(f"traj-{i}" for i in range(keep.size)), "trajectory", times=times, notes=tuple(notes)
     )
-
-
-def _check_count(n: int) -> None:
-    if int(n) < 1:
-        raise ValueError(f"number of poses must be >= 1, got {n}")
-
-
-def _check_scale(scale: float) -> None:
-    if not np.isfinite(scale) or scale <= 0:
-        raise ValueError(
-            f"velocity scale must be a finite number > 0, got {scale}"
-            + (": with zero velocity every energy is zero and no relative error is defined" if scale == 0 else "")
-        )

@@ -186,17 +186,7 @@ class DrakeEngine(Engine):
         return {"R": R, "origin": o, "omega": w, "v_origin": vo, "anchor": anchor}
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
-        """Return Drake's segment states for a batch of canonical states.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        SegmentStates
-        """
+        """Return Drake's segment states for a batch of canonical states."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         s = self._sweep(qpos, qvel)
         R, o, w, vo = s["R"], s["origin"], s["omega"], s["v_origin"]
@@ -219,19 +209,7 @@ class DrakeEngine(Engine):
         )
 
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """Return the world velocity of points fixed in the segments, from Drake's translational Jacobians.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-        points : ndarray, shape (B, K, 3)
-            Offsets from each segment's COM, in the segment's axes.
-
-        Returns
-        -------
-        ndarray, shape (P, B, K, 3)
-        """
+        """Return the world velocity of points fixed in the segments, from Drake's translational Jacobians."""
         from pydrake.multibody.tree import JacobianWrtVariable
 
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
@@ -252,18 +230,7 @@ class DrakeEngine(Engine):
 
     # ------------------------------------------------------------- dynamics
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
-        """Return ``CalcKineticEnergy``, the same with rotor inertias zero, and the reflected-inertia term.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        EnergyParts
-            ``armature`` is Drake's reflected inertia of joint actuators.
-        """
+        """Return ``CalcKineticEnergy``, the same with rotor inertias zero, and the reflected inertia as armature."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_drake(qpos, qvel)
         P = q.shape[0]
@@ -276,16 +243,7 @@ class DrakeEngine(Engine):
         return EnergyParts(rigid=rigid, armature=0.5 * (v**2) @ self._reflected, reported=reported)
 
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return ``CalcMassMatrix`` (reflected inertia included) in canonical velocity coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
+        """Return ``CalcMassMatrix`` (reflected inertia included) in canonical velocity coordinates."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         q = self.state_map.positions(qpos)
         M = np.empty((q.shape[0], self.nv, self.nv))
@@ -295,17 +253,7 @@ class DrakeEngine(Engine):
         return self.state_map.matrix_to_canonical(qpos, M)
 
     def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return ``CalcInverseDynamics`` (gravity, damping and applied forces zero) in canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
+        """Return ``CalcInverseDynamics`` (gravity, damping and applied forces zero) in canonical coordinates."""
         from pydrake.multibody.tree import MultibodyForces
 
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
@@ -341,44 +289,17 @@ class DrakeEngine(Engine):
         return out
 
     def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
-
-        The reflected inertia :meth:`armature_per_dof` on the diagonal.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
+        """Return the reflected inertia :meth:`armature_per_dof` on the diagonal."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         return np.broadcast_to(np.diag(self.armature_per_dof()), (qpos.shape[0], self.nv, self.nv))
 
     def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
+        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates."""
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
         return qacc * self.armature_per_dof()
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
-        """Return canonical dof indices grouped by Drake joint type.
-
-        Returns
-        -------
-        dict
-            ``{"revolute": array([...]), "quaternion_floating": ..., "ball_rpy": ...}``
-        """
+        """Return canonical dof indices grouped by Drake joint type (``revolute``, ``quaternion_floating``, ...)."""
         width = {"free": 6, "ball": 3}
         kinds = {"free": "quaternion_floating", "ball": "ball_rpy", "hinge": "revolute", "slide": "prismatic"}
         groups: dict[str, list[int]] = {}
