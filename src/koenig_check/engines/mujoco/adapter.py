@@ -232,20 +232,6 @@ class MujocoEngine(MujocoDynamics, Engine):
 
         The internal path of the comparison grid: the states are not validated again (the
         model was checked at load), and every quantity is read once per pose.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-        points : ndarray, shape (B, K, 3), optional
-            Offsets from each segment's COM, in the segment's axes.
-
-        Returns
-        -------
-        states : SegmentStates
-        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
-        rigid, armature : ndarray, shape (P,)
-            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         s = self._sweep(qpos, qvel, energies=True)
@@ -254,17 +240,7 @@ class MujocoEngine(MujocoDynamics, Engine):
         return states, pv, s["rigid"], s["armature"]
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
-        """Return MuJoCo's segment states for a batch of canonical states.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        SegmentStates
-        """
+        """Return MuJoCo's segment states for a batch of canonical states."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         return self._states(self._sweep(qpos, qvel))
 

@@ -57,6 +57,8 @@ def inverse_dynamics_model(model: mujoco.MjModel) -> mujoco.MjModel:
 class MujocoDynamics:
     """The dynamics methods of :class:`~koenig_check.engines.mujoco.adapter.MujocoEngine`.
 
+    Each method's contract (parameters, shapes, returns) is :class:`~koenig_check.engines.base.Engine`'s.
+
     Attributes
     ----------
     model : mujoco.MjModel
@@ -95,15 +97,6 @@ class MujocoDynamics:
         treats as *simple* (``dof_simplenum``: e.g. a slide or an aligned hinge on a body attached
         to the world) the diagonal of ``M``, armature included, is precomputed at compile time
         (``dof_M0``) and the copy would still count the armature as rigid-body energy.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        EnergyParts
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         reported = self._energy(qpos, qvel)
@@ -111,16 +104,7 @@ class MujocoDynamics:
         return EnergyParts(rigid=reported - armature, armature=armature, reported=reported)
 
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return ``mj_fullM`` (armature included) for a batch of poses.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
+        """Return ``mj_fullM`` (armature included) for a batch of poses."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         m, d = self.model, self._data
         out = np.zeros((qpos.shape[0], self.nv, self.nv))
@@ -133,17 +117,7 @@ class MujocoDynamics:
         return out
 
     def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return ``mj_inverse`` forces with gravity, constraints and passive forces off.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
+        """Return ``mj_inverse`` forces with gravity, constraints and passive forces off."""
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
         m = self._m_dyn
         d = mujoco.MjData(m)
@@ -157,31 +131,12 @@ class MujocoDynamics:
         return out
 
     def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
+        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         arm = np.diag(np.asarray(self.model.dof_armature, dtype=float))
         return np.broadcast_to(arm, (qpos.shape[0], self.nv, self.nv))
 
     def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
+        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates."""
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
         return qacc * np.asarray(self.model.dof_armature, dtype=float)

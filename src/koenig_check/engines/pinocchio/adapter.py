@@ -196,20 +196,6 @@ class PinocchioEngine(PinocchioDynamics, Engine):
 
         The internal path of the comparison grid: the states are not validated again, and the
         point velocities come from the same world twists as the states (``v_O + ω × p``).
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-        points : ndarray, shape (B, K, 3), optional
-            Offsets from each segment's COM, in the segment's axes.
-
-        Returns
-        -------
-        states : SegmentStates
-        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
-        rigid, armature : ndarray, shape (P,)
-            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
@@ -221,36 +207,14 @@ class PinocchioEngine(PinocchioDynamics, Engine):
         return states, pv, rigid, armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
-        """Return Pinocchio's segment states for a batch of canonical states.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        SegmentStates
-        """
+        """Return Pinocchio's segment states for a batch of canonical states."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         R, origin, T, _ = self._sweep_world(q, v)
         return self._states(R, origin, T)
 
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-        points : ndarray, shape (B, K, 3)
-            Offsets from each segment's COM, in the segment's axes.
-
-        Returns
-        -------
-        ndarray, shape (P, B, K, 3)
-        """
+        """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         pts = check_points(points, len(self.segment_names))
         q, v = self.state_map.to_pinocchio(qpos, qvel)

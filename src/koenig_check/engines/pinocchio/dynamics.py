@@ -18,6 +18,8 @@ from koenig_check.engines.pinocchio.state_map import StateMap
 class PinocchioDynamics:
     """The dynamics methods of :class:`~koenig_check.engines.pinocchio.adapter.PinocchioEngine`.
 
+    Each method's contract (parameters, shapes, returns) is :class:`~koenig_check.engines.base.Engine`'s.
+
     Attributes
     ----------
     model : pinocchio.Model
@@ -37,17 +39,7 @@ class PinocchioDynamics:
     _d_dyn: pin.Data
 
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
-        """Return ``computeKineticEnergy`` with and without armature, and the armature term.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        EnergyParts
-        """
+        """Return ``computeKineticEnergy`` with and without armature, and the armature term."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         P = q.shape[0]
@@ -58,16 +50,7 @@ class PinocchioDynamics:
         return EnergyParts(rigid=rigid, armature=0.5 * (v**2) @ np.asarray(self.model.armature), reported=reported)
 
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return ``crba`` (armature included), symmetrized, in canonical velocity coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
+        """Return ``crba`` (armature included), symmetrized, in canonical velocity coordinates."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         q = self.state_map.to_pinocchio(qpos)
         M = np.empty((q.shape[0], self.nv, self.nv))
@@ -77,17 +60,7 @@ class PinocchioDynamics:
         return self.state_map.matrix_to_canonical(qpos, M)
 
     def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return ``rnea`` with gravity zero, in canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
+        """Return ``rnea`` with gravity zero, in canonical coordinates."""
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         a = self.state_map.acceleration_to_pinocchio(qpos, qvel, qacc)
@@ -100,14 +73,6 @@ class PinocchioDynamics:
         """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
 
         ``Tᵀ diag(armature) T`` with ``v = T q̇`` the state map's velocity matrix.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
         """
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         arm = np.diag(np.asarray(self.model.armature, dtype=float))
@@ -117,15 +82,6 @@ class PinocchioDynamics:
         """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
 
         ``Tᵀ (armature ⊙ a)`` with ``a`` Pinocchio's acceleration.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
         """
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
         a = self.state_map.acceleration_to_pinocchio(qpos, qvel, qacc)
