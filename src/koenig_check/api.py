@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.arguments import check_compare_arguments, keywords_of, suggest_keywords
-from koenig_check.diagnosis import policy
+from koenig_check.diagnosis import policy, reason
 from koenig_check.engines.load_options import LoadOptions, load_options_from
 from koenig_check.engines.registry import check_engines
 from koenig_check.exceptions import one_line
@@ -286,9 +286,39 @@ def compare(
             if debug:
                 raise
             result.failures.append((label, one_line(err)))
+            result.failure_lines[label] = failure_line(err, model, label)
             continue
         result.add(comp)
     return result
+
+
+def failure_line(err: BaseException, model: Any, label: str) -> str:
+    """Why a model could not be compared, in one sentence of at most 200 characters with ``koenig-check: ``.
+
+    Parameters
+    ----------
+    err : BaseException
+    model : str or path
+        The model as the user gave it.
+    label : str
+        Its label, which names the file: the path as given is left out when the line would not fit with it.
+
+    Returns
+    -------
+    str
+        ``label: <error>; root cause: ...``.
+    """
+    from koenig_check.sources.shown_paths import as_given
+
+    def given(text: str) -> str:
+        return as_given(text, [model])
+
+    def named(text: str) -> str:
+        return given(text).replace(f"{model}: ", "").replace(str(model), label)
+
+    width = reason.REASON_WIDTH - len(label) - 2
+    whole = reason.short_error(err, 10**6, given).removeprefix(f"{label}: ")  # the file named once
+    return f"{label}: {whole if len(whole) <= width else reason.short_error(err, width, named)}"
 
 
 #: The keywords of :func:`compare` passed on to :func:`compare_model` for every model.

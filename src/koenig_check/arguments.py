@@ -185,9 +185,53 @@ def check_formulas(formulas: Sequence[str] | None) -> None:
         raise ArgumentValueError("formulas: give at least one name (or None for all)")
     for name in formulas:
         if name not in FORMULAS:
-            close = difflib.get_close_matches(str(name), list(FORMULAS), n=3)
-            hint = f"; did you mean {close}?" if close else ""
-            raise ArgumentValueError(f"unknown formula {name!r}{hint} Known: {', '.join(FORMULAS)}")
+            raise ArgumentValueError(unknown_name("formula", str(name), list(FORMULAS), FORMULAS_LISTED))
+
+
+#: Where every formula name is listed (a usage error names the closest ones only).
+FORMULAS_LISTED = "`koenig-check compare --help` lists them"
+
+
+def closest(name: str, valid: Sequence[str], n: int = 3, cutoff: float = 0.5) -> list[str]:
+    """The valid names closest to ``name``: the closest, and the others as close as it (ties), at most ``n``.
+
+    Parameters
+    ----------
+    name : str
+    valid : sequence of str
+    n : int
+    cutoff : float
+        Similarity (:class:`difflib.SequenceMatcher` ratio) below which a name is not suggested.
+
+    Returns
+    -------
+    list of str
+    """
+    scored = sorted(((difflib.SequenceMatcher(None, name, v).ratio(), v) for v in valid), reverse=True)
+    best = scored[0][0] if scored else 0.0
+    return [v for ratio, v in scored[:n] if ratio >= max(cutoff, best - 0.02)]
+
+
+def unknown_name(what: str, name: str, valid: Sequence[str], listed: str) -> str:
+    """The message for a name that is not one of ``valid``: the closest valid names and where all are listed.
+
+    Parameters
+    ----------
+    what : str
+        What the name names (``"formula"``).
+    name : str
+    valid : sequence of str
+    listed : str
+        Where the valid names are listed.
+
+    Returns
+    -------
+    str
+        One line, e.g. ``unknown formula 'koenig'; did you mean 'koenig_world'? (13 formulas: ...)``.
+    """
+    close = closest(name, valid)
+    hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+    return f"unknown {what} {name!r}{hint} ({len(valid)} {what}s: {listed})"
 
 
 def check_compare_arguments(rtol: Any, options: Mapping[str, Any]) -> None:

@@ -63,9 +63,16 @@ class KoenigCheckError(Exception):
         The root causes found for this error (a construct of the file one engine's parser reads
         differently, a model without a joint), set by :meth:`attach_causes`; empty when none was found
         or none was looked for.
+    head : str
+        The message before the root causes were appended to it (empty when none were).
+    brief : str
+        A shorter message for a one-line display (empty: the message itself is short enough), set where an
+        engine's reason is long; the whole message stays ``str(err)``.
     """
 
     causes: tuple[Finding, ...] = ()
+    head: str = ""
+    brief: str = ""
 
     def attach_causes(self, causes: Iterable[Finding], *, in_message: bool = True) -> None:
         """Record the root causes of this error and, when asked and there are any, end the message with them.
@@ -79,6 +86,7 @@ class KoenigCheckError(Exception):
         """
         self.causes = tuple(causes)
         if in_message and self.causes and self.args:
+            self.head = str(self.args[0])
             found = "; ".join(c.message() for c in self.causes)
             self.args = (f"{self.args[0]}; root cause: {found}", *self.args[1:])
 

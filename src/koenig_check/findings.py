@@ -193,6 +193,9 @@ def _fmt(value: Any, whole: bool = False) -> str:
     if isinstance(value, (tuple, list)) and len(value) > SHOWN_ITEMS:
         head = ", ".join(repr(v) if isinstance(v, str) else _fmt(v, whole) for v in value[: SHOWN_ITEMS - 2])
         return f"({head}, +{len(value) - SHOWN_ITEMS + 2} more)"
+    if isinstance(value, (tuple, list)) and value and all(isinstance(v, float) for v in value):
+        inner = ", ".join(_fmt(v, whole) for v in value)  # 6 significant digits, as a single number
+        return f"[{inner}]" if isinstance(value, list) else f"({inner})"
     return str(value)
 
 

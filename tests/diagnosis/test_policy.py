@@ -39,7 +39,7 @@ def test_cli_row_and_exit_status_say_the_asked_engine_did_not_check(capsys: pyte
 
 @needs_drake
 def test_helper_fails_with_drakes_reason() -> None:
-    with pytest.raises(AssertionError, match=r"Drake asked for \(--engines\) but it could not check the model: .*"):
+    with pytest.raises(AssertionError, match=r"Drake asked for \(--engines\) but it could not check the model:\s"):
         assert_energy_parity(REFUSED_BY_DRAKE, n_poses=1, engines=ALL)
 
 

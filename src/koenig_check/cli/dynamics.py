@@ -57,7 +57,10 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         rtol=args.rtol,
         load_options=load_options_of(args),
     )
-    print("\n".join(terminal_lines(result)))
+    from koenig_check.report.line_width import LINE_LIMIT, cut, fold_text
+    from koenig_check.sources.shown_paths import as_given
+
+    print(fold_text(as_given("\n".join(terminal_lines(result)), [args.model])))
     if args.out:
         from koenig_check.report.output_dir import clean_out_dir, file_listing, finish_out_dir
 
@@ -66,5 +69,8 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         print("\n" + file_listing(args.out, written))
     if result.ok:
         return 0
-    print(f"koenig-check: exact disagrees with an engine: {result.reason()}", file=sys.stderr)
+    line = as_given(f"koenig-check: exact disagrees with an engine: {result.reason()}", [args.model])
+    if len(line) > LINE_LIMIT:  # one line: the file by its name, the details in the table above
+        line = cut(as_given(line, [args.model], short=True), LINE_LIMIT)
+    print(line, file=sys.stderr)
     return 1

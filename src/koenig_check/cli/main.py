@@ -80,7 +80,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Exception as err:  # one line for users, the traceback on --debug
         if args.debug:
             raise
-        from koenig_check.api import one_line
+        from koenig_check.cli.error_line import error_line
 
-        print(f"koenig-check: error: {one_line(err)}", file=sys.stderr)
+        print(error_line(args, err), file=sys.stderr)
         return 1

@@ -52,12 +52,18 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     diagnosis = diagnose(model, rtol=args.rtol)
     report = diagnosis.parity
     assert report is not None
+    from koenig_check.report.line_width import fold_text
+    from koenig_check.sources.shown_paths import as_given
+
+    def shown(text: str) -> str:  # the file as the user named it; a long cause folded under its line
+        return fold_text(as_given(text, [args.model]))
+
     for f in diagnosis.findings:
         if f.kind is Kind.VERDICT:
-            print(f"three engines: {f.message()}")
+            print(shown(f"three engines: {f.message()}"))
         elif f in diagnosis.optional_findings:
-            print(f.message())
-    print(format_parity(report))
+            print(shown(f.message()))
+    print(shown(format_parity(report, args.model)))
     lead = lead_line(diagnosis.findings)
     if report.clean and not lead:
         return 0

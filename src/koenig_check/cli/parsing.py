@@ -42,7 +42,13 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         """Exit with status 2: the short usage line, then the error in one line."""
-        self.exit(2, f"{self.short_usage()}\n{self.prog}: error: {message} (see {self.prog} --help)\n")
+        from koenig_check.report.line_width import LINE_LIMIT, elided_paths
+
+        line = f"{self.prog}: error: {message}"
+        see = "" if f"{self.prog} --help" in message else f" (see {self.prog} --help)"  # said once
+        if len(line + see) > LINE_LIMIT:  # one line: the help's pointer goes, then a long path's folders
+            line, see = elided_paths(line), ""
+        self.exit(2, f"{self.short_usage()}\n{line}{see}\n")
 
 
 def unrecognized(parser: argparse.ArgumentParser, extras: list[str]) -> str:
@@ -114,8 +120,13 @@ def positive(text: str) -> int:
 
 
 def formatter(prog: str) -> argparse.HelpFormatter:
-    """The help formatter of every command: epilogs kept as written (examples, formula lists)."""
-    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32)
+    """The help formatter of every command: epilogs kept as written (examples, formula lists), lines within 200."""
+    import shutil
+
+    from koenig_check.report.line_width import LINE_LIMIT
+
+    width = min(shutil.get_terminal_size().columns - 2, LINE_LIMIT)
+    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32, width=width)
 
 
 def add_command(

@@ -13,6 +13,7 @@ from :mod:`koenig_check.engines.parser_traps`; the file is read through :mod:`ko
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -228,13 +229,15 @@ def _spec_element(spec: mujoco.MjSpec, cand: ClassValue) -> Any:
 
 def _mass_values(spec: mujoco.MjSpec, geoms: list[Any]) -> dict[str, float]:
     """MuJoCo's mass of these geoms and MuJoCo's density × volume for them (what Pinocchio uses)."""
-    base = spec.compile()
-    given = float(sum(g.mass for g in geoms))
     saved = [g.mass for g in geoms]
+    given = float(sum(saved))
     try:
-        for g in geoms:
-            g.mass = float("nan")  # unset: MuJoCo computes density × volume
-        unset = spec.compile()
+        with warnings.catch_warnings():  # the compiler's warnings are the loader's findings already
+            warnings.simplefilter("ignore")
+            base = spec.compile()
+            for g in geoms:
+                g.mass = float("nan")  # unset: MuJoCo computes density × volume
+            unset = spec.compile()
     finally:
         for g, m in zip(geoms, saved, strict=True):
             g.mass = m

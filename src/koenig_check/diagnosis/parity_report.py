@@ -271,12 +271,15 @@ class ParityReport:
                 )
         return out
 
-    def headline(self) -> str:
+    def headline(self, brief: bool = False) -> str:
         """One line: root causes that change the energy first, then symptoms no root cause explains.
 
-        A symptom is a differing segment or dof, or a segment one engine lacks or gives no mass.
+        A symptom is a differing segment or dof, or a segment one engine lacks or gives no mass.  ``brief``
+        names each root cause in a few words (its element and first clause), for a view that lists them whole.
         """
-        parts = [f"root cause: {c.message()}" for c in self.causes if c.affects_energy]
+        from koenig_check.diagnosis.reason import short_cause
+
+        parts = [f"root cause: {short_cause(c) if brief else c.message()}" for c in self.causes if c.affects_energy]
         for label, items in (("segment", self.differing_segments), ("dof", self.differing_dofs)):
             for item in items:
                 name = item.name if isinstance(item, SegmentParity) else item.joint

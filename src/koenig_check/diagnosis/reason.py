@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from koenig_check.findings import Finding, Kind, root_causes
 
@@ -69,11 +69,26 @@ def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
     str
         Empty when no finding explains a change of energy.
     """
+    return "; ".join(cause_lines(findings, limit))
+
+
+def cause_lines(findings: Sequence[Finding], limit: int = 3) -> list[str]:
+    """The causes of :func:`disagreement_cause`, one item each, then how many more (for a view of several lines).
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+    limit : int
+
+    Returns
+    -------
+    list of str
+    """
     chosen = ordered_causes(findings)
-    text = "; ".join(f.message() for f in chosen[:limit])
+    lines = [f.message() for f in chosen[:limit]]
     if len(chosen) > limit:
-        text += f"; and {len(chosen) - limit} more finding(s)"
-    return text
+        lines.append(f"and {len(chosen) - limit} more finding(s)")
+    return lines
 
 
 def short_cause(f: Finding) -> str:
@@ -150,6 +165,61 @@ def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
             if len(text) <= REASON_WIDTH:
                 return _closed(text, unmade)
     return _closed(text[: REASON_WIDTH - 1].rsplit(" ", 1)[0] + "…", unmade)  # one long cause cut at a word
+
+
+def short_error(
+    err: BaseException, width: int = REASON_WIDTH, rename: Callable[[str], str] | None = None, limit: int = 3
+) -> str:
+    """An error in one sentence of at most ``width`` characters: its message, then at most ``limit`` root causes.
+
+    The message is the error's brief form when it has one (:attr:`KoenigCheckError.brief`), else its message
+    without the root causes appended to it; the root causes follow, those that change the energy first, each
+    once: in a few words each (:func:`short_cause`), or, to fit, the first ones so and the others by their
+    element, and how many more.  To fit further the message is cut at a word (``…``), the causes kept.  The
+    whole message stays ``str(err)`` (the report's failures, ``--debug``).
+
+    Parameters
+    ----------
+    err : BaseException
+    width : int
+    rename : callable, optional
+        Applied to the message and the causes (e.g. a resolved path written as the user gave it).
+    limit : int
+
+    Returns
+    -------
+    str
+    """
+    from koenig_check.exceptions import one_line
+    from koenig_check.report.line_width import cut
+
+    def tidy(text: str) -> str:
+        text = " ".join(text.split())
+        return rename(text) if rename else text
+
+    causes = sorted(getattr(err, "causes", ()), key=lambda c: not c.affects_energy)  # energy first, stable
+    head = tidy(getattr(err, "brief", "") or (getattr(err, "head", "") if causes else "") or one_line(err))
+    named: dict[str, str] = {}  # a cause in a few words -> by its element alone
+    for c in causes:
+        name = tidy(short_cause(c))
+        if name not in named and name not in head:
+            named[name] = tidy(f"{c.element}")
+    if not named:
+        return cut(head, width)
+    shorts, elements = list(named), list(named.values())
+    n = min(limit, len(shorts))
+    more = f" and {len(shorts) - n} more" if len(shorts) > n else ""
+    for k in range(n, -1, -1):  # every cause up to the limit: the first k in a few words, the others by element
+        tail = "; root cause: " + "; ".join(shorts[:k] + elements[k:n]) + more
+        if len(head) + len(tail) <= width:
+            return head + tail
+        if len(tail) <= width - _SHORTEST_HEAD:  # the message cut at a word, the causes kept
+            return cut(head, width - len(tail)) + tail
+    return cut(cut(head, _SHORTEST_HEAD) + tail, width)
+
+
+#: The fewest characters of an error's own message kept before its root causes.
+_SHORTEST_HEAD = 40
 
 
 def _closed(text: str, unmade: str) -> str:

@@ -39,7 +39,7 @@ def check_export_arguments(
     if target.is_dir():
         raise ArgumentValueError(f"out {str(out)!r} is a directory; give the file to write")
     if not target.resolve().parent.is_dir():
-        raise ArgumentValueError(f"out {str(out)!r}: directory {str(target.resolve().parent)!r} does not exist")
+        raise ArgumentValueError(f"out {str(out)!r}: its directory does not exist")  # the path named once
     if Path(model).exists() and target.resolve() == Path(model).resolve():
         raise ArgumentValueError(f"out {str(out)!r} is the model file itself")
     if poses < 1:

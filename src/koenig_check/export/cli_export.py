@@ -7,6 +7,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from koenig_check.engines.load_options import LoadOptions, add_load_arguments
+from koenig_check.export.carried import ExportRefusedError
 from koenig_check.export.proof import PROOF_POSES, PROOF_RTOL
 from koenig_check.export.result import Proof
 
@@ -101,11 +102,58 @@ def print_proof(proof: Proof) -> None:
                 f"  {e.engine}: mass matrix {e.mass_matrix:.2g}, rigid energy {e.energy:.2g}, "
                 f"inverse dynamics {e.inverse_dynamics:.2g} ({e.poses} poses)"
             )
+    from koenig_check.report.line_width import fold_text
+
     for line in proof.skipped():
-        print(f"  not compared: {line}")
+        print(fold_text(f"  not compared: {line}"))
     for line in proof.notes():
-        print(f"  note: {line}")
-    print(proof.summary())
+        print(fold_text(f"  note: {line}"))
+    if proof.equivalent:
+        print(proof.summary())
+        return
+    print("not equivalent:")  # each reason on its own line (the summary joins them in one)
+    for line in proof.reasons():
+        print(fold_text(f"  - {line}"))
+
+
+def refused_lines(err: ExportRefusedError, target: str, limit: int = 3) -> list[str]:
+    """A refusal: one line naming each construct by at most ``limit`` elements, then each element with why.
+
+    Parameters
+    ----------
+    err : ExportRefusedError
+    target : str
+        The format asked for (``urdf``, ``mjcf``).
+    limit : int
+
+    Returns
+    -------
+    list of str
+        Every line within 200 characters (a construct's reason folded under it).
+    """
+    import re
+
+    from koenig_check.exceptions import one_line
+    from koenig_check.report.line_width import LINE_LIMIT, cut, fold_text
+
+    if not err.constructs:
+        return fold_text(f"refused: {one_line(err)}").split("\n")
+    groups: dict[str, list[str]] = {}
+    for c in err.constructs:  # the element without its parenthesis (the list below has it whole)
+        groups.setdefault(c.construct, []).append(re.sub(r" \([^)]*\)", "", c.element))
+    head = ""
+    for n in range(limit, 0, -1):
+        named = [
+            f"{what} ({', '.join(els[:n])}{f' and {len(els) - n} more' if len(els) > n else ''})"
+            for what, els in groups.items()
+        ]
+        head = f"refused: {target.upper()} cannot hold {'; '.join(named)}"
+        if len(head) <= LINE_LIMIT:
+            break
+    lines = [cut(head, LINE_LIMIT)]
+    if len(err.constructs) > 1 or len(head) > LINE_LIMIT or head.endswith(")"):
+        lines += fold_text("\n".join(f"  - {c.message()}" for c in err.constructs)).split("\n")
+    return lines
 
 
 def run_export(
@@ -128,8 +176,8 @@ def run_export(
     """
     from koenig_check.arguments import ArgumentValueError
     from koenig_check.export.api import check_export_arguments, export_model
-    from koenig_check.export.carried import ExportRefusedError
     from koenig_check.export.proof import prove
+    from koenig_check.report.line_width import fold_text
 
     problem = _usage(args)
     if not problem and not args.check_only:
@@ -143,7 +191,7 @@ def run_export(
     if args.check_only:
         original, export = args.check_only
         proof = prove(original, export, options, poses=args.poses, seed=args.seed, rtol=args.rtol, engines=engines)
-        print(f"{export} against {original}:")
+        print(fold_text(f"{export} against {original}:"))
         print_proof(proof)
         return 0 if proof.equivalent else 1
     try:
@@ -161,14 +209,14 @@ def run_export(
             engines=engines,
         )
     except ExportRefusedError as err:
-        print(f"refused: {err}")
+        print("\n".join(refused_lines(err, args.to)))
         return 1
-    print(f"wrote {result.path} ({result.target})")
+    print(fold_text(f"wrote {result.path} ({result.target})"))
     if result.not_carried:
         print("not carried:")
         for n in result.not_carried:
-            print(f"  - {n.message()}")
+            print(fold_text(f"  - {n.message()}"))
     if result.floating_base:
-        print(f"load {result.path} with a floating base (--floating): the original's root joint is free")
+        print(fold_text(f"load {result.path} with a floating base (--floating): the original's root joint is free"))
     print_proof(result.proof)
     return 0 if result.equivalent else 1

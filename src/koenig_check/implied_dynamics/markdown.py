@@ -11,6 +11,7 @@ from koenig_check.findings import Kind
 from koenig_check.implied_dynamics.analysis import ENGINE_PARITY, ENGINES, DynamicsResult
 from koenig_check.implied_dynamics.errors import Discrepancy
 from koenig_check.implied_dynamics.lagrange import CONFIGURATION_STEP, TIME_STEP_SCALE
+from koenig_check.report.line_width import hanging
 
 
 def _columns(result: DynamicsResult) -> list[tuple[str, str]]:
@@ -54,11 +55,11 @@ def terminal_lines(result: DynamicsResult) -> list[str]:
         f"{'formula':30s} " + " ".join(f"{q + ' vs ' + e:>15s}" for q, e in columns) + "  worst entry",
     ]
     for formula in result.formulas:
-        if formula in result.refusals:
-            lines.append(f"{formula:30s} refused: {result.refusals[formula]}")
+        if formula in result.refusals:  # a long row continues under its last column (200 characters a line)
+            lines += hanging(f"{formula:30s} ", f"refused: {result.refusals[formula]}")
             continue
         cells = " ".join(f"{_cell(result, formula, q, e):>15s}" for q, e in columns)
-        lines.append(f"{formula:30s} {cells}  {_describe(result, _worst(result.errors_of(formula)))}")
+        lines += hanging(f"{formula:30s} {cells}  ", _describe(result, _worst(result.errors_of(formula))))
     for other in [e for e in result.engine_mass if e != "mujoco"]:  # Pinocchio, then each optional engine run
         lines.append(
             f"{f'engines (mujoco vs {other})':30s} {_cell(result, ENGINE_PARITY, 'M', other):>15s} {'':>15s} "

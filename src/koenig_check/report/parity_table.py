@@ -3,21 +3,26 @@
 from __future__ import annotations
 
 from koenig_check.diagnosis.import_parity import ParityReport
+from koenig_check.report.line_width import fold_text, hanging
 from koenig_check.roundoff import ROUNDOFF, shown
 
 
-def format_parity(report: ParityReport) -> str:
-    """Render a parity report for the terminal.
+def format_parity(report: ParityReport, model: str = "") -> str:
+    """Render a parity report for the terminal, every line within 200 characters.
+
+    A long cause is folded onto indented continuation lines; a row's long verdict continues under its column.
 
     Parameters
     ----------
     report : ParityReport
+    model : str
+        The model as the user named it (default: the report's path).
 
     Returns
     -------
     str
     """
-    lines = [f"Import parity of {report.model} (relative tolerance {report.rtol:g})"]
+    lines = [f"Import parity of {model or report.model} (relative tolerance {report.rtol:g})"]
     if report.causes:
         lines.append("\nroot causes:")
         for c in report.causes:
@@ -39,20 +44,22 @@ def format_parity(report: ParityReport) -> str:
             + " ".join(f"{v:.4g}" for v in s.principal_moments[1])
         )
         verdict = "same" if not s.causes else "DIFFERS: " + ", ".join(s.causes)
-        lines.append(
+        cells = (
             f"{s.name[:28]:28s} {s.mass[0]:13.6g} {s.mass[1]:13.6g} {s.com_distance:10.2e} "
-            f"{s.inertia_frobenius:10.2e} {s.pole_distance:11.2e}  {pm:38s} {verdict}"
+            f"{s.inertia_frobenius:10.2e} {s.pole_distance:11.2e}  {pm:38s} "
         )
+        lines += hanging(cells, verdict)
     lines += [
         "",
         f"{'dof':24s} {'armature MuJoCo':>16s} {'armature Pin.':>14s} {'|ΔJacobian|':>12s}  verdict",
     ]
     for d in report.dofs:
         verdict = "same" if not d.causes else "DIFFERS: " + ", ".join(d.causes)
-        lines.append(
+        cells = (
             f"{d.joint[:24]:24s} {shown(d.armature[0]):16.6g} {shown(d.armature[1]):14.6g} "
-            f"{d.jacobian_difference:12.2e}  {verdict}"
+            f"{d.jacobian_difference:12.2e}  "
         )
+        lines += hanging(cells, verdict)
     lines.append(f"(armature values below {ROUNDOFF:g} kg m² are rounding, printed as 0)")
     if report.only_in_mujoco:
         lines.append(f"\nsegments only in MuJoCo: {report.only_in_mujoco}")
@@ -65,5 +72,5 @@ def format_parity(report: ParityReport) -> str:
     if report.findings:
         lines.append("\nfindings:")
         lines += [f"  - {f}" for f in report.findings]
-    lines.append("\nverdict: " + ("no import difference" if report.clean else report.headline()))
-    return "\n".join(lines)
+    lines.append("\nverdict: " + ("no import difference" if report.clean else report.headline(brief=True)))
+    return fold_text("\n".join(lines))

@@ -27,7 +27,9 @@ class CrossCheck(ResultLookup):
     summaries : list of FormulaSummary
     parities : list of EngineParity
     failures : list of (str, str)
-        Models that could not be compared, with a one-line reason each.
+        Models that could not be compared, with a one-line reason each (the engine's whole reason).
+    failure_lines : dict of str to str
+        Per failed model, its reason in one sentence of at most 200 characters (:meth:`reasons`).
     rtol : float
     settings : dict
         Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
@@ -38,6 +40,7 @@ class CrossCheck(ResultLookup):
     summaries: list[FormulaSummary] = field(default_factory=list)
     parities: list[EngineParity] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
+    failure_lines: dict[str, str] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
     settings: dict[str, dict[str, Any]] = field(default_factory=dict)
 
@@ -77,16 +80,17 @@ class CrossCheck(ResultLookup):
     def reasons(self) -> list[str]:
         """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
 
-        A model that could not be checked gives its whole reason (the engine's own); a disagreeing model gives
-        the check asked for and not made or the engine that departs, the gap, and at most three root causes,
-        the most important first, within 200 characters (the details are in ``koenig-check parity``,
-        ``summary.md`` and the report).
+        A model that could not be checked gives its error and at most three root causes (:attr:`failure_lines`;
+        the engine's whole reason is in :attr:`failures`); a disagreeing model gives the check asked for and not
+        made or the engine that departs, the gap, and at most three root causes, the most important first,
+        within 200 characters (the details are in ``koenig-check parity``, ``summary.md`` and the report).
 
         Returns
         -------
         list of str
         """
-        parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in self.failures]  # once, not twice
+        lines = [(m, self.failure_lines.get(m, r)) for m, r in self.failures]
+        parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in lines]  # once, not twice
         for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
             lead = reason.lead_line(comparison.findings)
             if lead or not agreement.agrees:

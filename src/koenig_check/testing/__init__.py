@@ -71,7 +71,7 @@ def assert_energy_parity(
     """
     __tracebackhide__ = True
     from koenig_check.diagnosis.diagnose import diagnose
-    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, disagreement_cause, lead_line, rounding_hint
+    from koenig_check.diagnosis.reason import LEADING_KINDS, ROUNDING_LEVEL, cause_lines, rounding_hint
     from koenig_check.engines import load_model
     from koenig_check.engines.registry import check_engines
     from koenig_check.run.poses import random_poses
@@ -140,13 +140,25 @@ def assert_energy_parity(
             + (f"; import parity: {', '.join(causes)} differ" if causes else ""),
         )
     hint = rounding_hint(float(rel.max()), rtol) if not armature_off else ""
-    lead = lead_line(diagnosis.findings)
-    if lead:
-        problems.insert(0, lead)
-    if problems:
-        cause = disagreement_cause(diagnosis.findings)
-        if cause:  # right after the three-engine verdict, before the symptoms
-            problems.insert(1 if lead else 0, f"root cause: {cause}")
+    leads = [f.message() for kind in LEADING_KINDS for f in diagnosis.findings if f.kind is kind]  # lead_line's
+    problems[:0] = leads
+    if problems:  # the root causes right after the three-engine verdicts, before the symptoms
+        problems[len(leads) : len(leads)] = [f"root cause: {cause}" for cause in cause_lines(diagnosis.findings)]
         if hint:
             problems.append(hint)
-        raise AssertionError(f"{model}: energy parity fails (rtol {rtol:g}): " + "; ".join(problems))
+        raise AssertionError(_one_item_a_line(f"{model}: energy parity fails (rtol {rtol:g}): ", problems))
+
+
+def _one_item_a_line(head: str, problems: list[str]) -> str:
+    """A failure's message: ``head`` and the first problem, then one problem a line.
+
+    Each line fits 200 characters as pytest prints it (``E       AssertionError: `` before the first line,
+    ``E         `` before the others).
+    """
+    from koenig_check.report.line_width import LINE_LIMIT, fold
+
+    first, *rest = problems
+    lines = fold(head + first, LINE_LIMIT - len("E       AssertionError: "))
+    for problem in rest:
+        lines += fold(f"  {problem}", LINE_LIMIT - len("E       "))
+    return "\n".join(lines)

@@ -22,18 +22,21 @@ def verdict_lines(check: CrossCheck) -> list[str]:
     list of str
         Empty when :attr:`CrossCheck.ok`.
     """
-    from koenig_check.diagnosis.reason import disagreement_cause
+    from koenig_check.diagnosis.reason import cause_lines
+    from koenig_check.report.line_width import fold
 
     lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
         if parity.agrees and not verdicts:
             continue
-        cause = disagreement_cause(comparison.findings)
         lines.append(f"{parity.model}: MuJoCo and Pinocchio {'agree' if parity.agrees else 'disagree'}")
-        if cause:
-            lines.append(f"  root cause: {cause}")
+        lines += [f"  root cause: {cause}" for cause in cause_lines(comparison.findings)]  # one a line
         lines += [f"  three engines: {f.message()}" for f in verdicts]
         if not parity.agrees:
             lines.append(f"  engines: {parity.reason.split('; cause: ')[0]}")
-    return lines
+    return [part for line in lines for part in fold(line, FAILURE_WIDTH)]
+
+
+#: The longest line of a failure's text: pytest writes it after a prefix of up to 8 characters (``E       ``).
+FAILURE_WIDTH = 192

@@ -2,7 +2,7 @@
 
 A refusal is an :class:`~koenig_check.engines.errors.InertiaError` or
 :class:`~koenig_check.engines.errors.ModelLoadError` whose one-line message names the file and the element;
-MuJoCo's warnings become findings.
+MuJoCo's warnings become findings, and each body repaired a ``REPAIR`` finding.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import numpy as np
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError
 from koenig_check.engines.mujoco.inertia_repair import Repair, repair_body
-from koenig_check.engines.mujoco.mass_changes import BodyFinding, repair_finding
+from koenig_check.engines.mujoco.mass_changes import BodyFinding
 from koenig_check.engines.mujoco.meshes import drop_mesh, inertia_only
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import check_physical_inertia, principal_moments
@@ -93,7 +93,52 @@ def _inertia_error(
     head += f"; {REPAIR_HINT}"
     if "A + B >= C" in message:
         head += " (or --balance-inertia, balance_inertia=True: MuJoCo's balanceinertia)"
-    return InertiaError(head)
+    error = InertiaError(head)
+    error.brief = (  # one line: the link, MuJoCo's reason, what loads it (the moments are in the message)
+        f"{source.path}: {what} {element!r}: MuJoCo rejects its inertia ({_refusal(message)}); "
+        "--repair-inertia loads it with the smallest change MuJoCo accepts"
+    )
+    return error
+
+
+def repair_finding(repair: Repair, message: str, what: str) -> Finding:
+    """The ``REPAIR`` finding of a body repaired so that MuJoCo accepts it.
+
+    Parameters
+    ----------
+    repair : Repair
+        The body and its mass and moments before and after.
+    message : str
+        MuJoCo's refusal (its first line).
+    what : str
+        ``"link"`` (URDF) or ``"body"`` (MJCF).
+
+    Returns
+    -------
+    Finding
+    """
+    return Finding(
+        Kind.REPAIR,
+        "mujoco",
+        f"{what} {repair.body}",
+        "mass and principal moments raised to MuJoCo's bounds and balanced (A + B >= C) so that MuJoCo accepts "
+        "them; Pinocchio keeps the file's values",
+        {
+            "mass before": repair.mass[0],
+            "mass after": repair.mass[1],
+            "moments before": list(repair.moments[0]),
+            "moments after": list(repair.moments[1]),
+            "max moment change": repair.max_change,
+            "refused for": _refusal(message),
+        },
+        affects_energy=True,
+        root_cause=True,
+    )
+
+
+def _refusal(message: str) -> str:
+    """MuJoCo's reason without the element and line it names (the finding names the link)."""
+    return message.split("; Element name")[0].removeprefix("error ").strip()
 
 
 def compile_spec(

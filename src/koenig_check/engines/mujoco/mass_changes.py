@@ -1,7 +1,8 @@
 """What MuJoCo's compiler changed in the file's masses and inertias, each a finding on the body it concerns.
 
-A repair (``repair_inertia``), a ``balanceinertia`` change, or a mass or inertia the compiler altered
-(``settotalmass``, ``boundmass``, ...): MuJoCo differs from the file there, Pinocchio keeps the file's values.
+A ``balanceinertia`` change, or a mass or inertia the compiler altered (``settotalmass``, ``boundmass``, ...):
+MuJoCo differs from the file there, Pinocchio keeps the file's values.  (A body repaired with ``repair_inertia``
+is found while compiling: :func:`koenig_check.engines.mujoco.compiling.repair_finding`.)
 """
 
 from __future__ import annotations
@@ -9,7 +10,6 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from koenig_check.engines.mujoco.inertia_repair import Repair
 from koenig_check.engines.mujoco.meshes import drop_mesh
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import check_physical_inertia, principal_moments
@@ -17,46 +17,6 @@ from koenig_check.sources.catalogue import ModelSource
 
 #: A body's mass-property change with the body it concerns (mapped to its segment by the engine adapter).
 BodyFinding = tuple[str, Finding]
-
-
-def repair_finding(repair: Repair, message: str, what: str) -> Finding:
-    """The ``REPAIR`` finding of a body repaired so that MuJoCo accepts it.
-
-    Parameters
-    ----------
-    repair : Repair
-        The body and its mass and moments before and after.
-    message : str
-        MuJoCo's refusal (its first line).
-    what : str
-        ``"link"`` (URDF) or ``"body"`` (MJCF).
-
-    Returns
-    -------
-    Finding
-    """
-    return Finding(
-        Kind.REPAIR,
-        "mujoco",
-        f"{what} {repair.body}",
-        "mass and principal moments raised to MuJoCo's bounds and balanced (A + B >= C) so that MuJoCo accepts "
-        "them; Pinocchio keeps the file's values",
-        {
-            "mass before": repair.mass[0],
-            "mass after": repair.mass[1],
-            "moments before": list(repair.moments[0]),
-            "moments after": list(repair.moments[1]),
-            "max moment change": repair.max_change,
-            "refused for": _refusal(message),
-        },
-        affects_energy=True,
-        root_cause=True,
-    )
-
-
-def _refusal(message: str) -> str:
-    """MuJoCo's reason without the element and line it names (the finding names the link)."""
-    return message.split("; Element name")[0].removeprefix("error ").strip()
 
 
 def balance_findings(

@@ -1,0 +1,58 @@
+"""The one line of an error that stops a command: short, naming the file as the user gave it."""
+
+from __future__ import annotations
+
+import argparse
+
+from koenig_check.report.line_width import LINE_LIMIT
+
+#: What starts the line.
+PREFIX = "koenig-check: error: "
+
+
+def given_files(args: argparse.Namespace) -> list[str]:
+    """The model files and names the user gave a command (models, the Pinocchio model, a pose file).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+
+    Returns
+    -------
+    list of str
+    """
+    found: list[str] = []
+    for name in ("model", "models", "check_only", "pinocchio_model", "pose_file"):
+        value = getattr(args, name, None)
+        values = value if isinstance(value, list | tuple) else [value]
+        found += [str(v) for v in values if v]
+    return found
+
+
+def error_line(args: argparse.Namespace, err: BaseException) -> str:
+    """``koenig-check: error: <error>`` in at most :data:`LINE_LIMIT` characters.
+
+    The file is named as the user gave it, or by its file name when the path as given takes more than half the
+    line and the line would not fit otherwise; the error's root causes are named in a few words each, at most
+    three (:func:`short_error`).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    err : BaseException
+
+    Returns
+    -------
+    str
+    """
+    from koenig_check.diagnosis.reason import short_error
+    from koenig_check.sources.shown_paths import as_given
+
+    files = given_files(args)
+    width = LINE_LIMIT - len(PREFIX)
+    line = short_error(err, width, lambda text: as_given(text, files))
+    whole = short_error(err, 10**6, lambda text: as_given(text, files))
+    named = [f for f in files if f in whole]
+    if len(whole) <= width or max(map(len, named), default=0) <= width // 2:  # the file as given, and its reason
+        return PREFIX + line
+    return PREFIX + short_error(err, width, lambda text: as_given(text, files, short=True))
