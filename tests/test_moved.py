@@ -55,3 +55,33 @@ def test_the_moved_module_keeps_its_own_name_and_reloads(tmp_path: Path, monkeyp
     assert new.VALUE == 1
     monkeypatch.delitem(sys.modules, "_moved_reload_target")
     monkeypatch.delitem(sys.modules, "koenig_check._old_name_for_reload")
+
+
+#: (old module, name, new home): names a split moved out of a module that keeps its other names.
+SPLIT_OUT = [
+    ("koenig_check.parity", "ParityReport", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.diagnosis.import_parity", "PARITY_RTOL", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.diagnosis.import_parity", "SegmentParity", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.diagnosis.import_parity", "DofParity", "koenig_check.diagnosis.parity_report"),
+    ("koenig_check.engines.mujoco_loader", "BodyFinding", "koenig_check.engines.mujoco.mass_changes"),
+    ("koenig_check.engines.mujoco.loader", "REPAIR_HINT", "koenig_check.engines.mujoco.compiling"),
+    ("koenig_check.engines.mujoco.loader", "MAX_REPAIR_TRIES", "koenig_check.engines.mujoco.compiling"),
+    ("koenig_check.engines.pinocchio_engine", "placement_view", "koenig_check.engines.pinocchio.placements"),
+    ("koenig_check.api", "CrossCheck", "koenig_check.run.cross_check"),
+    ("koenig_check.api", "make_poses", "koenig_check.run.pose_kinds"),
+    ("koenig_check.api", "load_options_from", "koenig_check.engines.load_options"),
+    *[
+        ("koenig_check.pipeline", name, "koenig_check.run.chunk_tasks")
+        for name in ("ChunkTask", "ModelSource", "RandomRange", "PROBE_POSES", "chunk_size", "plan", "probe_normals")
+    ],
+    ("koenig_check.engines.sources", "model_names", "koenig_check.sources.model_names"),
+    ("koenig_check.engines.sources", "ModelName", "koenig_check.sources.model_names"),
+    ("koenig_check.engines.sources", "resolve_uri", "koenig_check.sources.uris"),
+    ("koenig_check.engines.sources", "resolve_model", "koenig_check.sources.catalogue"),
+    ("koenig_check.sources.catalogue", "resolve_uri", "koenig_check.sources.uris"),
+]
+
+
+@pytest.mark.parametrize(("old", "name", "home"), SPLIT_OUT)
+def test_a_name_split_out_of_a_module_still_imports_from_it(old: str, name: str, home: str) -> None:
+    assert getattr(importlib.import_module(old), name) is getattr(importlib.import_module(home), name)

@@ -38,7 +38,6 @@ MOVED: dict[str, str] = {
     "koenig_check.report_content": "koenig_check.report.content",
     "koenig_check.report_html": "koenig_check.report.html",
     "koenig_check.verdict": "koenig_check.report.terminal",
-    "koenig_check.engines.sources": "koenig_check.sources.catalogue",
     "koenig_check.validate": "koenig_check.modelfile.validate",
     "koenig_check.pytest_plugin": "koenig_check.testing.plugin",
     "koenig_check.project_config": "koenig_check.testing.project_config",
@@ -49,6 +48,11 @@ MOVED: dict[str, str] = {
 
 #: Old module name -> the modules it was split into.
 SPLIT: dict[str, tuple[str, ...]] = {
+    "koenig_check.engines.sources": (
+        "koenig_check.sources.catalogue",
+        "koenig_check.sources.model_names",
+        "koenig_check.sources.uris",
+    ),
     "koenig_check.engines.drake_engine": ("koenig_check.engines.drake.adapter", "koenig_check.engines.drake.building"),
     "koenig_check.causes": (
         "koenig_check.diagnosis.pair_causes",

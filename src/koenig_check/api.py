@@ -1,166 +1,30 @@
-"""The Python API: ``koenig_check.compare(...)`` with the reach of the command line."""
+"""The Python API: ``koenig_check.compare(...)`` with the reach of the command line.
+
+Its result is :class:`~koenig_check.run.cross_check.CrossCheck`; poses are drawn by
+:func:`~koenig_check.run.pose_kinds.make_poses`, the load options merged by
+:func:`~koenig_check.engines.load_options.load_options_from` (the three names still import from here).
+"""
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from koenig_check.arguments import POSE_KINDS, check_compare_arguments, keywords_of, suggest_keywords
+from koenig_check.arguments import check_compare_arguments, keywords_of, suggest_keywords
 from koenig_check.diagnosis import policy, reason
-from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
+from koenig_check.engines.load_options import LoadOptions, load_options_from
 from koenig_check.engines.registry import check_engines
 from koenig_check.exceptions import one_line
-from koenig_check.run import pipeline, poses, summaries
-from koenig_check.run.comparison import ModelComparison, records_for
+from koenig_check.run import pipeline, poses
+from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.cross_check import CrossCheck
 from koenig_check.run.labels import unique_labels
-from koenig_check.run.lookup import ResultLookup
-from koenig_check.run.records import RecordTable
+from koenig_check.run.pose_kinds import make_poses
 from koenig_check.run.stats import DEFAULT_RTOL
-from koenig_check.run.summaries import EngineParity, FormulaSummary
 
 if TYPE_CHECKING:
     from koenig_check.report import RecordSink
-
-
-@dataclass(repr=False)
-class CrossCheck(ResultLookup):
-    """Result of :func:`compare` over one or several models.
-
-    ``check["gimbal.xml"]`` is that model's :class:`ModelComparison`, ``check.summary(model, formula,
-    source, reference)`` one :class:`FormulaSummary`, ``check.to_pandas()`` the summaries as a table.
-
-    Attributes
-    ----------
-    comparisons : list of ModelComparison
-    summaries : list of FormulaSummary
-    parities : list of EngineParity
-    failures : list of (str, str)
-        Models that could not be compared, with a one-line reason each (the engine's whole reason).
-    failure_lines : dict of str to str
-        Per failed model, its reason in one sentence of at most 200 characters (:meth:`reasons`).
-    rtol : float
-    settings : dict
-        Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
-        ``velocity_scale``, ``duration``), for the report's captions.
-    """
-
-    comparisons: list[ModelComparison] = field(default_factory=list)
-    summaries: list[FormulaSummary] = field(default_factory=list)
-    parities: list[EngineParity] = field(default_factory=list)
-    failures: list[tuple[str, str]] = field(default_factory=list)
-    failure_lines: dict[str, str] = field(default_factory=dict)
-    rtol: float = DEFAULT_RTOL
-    settings: dict[str, dict[str, Any]] = field(default_factory=dict)
-
-    @property
-    def records(self) -> RecordTable:
-        """All tidy records of all models (iterate for dicts, index by column name for arrays)."""
-        return records_for(self.comparisons)
-
-    @property
-    def ok(self) -> bool:
-        """True when every model loaded and the engines agree with each other and with ``exact``.
-
-        With Drake consulted, an engine that departs from the other two (a ``VERDICT`` finding) counts, and so does
-        an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made).
-        """
-        verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
-        return not self.failures and all(p.agrees for p in self.parities) and not verdicts
-
-    def add(self, comparison: ModelComparison) -> EngineParity:
-        """Record one model's comparison with its summaries and engine parity.
-
-        Parameters
-        ----------
-        comparison : ModelComparison
-
-        Returns
-        -------
-        EngineParity
-            The parity just recorded.
-        """
-        self.comparisons.append(comparison)
-        self.summaries += summaries.summarize(comparison, self.rtol)
-        parity = summaries.engine_agreement(comparison, self.rtol)
-        self.parities.append(parity)
-        return parity
-
-    def reasons(self) -> list[str]:
-        """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
-
-        A model that could not be checked gives its error and at most three root causes (:attr:`failure_lines`;
-        the engine's whole reason is in :attr:`failures`); a disagreeing model gives the check asked for and not
-        made or the engine that departs, the gap, and at most three root causes, the most important first,
-        within 200 characters (the details are in ``koenig-check parity``, ``summary.md`` and the report).
-
-        Returns
-        -------
-        list of str
-        """
-        lines = [(m, self.failure_lines.get(m, r)) for m, r in self.failures]
-        parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in lines]  # once, not twice
-        for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
-            lead = reason.lead_line(comparison.findings)
-            if lead or not agreement.agrees:
-                text = reason.short_reason(agreement.model, comparison.findings, agreement.gap)
-                unused = reason.engine_usage(comparison.findings)
-                if not lead and unused and len(text) + len(unused) + 2 <= reason.REASON_WIDTH:
-                    text += f"; {unused}"
-                parts.append(text)
-        return parts
-
-    def reason(self) -> str:
-        """One line saying why :attr:`ok` is False (empty when it is True): :meth:`reasons` joined."""
-        return "; ".join(self.reasons())
-
-
-def make_poses(
-    mj_model: Any,
-    kind: str = "random",
-    n_poses: int = 20,
-    seed: int = 0,
-    velocity_scale: float = 1.0,
-    grid_joints: Sequence[str] | None = None,
-    duration: float = 1.0,
-) -> poses.PoseSet:
-    """Draw a pose set of a given kind for a MuJoCo model.
-
-    Parameters
-    ----------
-    mj_model : mujoco.MjModel
-    kind : {"random", "keyframes", "grid", "trajectory"}
-    n_poses : int
-        Poses (random), samples per joint (grid) or samples along the path (trajectory).
-    seed : int
-    velocity_scale : float
-    grid_joints : sequence of two str, optional
-        Required for ``grid``.
-    duration : float
-        Trajectory duration in seconds.
-
-    Returns
-    -------
-    PoseSet
-    """
-    if kind == "random":
-        return poses.random_poses(mj_model, n_poses, seed=seed, velocity_scale=velocity_scale)
-    if kind == "keyframes":
-        keys = poses.keyframe_poses(mj_model, seed=seed, velocity_scale=velocity_scale)
-        if keys.n_poses == 0:
-            raise ValueError("the model has no keyframe")
-        return keys
-    if kind == "grid":
-        if not grid_joints or len(grid_joints) != 2:
-            raise ValueError("a grid sweep needs exactly two joint names")
-        return poses.grid_poses(mj_model, grid_joints[0], grid_joints[1], n=n_poses)
-    if kind == "trajectory":
-        return poses.trajectory_poses(
-            mj_model, duration=duration, samples=max(n_poses, 2), seed=seed, velocity_scale=velocity_scale
-        )
-    raise ValueError(f"unknown pose kind {kind!r}; choose one of {POSE_KINDS}")
 
 
 def compare_model(
@@ -467,33 +331,3 @@ RUN_OPTIONS = tuple(sorted(keywords_of(compare_model) - {"model", "label", "rtol
 
 #: The pose settings recorded per model for the report (see :attr:`CrossCheck.settings`).
 _SETTINGS = ("pose_kind", "n_poses", "seed", "velocity_scale", "duration", "grid_joints")
-
-
-def load_options_from(base: LoadOptions | None, overrides: dict[str, Any]) -> LoadOptions:
-    """The load options: ``base`` (defaults when None) with keyword overrides.
-
-    ``allow_coupled=True`` warns (:class:`DeprecationWarning`) and is dropped: it does nothing.
-
-    Parameters
-    ----------
-    base : LoadOptions, optional
-    overrides : dict
-        Load options by name.
-
-    Returns
-    -------
-    LoadOptions
-
-    Raises
-    ------
-    TypeError
-        On a keyword that is not a load option.
-    """
-    unknown = sorted(set(overrides) - set(LoadOptions.names()))
-    if unknown:
-        raise TypeError(f"unknown option(s) {unknown}; load options are {list(LoadOptions.names())}")
-    options = replace(base or LoadOptions(), **overrides)
-    if options.allow_coupled:
-        warnings.warn(ALLOW_COUPLED_DEPRECATION, DeprecationWarning, stacklevel=3)
-        options = replace(options, allow_coupled=False)
-    return options

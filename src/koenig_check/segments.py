@@ -276,6 +276,21 @@ def inertia_from_second_moments(S: np.ndarray) -> np.ndarray:
     return tr[..., None, None] * np.eye(3) - S
 
 
+def principal_moments(inertia: np.ndarray) -> np.ndarray:
+    """The principal moments of an inertia tensor: the eigenvalues of its symmetric part, ascending.
+
+    Parameters
+    ----------
+    inertia : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    inertia = np.asarray(inertia, dtype=float)
+    return np.linalg.eigvalsh(0.5 * (inertia + np.swapaxes(inertia, -1, -2)))
+
+
 def check_physical_inertia(mass: float, inertia: np.ndarray, rtol: float = 1e-9) -> str | None:
     """Describe why an inertia tensor is not physical, or return ``None``.
 
@@ -300,7 +315,7 @@ def check_physical_inertia(mass: float, inertia: np.ndarray, rtol: float = 1e-9)
     scale = max(np.abs(inertia).max(), 1e-300)
     if np.abs(inertia - inertia.T).max() > rtol * scale:
         return "inertia is not symmetric"
-    lam = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
+    lam = principal_moments(inertia)
     moments = ", ".join(f"{v:.6g}" for v in lam)
     if lam[0] < -rtol * scale:
         return f"inertia is not positive semi-definite (principal moments {moments})"

@@ -9,7 +9,7 @@ import pinocchio as pin
 import pytest
 
 from koenig_check.engines import load_model
-from koenig_check.engines.pinocchio.adapter import placement_view
+from koenig_check.engines.pinocchio.placements import placement_view
 from koenig_check.run.poses import random_poses
 
 FREE_BALL_HINGE = Path(__file__).resolve().parents[1] / "data" / "free_ball_hinge.xml"

@@ -208,9 +208,9 @@ def test_no_writing_thread_is_alive_when_jobs_fork_their_workers(tmp_path: Path,
 
     from koenig_check.cli import main
     from koenig_check.report import RecordFiles
-    from koenig_check.run import pipeline
+    from koenig_check.run import chunk_tasks, pipeline
 
-    monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 8)
+    monkeypatch.setattr(chunk_tasks, "chunk_size", lambda n_segments: 8)
     write = RecordFiles._write_now
 
     def slow(self, table):  # a slow disk: without the flush the write is still running at the next fork
@@ -258,7 +258,7 @@ def test_an_interrupted_run_leaves_no_partial_record_file_and_no_writing_thread(
     import threading
 
     from koenig_check.cli import main
-    from koenig_check.run import pipeline
+    from koenig_check.run import chunk_tasks, pipeline
 
     run_chunk, started = pipeline.run_chunk, []
 
@@ -268,7 +268,7 @@ def test_an_interrupted_run_leaves_no_partial_record_file_and_no_writing_thread(
             raise KeyboardInterrupt
         return run_chunk(task)
 
-    monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 8)
+    monkeypatch.setattr(chunk_tasks, "chunk_size", lambda n_segments: 8)
     monkeypatch.setattr(pipeline, "run_chunk", interrupted_at_third_chunk)
     out = tmp_path / "r"
     assert main(["compare", "gimbal.xml", "--poses", "64", "--out", str(out)]) == 130

@@ -107,16 +107,16 @@ def test_rows_of_a_formula_refused_in_a_later_chunk_are_listed_and_left_out_when
     import json
 
     from koenig_check.cli import main
-    from koenig_check.run import pipeline
+    from koenig_check.run import chunk_tasks
 
     rng = np.random.default_rng(0)
-    planar = [[rng.uniform(-1, 1), 0.0, rng.normal(), 0.0] for _ in range(pipeline.PROBE_POSES + 44)]
+    planar = [[rng.uniform(-1, 1), 0.0, rng.normal(), 0.0] for _ in range(chunk_tasks.PROBE_POSES + 44)]
     spatial = [[rng.uniform(-1, 1), rng.uniform(-1, 1), rng.normal(), rng.normal()] for _ in range(20)]
     poses = tmp_path / "poses.csv"
     np.savetxt(poses, np.array(planar + spatial), delimiter=",")
     argv = ["compare", "gimbal.xml", "--pose-file", str(poses), "--formulas", "exact", "planar"]
     assert main([*argv, "--out", str(tmp_path / "whole")]) == 0  # one chunk: planar refused, no row of it
-    monkeypatch.setattr(pipeline, "chunk_size", lambda n_segments: 50)
+    monkeypatch.setattr(chunk_tasks, "chunk_size", lambda n_segments: 50)
     assert main([*argv, "--out", str(tmp_path / "chunked")]) == 0
     raw = pq.read_table(tmp_path / "chunked" / "records.parquet")
     assert "planar" in raw.column("formula").to_pylist()  # written by the chunks that accepted it

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from koenig_check.engines import ModelLoadError, list_models, resolve_model
-from koenig_check.sources.catalogue import detect_format, example_robot_data_dirs, project_models_dir, resolve_uri
+from koenig_check.sources.catalogue import detect_format, example_robot_data_dirs, project_models_dir
 
 #: The project models in both formats.
 PROJECT = ("free_body", "gimbal", "double_pendulum", "serial7", "armature_chain")
@@ -79,16 +79,3 @@ def test_detect_format(tmp_path):
     assert detect_format(mj) == "mjcf" and detect_format(urdf) == "urdf"
     with pytest.raises(ModelLoadError, match=r"c.xml.*<sdf>"):
         detect_format(other)
-
-
-def test_resolve_uri(tmp_path):
-    pkg = tmp_path / "share" / "my_pkg" / "meshes"
-    pkg.mkdir(parents=True)
-    mesh = pkg / "m.stl"
-    mesh.write_text("solid")
-    dirs = (tmp_path / "share",)
-    assert resolve_uri("package://my_pkg/meshes/m.stl", tmp_path, dirs) == mesh
-    assert resolve_uri("package:///my_pkg/meshes/m.stl", tmp_path, dirs) == mesh  # triple slash (talos)
-    assert resolve_uri("package://my_pkg/meshes/missing.stl", tmp_path, dirs) is None
-    assert resolve_uri(f"file://{mesh}", tmp_path, dirs) == mesh
-    assert resolve_uri("share/my_pkg/meshes/m.stl", tmp_path, dirs) == mesh

@@ -9,14 +9,8 @@ import pytest
 
 from koenig_check import cli
 from koenig_check.engines.errors import ModelLoadError
-from koenig_check.sources.catalogue import (
-    DEFAULT_FORMAT,
-    accepted_names,
-    list_models,
-    model_names,
-    resolve_model,
-    suggest_names,
-)
+from koenig_check.sources.catalogue import DEFAULT_FORMAT, accepted_names, list_models, resolve_model, suggest_names
+from koenig_check.sources.model_names import model_names
 
 
 @pytest.fixture(scope="module")

@@ -31,7 +31,8 @@ def add(sub: argparse._SubParsersAction) -> None:
 
 
 def _cmd_models(args: argparse.Namespace) -> int:
-    from koenig_check.sources.catalogue import DEFAULT_FORMAT, model_names
+    from koenig_check.sources.catalogue import DEFAULT_FORMAT
+    from koenig_check.sources.model_names import model_names
 
     if args.menagerie:
         from koenig_check.sources.listing import menagerie_lines

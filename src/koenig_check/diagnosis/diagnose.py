@@ -15,8 +15,9 @@ import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
 from koenig_check.diagnosis.engine_limits import limited_departures
-from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
 from koenig_check.diagnosis.import_parity import _in_mujoco_world as in_mujoco_world
+from koenig_check.diagnosis.import_parity import import_parity
+from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
 from koenig_check.diagnosis.root_frame import root_frame_offset
 from koenig_check.engines import registry
 from koenig_check.exceptions import one_line

@@ -9,6 +9,7 @@ import numpy as np
 
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.findings import Finding
+from koenig_check.kernels import body_point_velocities
 from koenig_check.segments import SegmentStates
 
 
@@ -261,6 +262,25 @@ def check_points(points: np.ndarray, n_segments: int) -> np.ndarray:
     if pts.ndim != 3 or pts.shape[0] != n_segments or pts.shape[2] != 3:
         raise ValueError(f"points: expected shape ({n_segments}, K, 3), got {pts.shape}")
     return pts
+
+
+def states_point_velocities(states: SegmentStates, points: np.ndarray | None) -> np.ndarray | None:
+    """The world velocities of points fixed in the segments, from the segments' states (None without points).
+
+    Parameters
+    ----------
+    states : SegmentStates
+    points : ndarray, shape (B, K, 3), optional
+        Offsets from each segment's COM, in the segment's axes.
+
+    Returns
+    -------
+    ndarray, shape (P, B, K, 3), or None
+    """
+    if points is None:
+        return None
+    pts = check_points(points, len(states.names))
+    return body_point_velocities(states.v_com, states.omega, states.rotation, pts)
 
 
 def symmetrize(inertia: np.ndarray) -> np.ndarray:

@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import argparse
 import os
+import warnings
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines import specs as engine_specs
@@ -251,3 +252,33 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="NAME=VALUE",
         help="set $(arg NAME) of a .xacro model (repeat for several; the file's defaults apply to the others)",
     )
+
+
+def load_options_from(base: LoadOptions | None, overrides: dict[str, Any]) -> LoadOptions:
+    """The load options: ``base`` (defaults when None) with keyword overrides.
+
+    ``allow_coupled=True`` warns (:class:`DeprecationWarning`) and is dropped: it does nothing.
+
+    Parameters
+    ----------
+    base : LoadOptions, optional
+    overrides : dict
+        Load options by name.
+
+    Returns
+    -------
+    LoadOptions
+
+    Raises
+    ------
+    TypeError
+        On a keyword that is not a load option.
+    """
+    unknown = sorted(set(overrides) - set(LoadOptions.names()))
+    if unknown:
+        raise TypeError(f"unknown option(s) {unknown}; load options are {list(LoadOptions.names())}")
+    options = replace(base or LoadOptions(), **overrides)
+    if options.allow_coupled:
+        warnings.warn(ALLOW_COUPLED_DEPRECATION, DeprecationWarning, stacklevel=3)
+        options = replace(options, allow_coupled=False)
+    return options

@@ -13,7 +13,7 @@ import os
 
 import mujoco
 
-from koenig_check.engines.mujoco.loader import BodyFinding
+from koenig_check.engines.mujoco.mass_changes import BodyFinding
 from koenig_check.export.carried import NotCarried
 from koenig_check.export.portable_mjcf import write_portable_mjcf
 from koenig_check.findings import Finding, Kind

@@ -330,8 +330,8 @@ def dynamics(
     ValueError
         An argument out of range, before the model is loaded.
     """
-    from koenig_check.api import load_options_from
     from koenig_check.arguments import check_dynamics_arguments, check_tolerance
+    from koenig_check.engines.load_options import load_options_from
     from koenig_check.engines.registry import check_engines
 
     given = dict(locals())

@@ -1,4 +1,4 @@
-"""Find model files: project models, example-robot-data robots, plain paths; resolve mesh URIs.
+"""Find model files by name or path: project models, example-robot-data robots, plain paths.
 
 Names
 -----
@@ -15,6 +15,9 @@ Names
   package directory without its ``_description``/``_data`` suffix (``anymal_b_simple/anymal``).
   The qualified form is accepted for every robot.  Aliases: a stem without its ``_robot`` suffix
   (``ur5`` for ``ur5_robot``) and a few historical loader names (``talos`` for ``talos_reduced``).
+
+The listing of these names is :mod:`koenig_check.sources.model_names`; mesh URIs inside a file are resolved by
+:mod:`koenig_check.sources.uris`.
 """
 
 from __future__ import annotations
@@ -29,6 +32,21 @@ from pathlib import Path
 
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.modelfile.validate import ModelFileError, preflight
+from koenig_check.sources.uris import resolve_uri
+
+__all__ = [
+    "DEFAULT_FORMAT",
+    "ModelSource",
+    "accepted_names",
+    "detect_format",
+    "example_robot_data_dirs",
+    "list_models",
+    "project_models_dir",
+    "resolve_model",
+    "resolve_uri",
+    "suggest_names",
+    "typed_name",
+]
 
 #: Names the historical example-robot-data loaders used for files whose stem differs.
 LEGACY_ALIASES = {"talos": "talos_reduced", "talos_full": "talos_full_v2", "talos_arm": "talos_left_arm"}
@@ -262,7 +280,7 @@ def resolve_model(
     if not hits and fmt is None:  # a stem that only exists qualified (anymal: two packages)
         hits = [s for s in catalogue if s.origin == "example-robot-data" and s.name.split("/")[-1] == name]
     if len(hits) > 1:
-        options = sorted(_spelling(s) for s in hits)
+        options = sorted(typed_name(s) for s in hits)
         raise ModelLoadError(f"{text}: ambiguous model name, it names {len(hits)} models: {options}")
     if len(hits) == 1:
         return hits[0]
@@ -277,52 +295,17 @@ def resolve_model(
 DEFAULT_FORMAT = "mjcf"
 
 
-@dataclass(frozen=True)
-class ModelName:
-    """One line of ``koenig-check models``: the name to type, the other names of the same file, where from.
+def typed_name(source: ModelSource) -> str:
+    """The name to type for a model: a project model with its suffix (``gimbal.xml``), else its name.
 
-    Attributes
+    Parameters
     ----------
-    name : str
-        The unambiguous name (``gimbal.xml``, ``ur5_robot``, ``anymal_b_simple/anymal``).
-    aliases : tuple of str
-        Other names :func:`resolve_model` accepts for the same file (``gimbal``, ``ur5``, ``talos``).
-    format : str
-    source : str
-        ``project`` or ``example-robot-data`` (the package is in the qualified alias ``<package>/<stem>``).
-    path : Path
-    """
-
-    name: str
-    aliases: tuple[str, ...]
-    format: str
-    source: str
-    path: Path
-
-
-def model_names() -> list[ModelName]:
-    """Every model name and alias :func:`resolve_model` accepts, one entry per file.
+    source : ModelSource
 
     Returns
     -------
-    list of ModelName
-        Project models first, then example-robot-data, by name.
+    str
     """
-    entries = []
-    for s in list_models():
-        if s.origin == "project":
-            aliases = (s.name,) if s.format == DEFAULT_FORMAT or not _has_twin(s) else ()
-            entries.append(ModelName(_spelling(s), aliases, s.format, "project", s.path))
-            continue
-        entries.append(ModelName(s.name, s.aliases, s.format, s.origin, s.path))
-    return entries
-
-
-def _has_twin(source: ModelSource) -> bool:
-    return any(s.name == source.name and s.format != source.format for s in _catalogue() if s.origin == "project")
-
-
-def _spelling(source: ModelSource) -> str:
     if source.origin == "project":
         return f"{source.name}.{'urdf' if source.format == 'urdf' else 'xml'}"
     return source.name
@@ -349,7 +332,7 @@ def accepted_names() -> list[str]:
         names.add(s.name)
         names.update(s.aliases)
         if s.origin == "project":
-            names.add(_spelling(s))
+            names.add(typed_name(s))
     return sorted(names)
 
 
@@ -373,35 +356,3 @@ def suggest_names(name: str, strict: bool = False) -> list[str]:
     if not strict:
         close += [k for k in known if stem and stem in k.split("/")[-1] and k not in close]
     return close[:5]
-
-
-def resolve_uri(uri: str, base_dir: Path, package_dirs: tuple[Path, ...]) -> Path | None:
-    """Resolve a mesh reference to an existing file.
-
-    Parameters
-    ----------
-    uri : str
-        ``package://pkg/rel``, ``file:///abs`` or a path (relative to ``base_dir``).
-    base_dir : Path
-        Directory relative paths are resolved against.
-    package_dirs : tuple of Path
-        Directories that contain ROS packages (``pkg`` is looked up in each).
-
-    Returns
-    -------
-    Path or None
-        The existing file, or ``None`` if it cannot be found.
-    """
-    if uri.startswith("package://"):
-        rel = uri[len("package://") :].lstrip("/")
-        for d in package_dirs:
-            candidate = d / rel
-            if candidate.is_file():
-                return candidate
-        return None
-    if uri.startswith("file://"):
-        uri = uri[len("file://") :]
-    path = Path(uri)
-    if not path.is_absolute():
-        path = base_dir / path
-    return path if path.is_file() else None

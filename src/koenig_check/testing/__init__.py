@@ -12,10 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.api import load_options_from
 from koenig_check.arguments import suggest_keywords
 from koenig_check.diagnosis import policy
-from koenig_check.engines.load_options import LoadOptions
+from koenig_check.engines.load_options import LoadOptions, load_options_from
 from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.formulas import FORMULAS
 from koenig_check.run.stats import DEFAULT_RTOL, relative_error

@@ -16,33 +16,28 @@ Velocities come from ``cvel``: the body's spatial velocity ``(ω, v)`` in world 
 referred to the ``subtree_com`` of the body's root (verified against ``mj_objectVelocity`` in
 MuJoCo 4.0), so a point ``p`` of the body moves with ``v + ω × (p - subtree_com[root])``.
 
-What MuJoCo 4.0 includes (verified, see ``self_consistency``): ``mj_energyVel`` (with
-``mjENBL_ENERGY``, after ``mj_makeM``) is ``½ q̇ᵀ M q̇`` where ``M`` (``mj_fullM``) carries
-``dof_armature`` on its diagonal, so the reported energy includes the armature; ``mj_rne`` excludes
-the armature, ``mj_inverse`` includes it.  Inverse dynamics here is ``mj_inverse`` on a copy with
-gravity zero and constraints, springs, dampers and fluid forces disabled.
+Dynamics (energy, mass matrix, inverse dynamics) are :class:`~koenig_check.engines.mujoco.dynamics.MujocoDynamics`.
 """
 
 from __future__ import annotations
 
-import copy
 from dataclasses import replace
 from pathlib import Path
 
 import mujoco
 import numpy as np
 
-from koenig_check.engines.base import Engine, as_batches, check_points, rows, symmetrize
+from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
 from koenig_check.engines.canonical import mujoco_joint_names
-from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.mujoco.dynamics import MujocoDynamics, energy_model, inverse_dynamics_model
 from koenig_check.findings import Finding, Kind
-from koenig_check.kernels import body_point_velocities, cross, rotate, rotate_points
+from koenig_check.kernels import cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates
 
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 
 
-class MujocoEngine(Engine):
+class MujocoEngine(MujocoDynamics, Engine):
     """A model loaded in MuJoCo.
 
     Parameters
@@ -76,14 +71,8 @@ class MujocoEngine(Engine):
         self.nq, self.nv = int(model.nq), int(model.nv)
         self.joint_names = tuple(mujoco_joint_names(model))
         self._data = mujoco.MjData(model)
-        self._m_energy = copy.copy(model)
-        self._m_energy.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
-        self._m_dyn = copy.copy(model)
-        self._m_dyn.opt.gravity[:] = 0.0
-        self._m_dyn.opt.density = 0.0
-        self._m_dyn.opt.viscosity = 0.0
-        off = mujoco.mjtDisableBit
-        self._m_dyn.opt.disableflags |= int(off.mjDSBL_CONSTRAINT | off.mjDSBL_SPRING | off.mjDSBL_DAMPER)
+        self._m_energy = energy_model(model)
+        self._m_dyn = inverse_dynamics_model(model)
         self._build_segments()
         for body, finding in body_findings or []:
             bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body)
@@ -243,42 +232,15 @@ class MujocoEngine(Engine):
 
         The internal path of the comparison grid: the states are not validated again (the
         model was checked at load), and every quantity is read once per pose.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-        points : ndarray, shape (B, K, 3), optional
-            Offsets from each segment's COM, in the segment's axes.
-
-        Returns
-        -------
-        states : SegmentStates
-        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
-        rigid, armature : ndarray, shape (P,)
-            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         s = self._sweep(qpos, qvel, energies=True)
         states = self._states(s, trusted=True)
-        pv = None
-        if points is not None:
-            pts = check_points(points, len(self.segment_names))
-            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
+        pv = states_point_velocities(states, points)
         return states, pv, s["rigid"], s["armature"]
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
-        """Return MuJoCo's segment states for a batch of canonical states.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        SegmentStates
-        """
+        """Return MuJoCo's segment states for a batch of canonical states."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         return self._states(self._sweep(qpos, qvel))
 
@@ -324,123 +286,6 @@ class MujocoEngine(Engine):
                     mujoco.mj_jac(m, d, jacp, None, world[b, k], int(body))
                     out[p, b, k] = jacp @ qvel[p]
         return out
-
-    # ------------------------------------------------------------- dynamics
-    def _energy(self, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
-        """Return ``mj_energyVel`` (``½ q̇ᵀ M q̇``, armature included) pose by pose."""
-        model = self._m_energy
-        d = mujoco.MjData(model)
-        reported = np.empty(qpos.shape[0])
-        for p in range(qpos.shape[0]):
-            d.qpos[:] = qpos[p]
-            d.qvel[:] = qvel[p]
-            mujoco.mj_kinematics(model, d)
-            mujoco.mj_comPos(model, d)
-            mujoco.mj_makeM(model, d)
-            mujoco.mj_energyVel(model, d)
-            reported[p] = d.energy[1]
-        return reported
-
-    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
-        """Return ``mj_energyVel``, the rigid-body energy and the armature term.
-
-        The rigid-body energy is ``½ q̇ᵀ (M − diag(dof_armature)) q̇`` with MuJoCo's own mass matrix
-        (``mj_energyVel`` minus the armature term):
-        MuJoCo builds ``M`` as the composite-rigid-body matrix plus ``dof_armature`` on the
-        diagonal.  Zeroing ``dof_armature`` on a compiled copy would not do: for the dofs MuJoCo
-        treats as *simple* (``dof_simplenum``: e.g. a slide or an aligned hinge on a body attached
-        to the world) the diagonal of ``M``, armature included, is precomputed at compile time
-        (``dof_M0``) and the copy would still count the armature as rigid-body energy.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        EnergyParts
-        """
-        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
-        reported = self._energy(qpos, qvel)
-        armature = 0.5 * (qvel**2) @ self.model.dof_armature
-        return EnergyParts(rigid=reported - armature, armature=armature, reported=reported)
-
-    def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return ``mj_fullM`` (armature included) for a batch of poses.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
-        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
-        m, d = self.model, self._data
-        out = np.zeros((qpos.shape[0], self.nv, self.nv))
-        for p in range(qpos.shape[0]):
-            d.qpos[:] = qpos[p]
-            mujoco.mj_kinematics(m, d)
-            mujoco.mj_comPos(m, d)
-            mujoco.mj_makeM(m, d)
-            mujoco.mj_fullM(m, d, out[p])
-        return out
-
-    def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return ``mj_inverse`` forces with gravity, constraints and passive forces off.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
-        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        m = self._m_dyn
-        d = mujoco.MjData(m)
-        out = np.empty_like(qvel)
-        for p in range(qpos.shape[0]):
-            d.qpos[:] = qpos[p]
-            d.qvel[:] = qvel[p]
-            d.qacc[:] = qacc[p]
-            mujoco.mj_inverse(m, d)
-            out[p] = d.qfrc_inverse
-        return out
-
-    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
-        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
-        arm = np.diag(np.asarray(self.model.dof_armature, dtype=float))
-        return np.broadcast_to(arm, (qpos.shape[0], self.nv, self.nv))
-
-    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
-        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        return qacc * np.asarray(self.model.dof_armature, dtype=float)
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by MuJoCo joint type.

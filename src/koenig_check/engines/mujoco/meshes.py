@@ -7,7 +7,8 @@ from pathlib import Path
 import mujoco
 
 from koenig_check.findings import Finding, Kind
-from koenig_check.sources.catalogue import ModelSource, resolve_uri
+from koenig_check.sources.catalogue import ModelSource
+from koenig_check.sources.uris import resolve_uri
 
 #: Mesh formats MuJoCo has no decoder for (the geoms using them are dropped: inertia-only).
 UNDECODABLE_MESH_SUFFIXES = frozenset({".dae"})

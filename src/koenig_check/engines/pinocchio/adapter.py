@@ -10,10 +10,9 @@ and the world-frame joint Jacobians, whose columns over a joint's supporting dof
 point velocities take the other route, ``forwardKinematics(model, data, q, v)`` and ``data.v``
 (spatial velocity in the joint frame).  The pole is the joint frame origin.
 
-What Pinocchio 4.1 includes (verified, see ``self_consistency``): ``computeKineticEnergy`` and
-``crba`` both include ``model.armature`` (diagonal), ``rnea`` adds ``armature * a``;
-``rotorInertia``/``rotorGearRatio`` are used by none of them.  ``crba`` fills the upper triangle only;
-it is symmetrized here.
+Dynamics (energy, mass matrix, inverse dynamics) are
+:class:`~koenig_check.engines.pinocchio.dynamics.PinocchioDynamics`; the placements are read whole through
+:func:`~koenig_check.engines.pinocchio.placements.placement_view`.
 """
 
 from __future__ import annotations
@@ -23,15 +22,18 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from koenig_check.engines.base import Engine, as_batches, check_points, rows, symmetrize
-from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
+from koenig_check.engines.pinocchio.dynamics import PinocchioDynamics
+from koenig_check.engines.pinocchio.placements import placement_view, rotations_origins
 from koenig_check.engines.pinocchio.state_map import StateMap
 from koenig_check.findings import Finding, Kind
-from koenig_check.kernels import body_point_velocities, cross, rotate
+from koenig_check.kernels import cross, rotate
 from koenig_check.segments import SegmentStates
 
+__all__ = ["PinocchioEngine", "placement_view"]
 
-class PinocchioEngine(Engine):
+
+class PinocchioEngine(PinocchioDynamics, Engine):
     """A model loaded in Pinocchio.
 
     Parameters
@@ -165,7 +167,7 @@ class PinocchioEngine(Engine):
                 Jp[p] = J_live
                 raw[p] = view if view is not None else [M.homogeneous for M in placements.tolist()]
         twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
-        R, origin = _rotations_origins(raw, view is not None, rows(self._joints))
+        R, origin = rotations_origins(raw, view is not None, rows(self._joints))
         return R, origin, twists, rigid
 
     def _states(self, R: np.ndarray, origin: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
@@ -194,64 +196,25 @@ class PinocchioEngine(Engine):
 
         The internal path of the comparison grid: the states are not validated again, and the
         point velocities come from the same world twists as the states (``v_O + ω × p``).
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-        points : ndarray, shape (B, K, 3), optional
-            Offsets from each segment's COM, in the segment's axes.
-
-        Returns
-        -------
-        states : SegmentStates
-        point_velocities : ndarray, shape (P, B, K, 3), or None without ``points``
-        rigid, armature : ndarray, shape (P,)
-            ``rigid`` and ``armature`` of :meth:`kinetic_energy`.
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         R, origin, T, rigid = self._sweep_world(q, v, energies=True)
         assert rigid is not None  # energies=True always evaluates the energies
         states = self._states(R, origin, T, trusted=True)
-        pv = None
-        if points is not None:
-            pts = check_points(points, len(self.segment_names))
-            pv = body_point_velocities(states.v_com, states.omega, states.rotation, pts)
+        pv = states_point_velocities(states, points)
         armature = 0.5 * (v**2) @ np.asarray(self.model.armature)
         return states, pv, rigid, armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
-        """Return Pinocchio's segment states for a batch of canonical states.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        SegmentStates
-        """
+        """Return Pinocchio's segment states for a batch of canonical states."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
         R, origin, T, _ = self._sweep_world(q, v)
         return self._states(R, origin, T)
 
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-        points : ndarray, shape (B, K, 3)
-            Offsets from each segment's COM, in the segment's axes.
-
-        Returns
-        -------
-        ndarray, shape (P, B, K, 3)
-        """
+        """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         pts = check_points(points, len(self.segment_names))
         q, v = self.state_map.to_pinocchio(qpos, qvel)
@@ -260,101 +223,6 @@ class PinocchioEngine(Engine):
         r = self._lever[:, None, :] + pts  # (B, K, 3) from the joint origin, joint axes
         local = V[:, :, None, :3] + np.cross(V[:, :, None, 3:], r[None])
         return np.einsum("pbij,pbkj->pbki", H[..., :3, :3], local)
-
-    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
-        """Return ``computeKineticEnergy`` with and without armature, and the armature term.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        EnergyParts
-        """
-        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
-        q, v = self.state_map.to_pinocchio(qpos, qvel)
-        P = q.shape[0]
-        reported, rigid = np.empty(P), np.empty(P)
-        for p in range(P):
-            reported[p] = pin.computeKineticEnergy(self.model, self._data, q[p], v[p])
-            rigid[p] = pin.computeKineticEnergy(self._m_rigid, self._d_rigid, q[p], v[p])
-        return EnergyParts(rigid=rigid, armature=0.5 * (v**2) @ np.asarray(self.model.armature), reported=reported)
-
-    def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return ``crba`` (armature included), symmetrized, in canonical velocity coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
-        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
-        q = self.state_map.to_pinocchio(qpos)
-        M = np.empty((q.shape[0], self.nv, self.nv))
-        for p in range(q.shape[0]):
-            upper = np.triu(pin.crba(self.model, self._data, q[p]))
-            M[p] = upper + np.triu(upper, 1).T
-        return self.state_map.matrix_to_canonical(qpos, M)
-
-    def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return ``rnea`` with gravity zero, in canonical coordinates.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
-        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        q, v = self.state_map.to_pinocchio(qpos, qvel)
-        a = self.state_map.acceleration_to_pinocchio(qpos, qvel, qacc)
-        tau = np.empty_like(v)
-        for p in range(q.shape[0]):
-            tau[p] = pin.rnea(self._m_dyn, self._d_dyn, q[p], v[p], a[p])
-        return self.state_map.force_to_canonical(qpos, tau)
-
-    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates.
-
-        ``Tᵀ diag(armature) T`` with ``v = T q̇`` the state map's velocity matrix.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-
-        Returns
-        -------
-        ndarray, shape (P, nv, nv)
-        """
-        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
-        arm = np.diag(np.asarray(self.model.armature, dtype=float))
-        return self.state_map.matrix_to_canonical(qpos, np.broadcast_to(arm, (qpos.shape[0], *arm.shape)))
-
-    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates.
-
-        ``Tᵀ (armature ⊙ a)`` with ``a`` Pinocchio's acceleration.
-
-        Parameters
-        ----------
-        qpos : ndarray, shape (P, nq)
-        qvel, qacc : ndarray, shape (P, nv)
-
-        Returns
-        -------
-        ndarray, shape (P, nv)
-        """
-        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        a = self.state_map.acceleration_to_pinocchio(qpos, qvel, qacc)
-        return self.state_map.force_to_canonical(qpos, a * np.asarray(self.model.armature, dtype=float))
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Pinocchio joint model.
@@ -373,79 +241,3 @@ class PinocchioEngine(Engine):
             key = leaf.shortname() + (" in composite" if p.pin_sub >= 0 else "")
             groups.setdefault(key, []).extend(range(p.vadr, p.vadr + width.get(p.kind, 1)))
         return {k: np.array(v, dtype=int) for k, v in groups.items()}
-
-
-def placement_view(model: pin.Model, data: pin.Data) -> np.ndarray | None:
-    """``data.oMi`` as one (njoints, 12) array over Pinocchio's own storage, or None.
-
-    Pinocchio 4.1 hands the placements out one joint at a time (each accessor costs about 0.3 µs
-    per joint); its ``SE3`` objects lie in one contiguous vector inside ``data``, and the bindings'
-    ``rotation`` and ``translation`` are views of that memory.  Row ``i`` of the returned array is
-    joint ``i``'s rotation in Eigen's column-major order then its translation, read from that
-    vector, so that one copy per pose takes every placement.  The layout is verified, not assumed:
-    every joint's ``rotation`` and ``translation`` must sit at the addresses and strides the view
-    reads, and after forward-kinematics passes at two random configurations the view must equal every
-    joint's ``homogeneous`` placement exactly; otherwise None (callers read the joints one by one).
-
-    The view does not keep ``data`` alive and follows it: the caller holds ``data`` for as long as
-    it uses the view, and copies it after each kinematic pass.
-
-    Parameters
-    ----------
-    model : pinocchio.Model
-    data : pinocchio.Data
-        Created from ``model``.
-
-    Returns
-    -------
-    ndarray, shape (njoints, 12), read-only, or None
-    """
-    placements = data.oMi
-    n = len(placements)
-    rotations = [placements[i].rotation for i in range(n)]
-    translations = [placements[i].translation for i in range(n)]
-    address = np.array([r.__array_interface__["data"][0] for r in rotations], dtype=np.int64)
-    stride = int(address[1] - address[0]) if n > 1 else 96
-    layout_ok = (
-        n >= 1
-        and stride >= 96
-        and all(r.shape == (3, 3) and r.strides == (8, 24) and r.dtype == np.float64 for r in rotations)
-        and all(t.shape == (3,) and t.strides == (8,) and t.dtype == np.float64 for t in translations)
-        and np.array_equal(address, address[0] + stride * np.arange(n))
-        and all(t.__array_interface__["data"][0] == a + 72 for t, a in zip(translations, address, strict=True))
-    )
-    if not layout_ok:
-        return None
-    view = np.lib.stride_tricks.as_strided(rotations[0], shape=(n, 12), strides=(stride, 8), writeable=False)
-    # Two configurations: a snapshot taken when ``data`` already held the first one (a data object
-    # checked before, or unpickled after its check) cannot match the second.
-    rng = np.random.default_rng(0)
-    for _ in range(2):
-        moved = pin.integrate(model, pin.neutral(model), rng.uniform(-1.0, 1.0, model.nv))
-        pin.forwardKinematics(model, data, moved)
-        expected = np.array([M.homogeneous for M in placements.tolist()])
-        R, origin = _rotations_origins(view[None], True, slice(None))
-        if not (np.array_equal(R[0], expected[:, :3, :3]) and np.array_equal(origin[0], expected[:, :3, 3])):
-            return None
-    return view
-
-
-def _rotations_origins(raw: np.ndarray, from_view: bool, joints: slice | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Rotations (P, B, 3, 3) and origins (P, B, 3) of some joints from :func:`placement_view` rows or 4 × 4 matrices.
-
-    ``raw`` is (P, njoints, 12) or (P, njoints, 4, 4); ``joints`` selects along its joint axis.  From
-    view rows, an index array is gathered and transposed in the same pass (``np.take`` into ``R``); the
-    origins come contiguous (the state kernels read them faster than a strided view).
-    """
-    if not from_view:
-        H = raw[:, joints]
-        return H[..., :3, :3], H[..., :3, 3]
-    P = raw.shape[0]
-    by_column = np.swapaxes(raw[..., :9].reshape(P, raw.shape[1], 3, 3), -1, -2)  # stored column by column
-    if isinstance(joints, slice):
-        R = np.empty(by_column[:, joints].shape)
-        R[...] = by_column[:, joints]
-        return R, np.ascontiguousarray(raw[:, joints, 9:])
-    R = np.empty((P, len(joints), 3, 3))
-    np.take(by_column, joints, axis=1, out=R)
-    return R, np.take(raw[..., 9:], joints, axis=1)

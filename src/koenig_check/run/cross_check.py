@@ -1,0 +1,106 @@
+"""The result of :func:`koenig_check.compare` over one or several models: whether it is ok, and why not."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from koenig_check.diagnosis import reason
+from koenig_check.run import summaries
+from koenig_check.run.comparison import ModelComparison, records_for
+from koenig_check.run.lookup import ResultLookup
+from koenig_check.run.records import RecordTable
+from koenig_check.run.stats import DEFAULT_RTOL
+from koenig_check.run.summaries import EngineParity, FormulaSummary
+
+
+@dataclass(repr=False)
+class CrossCheck(ResultLookup):
+    """Result of :func:`compare` over one or several models.
+
+    ``check["gimbal.xml"]`` is that model's :class:`ModelComparison`, ``check.summary(model, formula,
+    source, reference)`` one :class:`FormulaSummary`, ``check.to_pandas()`` the summaries as a table.
+
+    Attributes
+    ----------
+    comparisons : list of ModelComparison
+    summaries : list of FormulaSummary
+    parities : list of EngineParity
+    failures : list of (str, str)
+        Models that could not be compared, with a one-line reason each (the engine's whole reason).
+    failure_lines : dict of str to str
+        Per failed model, its reason in one sentence of at most 200 characters (:meth:`reasons`).
+    rtol : float
+    settings : dict
+        Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
+        ``velocity_scale``, ``duration``), for the report's captions.
+    """
+
+    comparisons: list[ModelComparison] = field(default_factory=list)
+    summaries: list[FormulaSummary] = field(default_factory=list)
+    parities: list[EngineParity] = field(default_factory=list)
+    failures: list[tuple[str, str]] = field(default_factory=list)
+    failure_lines: dict[str, str] = field(default_factory=dict)
+    rtol: float = DEFAULT_RTOL
+    settings: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    @property
+    def records(self) -> RecordTable:
+        """All tidy records of all models (iterate for dicts, index by column name for arrays)."""
+        return records_for(self.comparisons)
+
+    @property
+    def ok(self) -> bool:
+        """True when every model loaded and the engines agree with each other and with ``exact``.
+
+        With Drake consulted, an engine that departs from the other two (a ``VERDICT`` finding) counts, and so does
+        an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made).
+        """
+        verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
+        return not self.failures and all(p.agrees for p in self.parities) and not verdicts
+
+    def add(self, comparison: ModelComparison) -> EngineParity:
+        """Record one model's comparison with its summaries and engine parity.
+
+        Parameters
+        ----------
+        comparison : ModelComparison
+
+        Returns
+        -------
+        EngineParity
+            The parity just recorded.
+        """
+        self.comparisons.append(comparison)
+        self.summaries += summaries.summarize(comparison, self.rtol)
+        parity = summaries.engine_agreement(comparison, self.rtol)
+        self.parities.append(parity)
+        return parity
+
+    def reasons(self) -> list[str]:
+        """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
+
+        A model that could not be checked gives its error and at most three root causes (:attr:`failure_lines`;
+        the engine's whole reason is in :attr:`failures`); a disagreeing model gives the check asked for and not
+        made or the engine that departs, the gap, and at most three root causes, the most important first,
+        within 200 characters (the details are in ``koenig-check parity``, ``summary.md`` and the report).
+
+        Returns
+        -------
+        list of str
+        """
+        lines = [(m, self.failure_lines.get(m, r)) for m, r in self.failures]
+        parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in lines]  # once, not twice
+        for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
+            lead = reason.lead_line(comparison.findings)
+            if lead or not agreement.agrees:
+                text = reason.short_reason(agreement.model, comparison.findings, agreement.gap)
+                unused = reason.engine_usage(comparison.findings)
+                if not lead and unused and len(text) + len(unused) + 2 <= reason.REASON_WIDTH:
+                    text += f"; {unused}"
+                parts.append(text)
+        return parts
+
+    def reason(self) -> str:
+        """One line saying why :attr:`ok` is False (empty when it is True): :meth:`reasons` joined."""
+        return "; ".join(self.reasons())
