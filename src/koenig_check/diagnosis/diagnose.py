@@ -15,6 +15,7 @@ import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
 from koenig_check.diagnosis.import_parity import PARITY_RTOL, ParityReport, import_parity
+from koenig_check.diagnosis.root_frame import root_frame_offset
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
@@ -123,6 +124,9 @@ def _verdicts(
     q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in model.engines.items()}
+    offset, _ = root_frame_offset(model)
+    if offset is not None:  # Pinocchio dropped a jointless root body's pose: compare in MuJoCo's world
+        states["pinocchio"] = offset.segment_states(states["pinocchio"])
     return out + three_way.import_verdicts(states, findings, rtol, labels)
 
 
