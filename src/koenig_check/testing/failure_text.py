@@ -27,7 +27,8 @@ def verdict_lines(check: CrossCheck) -> list[str]:
     lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
-        if parity.agrees and not verdicts:
+        unmade = [f for f in comparison.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked for, not made
+        if parity.agrees and not verdicts and not unmade:
             continue
         cause = disagreement_cause(comparison.findings)
         lines.append(f"{parity.model}: MuJoCo and Pinocchio {'agree' if parity.agrees else 'disagree'}")
@@ -36,4 +37,5 @@ def verdict_lines(check: CrossCheck) -> list[str]:
         lines += [f"  three engines: {f.message()}" for f in verdicts]
         if not parity.agrees:
             lines.append(f"  engines: {parity.reason.split('; cause: ')[0]}")
+        lines += [f"  {f.message()}" for f in unmade]
     return lines
