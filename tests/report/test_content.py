@@ -54,3 +54,21 @@ def test_the_overview_names_the_largest_error_of_the_run() -> None:
     lines = run_overview(check.comparisons, check.summaries, check.parities)
     (largest,) = [line for line in lines if line.startswith("Largest error:")]
     assert "`koenig_world`" in largest and f" on {worst.model} at pose {worst.worst_pose} " in largest
+
+
+@pytest.mark.parametrize("order", [("mujoco", "pinocchio"), ("pinocchio", "mujoco")])
+def test_a_models_findings_give_the_worst_engines_error_and_median(order: tuple[str, str]) -> None:
+    """The plain-words line of an inexact formula: its largest error over the engines (7e-2, Pinocchio's) with that
+    engine's median (5e-3), whichever engine comes first."""
+    import koenig_check
+    from koenig_check.report.content import model_findings
+
+    check = koenig_check.compare("gimbal.xml", n_poses=2, formulas=["exact", "koenig_world"])
+    given = {
+        "mujoco": _summary("mujoco", 3e-4, 1e-4, 0.2, "random-1", False),
+        "pinocchio": _summary("pinocchio", 7e-2, 5e-3, 0.6, "random-7", False),
+    }
+    found = model_findings(check.comparisons[0], [given[e] for e in order], check.parities[0], check.rtol)
+    assert found.exact == []
+    (line,) = found.inexact
+    assert line.startswith("koenig_world: up to 7 % (median 0.5 %), always over: over on 60% of poses")
