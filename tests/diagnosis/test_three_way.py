@@ -192,3 +192,17 @@ def test_a_construct_both_other_engines_skip_is_named_not_blamed_on_mujoco() -> 
     assert verdict.engine == "mujoco"
     assert "Pinocchio and Drake both skip frame #1 in body base: MuJoCo reads the file as written" in verdict.summary
     assert "<frame> not read" in verdict.hint and not check.ok
+
+
+@needs_drake
+def test_a_root_pose_pinocchio_drops_is_no_departure() -> None:
+    """posed_root.xml: a jointless posed base, whose pose Pinocchio's MJCF parser drops (a constant transform of the
+    world, no effect on the energy).  MuJoCo and Pinocchio agree on it (tests/test_causes.py); with Drake, whose world
+    is MuJoCo's, the three engines must agree too: each segment's mass, COM and inertia compared in one world.
+    """
+    path = HERE / "models" / "causes" / "posed_root.xml"
+    assert_energy_parity(path, n_poses=3, engines=ALL)  # the energies agree, segment by segment
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=ALL)
+    assert set(check.comparisons[0].engines) == set(ALL)
+    assert not _verdicts(check), [f.message() for f in _verdicts(check)]
+    assert check.ok, check.reasons()

@@ -77,3 +77,29 @@ def test_a_compacted_sketch_answers_and_merges_the_same(rng: np.random.Generator
     pooled.merge(_sketch([values[:50]]))
     assert pooled.n == 3050
     assert pooled.median() == _sketch([values, values[:50]]).median()
+
+
+@pytest.mark.parametrize("chunk_poses", [1, 2, None])
+def test_an_armature_difference_in_an_early_chunk_survives_the_merge(chunk_poses: int | None) -> None:
+    """armature_chain.xml (armature 0.02, 0.015, 0.01, 0.005 on j1..j4) against its URDF twin (no armature): the
+    rigid-body energies agree, the armature energies differ by ``½ Σ a_i q̇_i²`` (by hand).  Only the first pose
+    moves, the last ones are at rest: however the poses are cut into chunks, the model's engines disagree.
+    """
+    import koenig_check
+    from koenig_check.run.poses import PoseSet
+
+    armature = np.array([0.02, 0.015, 0.01, 0.005])
+    qvel = np.zeros((3, 4))
+    qvel[0] = [1.0, -2.0, 0.5, 3.0]
+    poses = PoseSet(np.zeros((3, 4)), qvel, ("moving", "rest-1", "rest-2"), "file")
+    check = koenig_check.compare(
+        "armature_chain.xml",
+        pinocchio_model="armature_chain.urdf",
+        pose_set=poses,
+        formulas=["exact"],
+        chunk_poses=chunk_poses,
+    )
+    (parity,) = check.parities
+    assert parity.armature_max_abs == pytest.approx(0.5 * armature @ qvel[0] ** 2, rel=1e-12)
+    assert not parity.agrees and "armature energies differ" in parity.reason
+    assert parity.rigid_max_rel < 1e-12 and not check.ok

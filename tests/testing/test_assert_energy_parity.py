@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from koenig_check.testing import assert_energy_parity
@@ -42,3 +43,48 @@ def test_armature_difference_between_mjcf_and_urdf_is_caught() -> None:
     assert_energy_parity(
         MODELS / "armature_chain.xml", pinocchio_model=MODELS / "armature_chain.urdf", n_poses=5, include_armature=False
     )
+
+
+def test_total_energy_line_gives_each_engines_own_energy_at_the_worst_pose(tmp_path: Path) -> None:
+    """The message's total line, recomputed with Pinocchio's own computeKineticEnergy on each file.
+
+    serial7 is all revolute joints in file order (q = qpos, v = qvel); the unaltered file's energy is MuJoCo's (the
+    engines agree on it, test_passes_on_unaltered_models), the copy's is Pinocchio's.  link5 is 2.5e-7 heavier in the
+    copy (relative): the totals differ by less than that, beyond rtol 1e-9 yet far below a loose tolerance, and the
+    line names the pose where the difference is largest.
+    """
+    import pinocchio as pin
+
+    from koenig_check.engines import load_model
+    from koenig_check.run.poses import random_poses
+
+    text = (MODELS / "serial7.urdf").read_text()
+    link5 = r'(<link name="link5">.*?<mass value=")1.2(")'
+    altered, n = re.subn(link5, r"\g<1>1.2000003\g<2>", text, count=1, flags=re.S)
+    assert n == 1
+    copy = tmp_path / "serial7_slightly_heavier_link5.urdf"
+    copy.write_text(altered)
+    with pytest.raises(AssertionError) as info:
+        assert_energy_parity(MODELS / "serial7.urdf", pinocchio_model=copy, n_poses=10, seed=3)
+    found = re.search(
+        r"total rigid-body energy at pose random-(\d+): MuJoCo (\S+) J, Pinocchio (\S+) J \((\S+) relative\)",
+        str(info.value),
+    )
+    assert found, str(info.value)
+    k, mj_energy, pin_energy, rel = int(found[1]), float(found[2]), float(found[3]), float(found[4])
+
+    poses = random_poses(load_model(MODELS / "serial7.urdf").mujoco.model, 10, seed=3)
+    energies = []
+    for path in (MODELS / "serial7.urdf", copy):
+        model = pin.buildModelFromUrdf(str(path))
+        data = model.createData()
+        assert model.nq == model.nv == poses.qpos.shape[1] == 7
+        pairs = zip(poses.qpos, poses.qvel, strict=True)
+        energies.append(np.array([pin.computeKineticEnergy(model, data, q, v) for q, v in pairs]))
+    original, heavier = energies
+    worst = int(np.argmax(np.abs(heavier - original) / np.abs(original)))
+    assert poses.ids[k] == f"random-{k}" and k == worst
+    assert mj_energy == pytest.approx(original[k], rel=1e-8)
+    assert pin_energy == pytest.approx(heavier[k], rel=1e-8)
+    assert rel == pytest.approx(abs(heavier[k] - original[k]) / original[k], rel=1e-2)
+    assert 1e-8 < rel < 2.5e-7

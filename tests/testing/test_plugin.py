@@ -210,3 +210,31 @@ def test_two_files_with_one_name_are_two_items_labelled_as_one_run_labels_them(p
     summary = (pytester.path / "report" / "summary.md").read_text()
     for label in expected:
         assert summary.count(f"\n## {label}\n") == 1, label
+
+
+#: MuJoCo refuses a negative geom mass: the model cannot be checked at all.
+NEGATIVE_MASS = (
+    '<mujoco><worldbody><body name="arm"><joint name="hinge" type="hinge"/>'
+    '<geom type="sphere" size="0.1" mass="-1"/></body></worldbody></mujoco>'
+)
+
+
+def test_a_model_that_cannot_be_checked_fails_as_the_cli_exits_1(pytester):
+    """A model MuJoCo refuses, and one where Drake was asked for and cannot load it (talos_reduced.urdf: a fixed
+    joint mimicking a revolute one), make ``koenig-check compare`` exit 1 (tests/diagnosis/test_policy.py): their
+    items fail too, with the loader's own reason, never pass as if the model had been checked."""
+    from koenig_check.engines.registry import installed
+
+    _project(pytester, '"models/negative_mass.xml", { model = "talos", engines = ["mujoco", "pinocchio", "drake"] }')
+    (pytester.path / "models" / "negative_mass.xml").write_text(NEGATIVE_MASS)
+    result = pytester.runpytest_subprocess("--koenig-check", "-v", "-rfs")
+    text = result.stdout.str()
+    assert "::negative_mass.xml FAILED" in text
+    assert "MuJoCo rejects its inertia" in _failures(text)
+    if installed("drake"):
+        result.assert_outcomes(failed=2)
+        assert "::talos FAILED" in text
+        assert "Drake asked for (--engines) but it could not check the model" in _failures(text)
+        assert "Joint 'gripper_left_inner_double_joint' which has 0 DOF cannot mimic" in _failures(text)
+    else:
+        result.assert_outcomes(failed=1, skipped=1)

@@ -53,7 +53,8 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     diagnosis = diagnose(model, rtol=args.rtol)
     report = diagnosis.parity
     assert report is not None
-    from koenig_check.engines.registry import label, optional
+    from koenig_check.engines.registry import label as engine_label
+    from koenig_check.engines.registry import optional
     from koenig_check.report.line_width import fold_text
     from koenig_check.sources.shown_paths import as_given
 
@@ -64,7 +65,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     third = [f"three engines: {f.message()}" for f in diagnosis.findings if f.kind is Kind.VERDICT]
     third += [f.message() for f in diagnosis.findings if f in diagnosis.optional_findings]
     if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
-        names = ", ".join(label(e) for e in optional())
+        names = ", ".join(engine_label(e) for e in optional())
         print(f"\nThe third engine ({names}): verdicts and what its parser said")
         print("\n".join(shown(f"  {line}") for line in third))
     lead = lead_line(diagnosis.findings)

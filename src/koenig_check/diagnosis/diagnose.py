@@ -15,7 +15,6 @@ import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
 from koenig_check.diagnosis.engine_limits import limited_departures
-from koenig_check.diagnosis.import_parity import _in_mujoco_world as in_mujoco_world
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
 from koenig_check.diagnosis.root_frame import root_frame_offset
@@ -129,8 +128,9 @@ def _verdicts(
     q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in model.engines.items()}
-    offset, _ = root_frame_offset(model)  # a root pose Pinocchio drops is no departure: compare in MuJoCo's world
-    states["pinocchio"] = in_mujoco_world(states["pinocchio"], offset)
+    offset, _ = root_frame_offset(model)
+    if offset is not None:  # Pinocchio dropped a jointless root body's pose: compare in MuJoCo's world
+        states["pinocchio"] = offset.segment_states(states["pinocchio"])
     return out + three_way.import_verdicts(states, findings, rtol, labels)
 
 

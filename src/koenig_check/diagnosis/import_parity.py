@@ -17,7 +17,6 @@ segments are compared after it is removed.
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -25,7 +24,6 @@ import numpy as np
 
 from koenig_check.diagnosis.pair_causes import model_causes
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, DofParity, ParityReport, SegmentParity
-from koenig_check.diagnosis.root_frame import FrameOffset
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.sampling import random_states
 from koenig_check.findings import Kind
@@ -59,24 +57,6 @@ def segment_labels(pair: Any) -> dict[str, str]:
 def _unit_rate_states(engine: Any, qpos0: np.ndarray, nv: int) -> SegmentStates:
     """Segment states at ``qpos0`` for a unit rate of each dof in turn (one pose per dof)."""
     return engine.segment_states(np.tile(qpos0, (max(nv, 1), 1)), np.eye(max(nv, 1))[:, :nv])
-
-
-def _in_mujoco_world(states: SegmentStates, offset: FrameOffset | None) -> SegmentStates:
-    """Pinocchio's segment states with a dropped root pose put back (world_mujoco <- world_pinocchio)."""
-    if offset is None:
-        return states
-    return replace(
-        states,
-        com=offset.point(states.com),
-        v_com=offset.vector(states.v_com),
-        rotation=offset.frame(states.rotation),
-        omega=offset.vector(states.omega),
-        pole=offset.point(states.pole),
-        v_pole=offset.vector(states.v_pole),
-        rotation_ref=offset.frame(states.rotation_ref),
-        com_ref=offset.point(states.com_ref),
-        pole_ref=offset.point(states.pole_ref),
-    )
 
 
 def _rigid_mass_matrix(states: SegmentStates) -> np.ndarray:
@@ -113,7 +93,8 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     report.causes, offset = model_causes(pair)
     report.segment_labels = segment_labels(pair)
     sa = _unit_rate_states(mj, qpos0, nv)
-    sb = _in_mujoco_world(_unit_rate_states(pn, qpos0, nv), offset)
+    sb = _unit_rate_states(pn, qpos0, nv)
+    sb = sb if offset is None else offset.segment_states(sb)  # a root pose Pinocchio dropped put back
     report.total_mass = (float(sa.mass.sum()), float(sb.mass.sum()))
     # Pinocchio lumps the links welded to the world into its universe joint: its sum is the file's whole mass
     # (MuJoCo's compiler may have fused them away: fusestatic).

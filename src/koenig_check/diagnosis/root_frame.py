@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import mujoco
 import numpy as np
 
 from koenig_check.findings import Finding, Kind
+from koenig_check.segments import SegmentStates
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,31 @@ class FrameOffset:
     def frame(self, R: np.ndarray) -> np.ndarray:
         """Map rotations (..., 3, 3) world <- segment from Pinocchio's world to MuJoCo's."""
         return self.rotation @ R
+
+    def segment_states(self, states: SegmentStates) -> SegmentStates:
+        """Map segment states (every point, vector and rotation) from Pinocchio's world to MuJoCo's.
+
+        Parameters
+        ----------
+        states : SegmentStates
+            Pinocchio's.
+
+        Returns
+        -------
+        SegmentStates
+        """
+        return replace(
+            states,
+            com=self.point(states.com),
+            v_com=self.vector(states.v_com),
+            rotation=self.frame(states.rotation),
+            omega=self.vector(states.omega),
+            pole=self.point(states.pole),
+            v_pole=self.vector(states.v_pole),
+            rotation_ref=self.frame(states.rotation_ref),
+            com_ref=self.point(states.com_ref),
+            pole_ref=self.point(states.pole_ref),
+        )
 
 
 def root_frame_offset(pair: Any, atol: float = 1e-9) -> tuple[FrameOffset | None, Finding | None]:

@@ -28,13 +28,15 @@ def verdict_lines(check: CrossCheck) -> list[str]:
     lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
-        if parity.agrees and not verdicts:
+        unmade = [f for f in comparison.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked for, not made
+        if parity.agrees and not verdicts and not unmade:
             continue
         lines.append(f"{parity.model}: MuJoCo and Pinocchio {'agree' if parity.agrees else 'disagree'}")
         lines += [f"  root cause: {cause}" for cause in cause_lines(comparison.findings)]  # one a line
         lines += [f"  three engines: {f.message()}" for f in verdicts]
         if not parity.agrees:
             lines.append(f"  engines: {parity.reason.split('; cause: ')[0]}")
+        lines += [f"  {f.message()}" for f in unmade]
     return [part for line in lines for part in fold(line, FAILURE_WIDTH)]
 
 
