@@ -25,7 +25,8 @@ def test_parity_fails_when_the_engine_asked_for_cannot_check(capsys: pytest.Capt
     out, err = capsys.readouterr()
     assert "verdict: no import difference" in out  # the two engines' table is clean: the failure is Drake's
     assert len(err.splitlines()) == 1 and "Drake asked for (--engines) but it could not check the model" in err
-    assert DRAKE_REASON in err
+    assert len(err.rstrip("\n")) <= 200
+    assert " ".join(out.split()).count(DRAKE_REASON) == 1  # Drake's reason whole, once, in its part (folded)
 
 
 @needs_drake

@@ -9,6 +9,7 @@ import pytest
 
 import koenig_check
 from koenig_check.cli import main
+from koenig_check.diagnosis.reason import REASON_WIDTH
 from koenig_check.engines.errors import EngineUnavailableError as DrakeUnavailableError
 from koenig_check.findings import Kind
 from koenig_check.testing import assert_energy_parity
@@ -120,11 +121,17 @@ def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str)
         load_drake_engine(pair.source, pair.mujoco.model)
     message = str(info.value)
     assert "\n" not in message and message.startswith(str(pair.source.path)) and message.endswith(text)
+    reason = message.removeprefix(f"{pair.source.path}: ")  # the model's row and label name the file already
     check = koenig_check.compare(model, n_poses=1, formulas=["exact"], engines=ALL)
     found = [f.summary for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_NOT_USED]
-    assert found == [f"Drake not used: {message}"]
-    # Drake was asked for and could not check the model: the check asked for was not made, and says why.
-    assert not check.ok and message in check.reason()
+    assert found == [f"Drake not used: {reason}"]
+    # Drake was asked for and could not check the model: the check asked for was not made, and says why: whole
+    # in its finding (the verdict table's row), and first in the one-line reason, cut to fit its line.
+    (unable,) = [f for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]
+    assert unable.summary.endswith(reason)
+    line = check.reason()
+    assert not check.ok and len(line) <= REASON_WIDTH
+    assert line.removesuffix("…") in f"{check.comparisons[0].model}: {unable.summary}"
 
 
 @needs_drake

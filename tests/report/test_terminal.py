@@ -10,6 +10,7 @@ import pytest
 import koenig_check
 from koenig_check.demo import run_demo
 from koenig_check.engines.registry import installed
+from koenig_check.findings import Kind
 from koenig_check.report.terminal import WIDTH, terminal_table
 from koenig_check.roundoff import ROUNDOFF, fmt, shown
 
@@ -204,10 +205,31 @@ def test_every_line_compare_prints_on_stdout_fits_200_characters(tmp_path: Path,
     reason="Drake (extra [drake]) not installed",
 )
 def test_a_model_failed_by_a_departing_engine_is_not_agree_on_its_row(capsys) -> None:
-    """The row says what the exit status says: named Drake cannot check armature_chain: no armature read."""
+    """The row says what the exit status says: named Drake cannot check armature_chain (no armature read), while
+    MuJoCo and Pinocchio agree: UNABLE, not agree and not DISAGREE."""
     from koenig_check.cli import main
 
     argv = ["compare", "armature_chain", "--poses", "2", "--formulas", "exact", "--engines", "mujoco,pinocchio,drake"]
     assert main(argv) == 1
     row = next(line for line in capsys.readouterr().out.splitlines() if line.startswith("armature_chain"))
-    assert row.split()[1] == "DISAGREE" and "Drake cannot check" in row
+    assert row.split()[1] == "UNABLE" and "Drake cannot check" in row
+
+
+@pytest.mark.parametrize(
+    ("agrees", "kinds", "status"),
+    [
+        (True, [], "agree"),
+        (True, [Kind.MASS], "agree"),  # a difference below the tolerance's effect is no failure
+        (False, [], "DISAGREE"),
+        (True, [Kind.VERDICT], "DISAGREE"),  # a third engine departs
+        (True, [Kind.ENGINE_UNABLE], "UNABLE"),  # a named engine could not check
+        (False, [Kind.ENGINE_UNABLE], "DISAGREE"),  # the disagreement is the stronger word
+        (True, [Kind.ENGINE_UNABLE, Kind.VERDICT], "DISAGREE"),
+    ],
+)
+def test_the_row_status_names_why_a_model_fails(agrees: bool, kinds: list, status: str) -> None:
+    from koenig_check.findings import Finding
+    from koenig_check.report.terminal import _status
+
+    findings = [Finding(kind, "drake", "model", "what the engine found") for kind in kinds]
+    assert _status(agrees, findings) == status

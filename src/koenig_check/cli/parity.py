@@ -63,7 +63,15 @@ def _cmd_parity(args: argparse.Namespace) -> int:
 
     print(shown(format_parity(report, args.model)))
     third = [f"three engines: {f.message()}" for f in diagnosis.findings if f.kind is Kind.VERDICT]
-    third += [f.message() for f in diagnosis.findings if f in diagnosis.optional_findings]
+    unable = {f.engine for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE}  # its reason said once, there
+    third += [f.message() for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE]
+    third += [
+        f.message()
+        for f in diagnosis.findings
+        if f in diagnosis.optional_findings
+        and f.kind is not Kind.ENGINE_UNABLE
+        and not (f.kind is Kind.ENGINE_NOT_USED and f.engine in unable)
+    ]
     if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
         names = ", ".join(engine_label(e) for e in optional())
         print(f"\nThe third engine ({names}): verdicts and what its parser said")

@@ -90,7 +90,6 @@ def unmade_checks(findings: Sequence[Finding], engines: Sequence[str] | None) ->
             "model",
             f"{label(f.engine)} asked for (--engines) but it could not check the model: "
             + f.summary.removeprefix(f"{label(f.engine)} not used: "),
-            {"asked": list(asked)},
             hint="check the model without it (--engines mujoco,pinocchio), or fix what it refuses",
         )
         for f in findings

@@ -131,12 +131,15 @@ def _departures(findings: Sequence[Finding]) -> str:
     return ", ".join(heads)
 
 
-def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: int = 3) -> str:
+def short_reason(
+    label: str, findings: Sequence[Finding], gap: str = "", limit: int = 3, width: int = REASON_WIDTH
+) -> str:
     """Why a model fails, in one sentence of at most :data:`REASON_WIDTH` characters.
 
     The engine that departs first, then at most ``limit`` root causes, the most important first, and how many
-    more, then the engines' gap, and last a check asked for and not made, with the engine's own reason whole;
-    ``koenig-check parity``, ``summary.md`` and the report hold the details.  To fit, the gap loses its pose,
+    more, then the engines' gap, and last a check asked for and not made, with the engine's own reason (cut at
+    a word when it does not fit: the verdict table's row, ``summary.md`` and the report hold it whole, and
+    ``koenig-check parity`` the details).  To fit, the gap loses its pose,
     then the gap goes (the verdict table shows it), then causes after the first go ("and N more"), and last the
     first cause is cut at a word ("…").
 
@@ -148,30 +151,39 @@ def short_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     gap : str
         The engines' disagreement in a few words (empty when they agree).
     limit : int
+    width : int
+        The longest line (the verdict table's row gives room for the check not made, whole).
 
     Returns
     -------
     str
     """
-    unmade = "; ".join(f.message() for f in findings if f.kind is Kind.ENGINE_UNABLE)  # the engine's whole reason
+    from koenig_check.report.line_width import cut
+
+    unable_findings = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
+    unmade = "; ".join(f.summary for f in unable_findings)  # each summary names its engine and gives its reason
     head = _departures(findings)
     if unmade and not head and not gap:  # MuJoCo and Pinocchio agree: the check not made is the whole reason
-        alone = [f"{f.summary}; {f.hint}" if f.hint else f.summary for f in findings if f.kind is Kind.ENGINE_UNABLE]
-        return f"{label}: " + "; ".join(alone)  # the summary names the engine: no "drake: model:" before it
+        hints = "; ".join(f.hint for f in unable_findings if f.hint)
+        text = f"{label}: {unmade}"
+        hinted = f"{text}; {hints}" if hints else text
+        return hinted if len(hinted) <= width else cut(text, width)  # whole: the table row
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
     causes = [short_cause(f) for f in ordered_causes(findings) if f.engine not in unable]
     gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
     if head or causes:  # the gap may go when something else says why (the verdict table shows it)
         gaps.append("")
+    room = min(len(unmade) + 2, _UNMADE_ROOM) if unmade else 0  # kept for the check not made, which closes the line
     text = ""
     for n in range(min(limit, len(causes)), 0 if causes else -1, -1):
         for g in gaps:
             said = "; ".join(causes[:n]) + (f" and {len(causes) - n} more" if len(causes) > n else "")
             parts = [head, f"root cause: {said}" if n else "", g]
             text = f"{label}: " + "; ".join(t for t in parts if t)
-            if len(text) <= REASON_WIDTH:
-                return _closed(text, unmade)
-    return _closed(text[: REASON_WIDTH - 1].rsplit(" ", 1)[0] + "…", unmade)  # one long cause cut at a word
+            if len(text) + room <= width:
+                return _closed(text, unmade, width)
+    text = text[: width - room - 1].rsplit(" ", 1)[0] + "…"  # one long cause cut at a word
+    return _closed(text, unmade, width)
 
 
 def short_error(
@@ -229,11 +241,17 @@ def short_error(
 _SHORTEST_HEAD = 40
 
 
-def _closed(text: str, unmade: str) -> str:
-    """A reason closed by the check asked for and not made, with the engine's own reason whole."""
+#: The room a reason keeps for a check asked for and not made (the rest of its text is in the verdict table's row).
+_UNMADE_ROOM = 80
+
+
+def _closed(text: str, unmade: str, width: int) -> str:
+    """A reason closed by the checks asked for and not made, cut at a word to fit (whole in the table's row)."""
+    from koenig_check.report.line_width import cut
+
     if not unmade:
         return text
-    return f"{text}{'' if text.endswith(': ') else '; '}{unmade}"
+    return cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
 
 
 def rounding_hint(max_relative: float, rtol: float) -> str:

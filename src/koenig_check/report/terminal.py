@@ -15,6 +15,7 @@ import numpy as np
 
 from koenig_check.api import CrossCheck
 from koenig_check.engines.registry import label, optional
+from koenig_check.findings import Finding, Kind
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.stats import relative_error
@@ -91,14 +92,28 @@ def _gap_cell(gap: tuple[float, bool] | None) -> str:
     return "—" if gap is None else _number(gap[0]) + ("" if gap[1] else "*")
 
 
+def _status(agrees: bool, findings: Sequence[Finding]) -> str:
+    """A row's verdict: agree, DISAGREE (the engines, or one departs), UNABLE (a named engine could not check)."""
+    if not agrees or any(f.kind is Kind.VERDICT for f in findings):
+        return "DISAGREE"
+    return "UNABLE" if any(f.kind is Kind.ENGINE_UNABLE for f in findings) else "agree"
+
+
+#: The longest reason a row gives (folded under its column): room for an engine's reason whole.
+_ROW_REASON = 1000
+
+
 def _cause(check: CrossCheck, model: str) -> str:
-    from koenig_check.diagnosis.reason import changes_line, lead_line, short_reason
+    from koenig_check.diagnosis.reason import REASON_WIDTH, changes_line, lead_line, short_reason
 
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         if parity.model == model:
             short = ""
             if lead_line(comparison.findings) or not parity.agrees:  # the one-line reason, without the label
-                short = short_reason(model, comparison.findings, parity.gap).removeprefix(f"{model}: ")
+                unmade = any(f.kind is Kind.ENGINE_UNABLE for f in comparison.findings)  # its reason whole
+                width = _ROW_REASON if unmade else REASON_WIDTH
+                text = short_reason(model, comparison.findings, parity.gap, width=width)
+                short = text.removeprefix(f"{model}: ")
             changes = changes_line(comparison.findings)  # a model changed to be loaded says so, agreeing or not
             return "; ".join(t for t in (short, changes) if t)
     return ""
@@ -189,12 +204,11 @@ def terminal_table(check: CrossCheck) -> str:
             f"{'model':{mw}s}  {'verdict':8s}  {'engine gap':>10s}  {'exact vs own':>12s}  root cause",
         ]
     tiebreak: list[str] = []  # the engines that ran as tie-breaker on some model
-    from koenig_check.diagnosis.reason import lead_line
 
     for i, (p, comparison) in enumerate(zip(check.parities, check.comparisons, strict=True)):
         # The row says what the exit status says: an engine that departs, or a check asked for and not made,
         # fails the model even where MuJoCo and Pinocchio agree.
-        status = "agree" if p.agrees and not lead_line(comparison.findings) else "DISAGREE"
+        status = _status(p.agrees, comparison.findings)
         exact = max(p.exact_vs_engine.values(), default=0.0)
         if ran:
             row_gaps = {e: gaps[e][i] for e in ran}

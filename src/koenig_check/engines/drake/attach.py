@@ -41,9 +41,9 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         reason = failed_check(exit_)
         if reason is None:
             raise
-        return None, [not_used("drake", f"{model.source.path}: Drake cannot load the model: {reason}")]
-    except DrakeLoadError as err:
-        return None, [not_used("drake", one_line(err))]
+        return None, [not_used("drake", f"Drake cannot load the model: {reason}")]
+    except DrakeLoadError as err:  # Drake's reason; the model's row and label already name the file
+        return None, [not_used("drake", one_line(err).removeprefix(f"{model.source.path}: "))]
     except ImportError as err:  # installed but not importable
         return None, [not_used("drake", f"pydrake cannot be imported: {one_line(err)}")]
     return engine, list(engine.findings) + armature_findings(model, engine) + _file_causes(model)
