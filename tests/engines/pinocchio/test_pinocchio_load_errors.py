@@ -12,7 +12,7 @@ from koenig_check.engines import ModelLoadError, load_model
 from koenig_check.engines.pinocchio.loader import parser_reason
 from koenig_check.findings import Kind
 
-MODELS = Path(__file__).parent / "models"
+MODELS = Path(__file__).resolve().parents[1] / "models"
 
 
 @pytest.mark.parametrize(
