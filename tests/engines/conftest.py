@@ -3,6 +3,13 @@
 ``case`` is a module-scoped parameter, so pytest runs a module's tests case by case, and ``pair`` holds the
 one case's engines while they run: memory holds one model, not the whole corpus (about 2.7 GB when every
 loaded pair was cached for the session).
+
+Layout: tests of the shared modules (``base``, ``loading``, ``sampling``, ...) sit here; tests of one engine's
+subpackage in ``mujoco/``, ``pinocchio/``, ``drake/``, named ``test_<engine>_*.py``.  These folders have no
+``__init__.py``: pytest imports test modules by their base name (its default ``prepend`` mode), so base names
+stay unique across folders; and an ``__init__.py`` would make ``tests/engines/mujoco`` a package named ``mujoco``
+(or ``pinocchio``) in place of the engine.  Helper modules here (``engine_helpers``, ``urdf_builders``,
+``all_joints``) are imported by name: this folder is on ``sys.path`` once this file is loaded.
 """
 
 from __future__ import annotations

@@ -6,45 +6,11 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 import pytest
+from all_joints import ALL_JOINTS_MJCF
 from engine_helpers import RTOL, rel_err
 
 from koenig_check.engines import JointMismatch, load_model, random_states
 from koenig_check.findings import Kind
-
-# free root, hinge with ref and an offset anchor, ball, a body with three joints (hinge with ref,
-# slide with ref, hinge on a tilted axis: a Pinocchio composite), a slide with ref, a welded child.
-ALL_JOINTS_MJCF = """
-<mujoco model="all_joints">
-  <compiler angle="radian"/>
-  <worldbody>
-    <body name="base" pos="0 0 1">
-      <freejoint name="root"/>
-      <inertial pos="0.1 0 0" mass="2" diaginertia="0.1 0.2 0.25"/>
-      <body name="b1" pos="0.3 0 0" quat="0.9 0.1 0.2 0.3">
-        <joint name="hinge1" type="hinge" axis="0 1 0" pos="0.05 0 0" ref="0.3" armature="0.1"/>
-        <inertial pos="0 0.1 0" mass="1" fullinertia="0.1 0.2 0.25 0.01 0.02 0.03"/>
-        <body name="b2" pos="0 0.3 0">
-          <joint name="ball1" type="ball" armature="0.05"/>
-          <inertial pos="0 0.1 0.02" mass="1.3" diaginertia="0.1 0.2 0.25"/>
-          <body name="b3" pos="0 0.3 0">
-            <joint name="c_hinge" type="hinge" axis="1 0 0" ref="0.2"/>
-            <joint name="c_slide" type="slide" axis="0 0 1" ref="0.1" armature="0.2"/>
-            <joint name="c_tilted" type="hinge" axis="0 1 1"/>
-            <inertial pos="0 0.1 0" mass="1" diaginertia="0.1 0.2 0.25"/>
-            <body name="welded" pos="0 0 0.2" euler="0.1 0.2 0.3">
-              <inertial pos="0 0.1 0" mass="0.5" fullinertia="0.01 0.02 0.025 0.001 0 0"/>
-            </body>
-            <body name="b4" pos="0.2 0 0">
-              <joint name="slide1" type="slide" axis="1 1 0" ref="-0.4"/>
-              <inertial pos="0.05 0 0" mass="0.7" diaginertia="0.01 0.02 0.03"/>
-            </body>
-          </body>
-        </body>
-      </body>
-    </body>
-  </worldbody>
-</mujoco>
-"""
 
 # fixed base URDF with revolute (aligned and tilted), continuous (aligned and tilted), prismatic
 URDF_JOINTS = """
@@ -218,30 +184,6 @@ def test_acceleration_map_is_the_derivative_of_the_velocity_map(mjcf_pair):
     assert np.abs(fd - a).max() < 1e-6 * max(np.abs(a).max(), 1.0)
 
 
-def test_mujoco_free_joint_velocity_frames():
-    """MuJoCo 4.0 free-joint qvel: linear = world velocity of the body origin, angular = body frame."""
-    model = mujoco.MjModel.from_xml_string(
-        '<mujoco><worldbody><body name="b" pos="0 0 1"><freejoint/>'
-        '<inertial pos="0.2 0.1 0" mass="1" diaginertia="0.1 0.2 0.3"/></body></worldbody></mujoco>'
-    )
-    qpos, qvel = random_states(model, 1, seed=8)
-    data = mujoco.MjData(model)
-
-    def pose(q):
-        data.qpos[:] = q
-        mujoco.mj_kinematics(model, data)
-        return data.xpos[1].copy(), data.xmat[1].reshape(3, 3).copy()
-
-    x0, R0 = pose(qpos[0])
-    h = 1e-7
-    q1 = qpos[0].copy()
-    mujoco.mj_integratePos(model, q1, qvel[0], h)
-    x1, R1 = pose(q1)
-    assert np.allclose((x1 - x0) / h, qvel[0, :3], atol=1e-6)
-    W = R0.T @ (R1 - R0) / h  # skew(ω_local)
-    assert np.allclose([W[2, 1], W[0, 2], W[1, 0]], qvel[0, 3:], atol=1e-5)
-
-
 def test_joints_missing_in_pinocchio_raise_joint_mismatch(tmp_path):
     """Pinocchio 4.1's MJCF parser reads only the first body under <worldbody>."""
     path = tmp_path / "two_trees.xml"
@@ -270,19 +212,6 @@ def test_renamed_joint_is_reported_on_both_sides(tmp_path):
         load_model(urdf, pinocchio_source=other)
     assert info.value.only_in_mujoco == ["pris"]
     assert info.value.only_in_pinocchio == ["prismatic_renamed"]
-
-
-def test_mujoco_pole_is_xanchor_except_for_slides(mjcf_pair):
-    mj = mjcf_pair.mujoco
-    model, data = mj.model, mujoco.MjData(mj.model)
-    qpos, qvel = random_states(model, 1, seed=9)
-    states = mj.segment_states(qpos, qvel)
-    data.qpos[:] = qpos[0]
-    mujoco.mj_kinematics(model, data)
-    for b, name in enumerate(states.names):
-        j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
-        same = np.allclose(states.pole[0, b], data.xanchor[j], atol=1e-12)
-        assert same == (model.jnt_type[j] != mujoco.mjtJoint.mjJNT_SLIDE), name
 
 
 @pytest.mark.parametrize("free", ['<joint type="free"/>', "<freejoint/>"])

@@ -12,8 +12,8 @@ from koenig_check.engines import load_model
 from koenig_check.engines.pinocchio.placements import placement_view
 from koenig_check.run.poses import random_poses
 
-FREE_BALL_HINGE = Path(__file__).resolve().parents[1] / "data" / "free_ball_hinge.xml"
-MODELS = Path(__file__).resolve().parents[2] / "models"
+FREE_BALL_HINGE = Path(__file__).resolve().parents[2] / "data" / "free_ball_hinge.xml"
+MODELS = Path(__file__).resolve().parents[3] / "models"
 CASES = [FREE_BALL_HINGE, MODELS / "serial7.urdf", MODELS / "armature_chain.xml", "ur5", "a1"]  # a1: joints reordered
 
 

@@ -8,7 +8,7 @@ import pytest
 import koenig_check.modelfile.validate
 from koenig_check.modelfile.validate import MAX_DEPTH, ModelFileError, preflight
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 
 BILLION_LAUGHS = """<?xml version="1.0"?>
 <!DOCTYPE lolz [

@@ -20,7 +20,7 @@ from koenig_check.engines import InertiaError, ModelLoadError, list_models, load
 from koenig_check.engines.mujoco.inertia_repair import MJMINVAL
 from koenig_check.findings import Kind
 
-MODEL = Path(__file__).parent / "models" / "repair_needed.urdf"
+MODEL = Path(__file__).resolve().parents[1] / "models" / "repair_needed.urdf"
 FILE_TENSOR = np.array([[0.02, 0.03, 0.0], [0.03, 0.02, 0.0], [0.0, 0.0, 0.01]])
 T_HAND = (0.05 - (-0.01) - 0.01) / 3.0  # = 0.05/3
 MOMENTS_AFTER = np.array([-0.01 + T_HAND, 0.01 + T_HAND, 0.05 - T_HAND])
