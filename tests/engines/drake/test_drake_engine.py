@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from functools import cache
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,6 +16,8 @@ from koenig_check.engines.drake.adapter import DrakeEngine
 from koenig_check.engines.drake.building import load_drake_engine
 
 RTOL = 1e-12
+#: The repository: the test models below are named from it (their ids), and found from this file, wherever pytest runs.
+ROOT = Path(__file__).resolve().parents[3]
 #: (model, floating): project models in both formats and example-robot-data robots, fixed and floating.
 DRAKE_CASES = [
     ("gimbal.xml", False),
@@ -40,7 +43,7 @@ DRAKE_CASES = [
 
 @cache
 def _load(model: str, floating: bool) -> tuple[ModelPair, DrakeEngine]:
-    pair = load_model(model, floating=floating, check=False)
+    pair = load_model(str(ROOT / model) if model.startswith("tests/") else model, floating=floating, check=False)
     return pair, load_drake_engine(pair.source, pair.mujoco.model)
 
 
