@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import logging
 import re
-import tempfile
 import xml.etree.ElementTree as ET
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -43,6 +42,7 @@ from typing import Any
 
 from koenig_check.exceptions import DrakeLoadError, without_build_location
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.edited_copy import edited_copy
 from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
 
@@ -183,30 +183,11 @@ def _needs_model_name(path: Path) -> bool:
 
 @contextmanager
 def _named_copy(path: Path) -> Iterator[Path]:
-    """A copy of an MJCF file whose ``<mujoco>`` has ``model="<stem>"``, next to the original (removed after)."""
+    """A copy of an MJCF file whose ``<mujoco>`` has ``model="<stem>"`` (Drake requires a model name)."""
     tree = parse_xml(path)
     tree.getroot().set("model", path.stem)
-    try:
-        handle = tempfile.NamedTemporaryFile(
-            "wb", suffix=".xml", prefix=f".{path.stem}-drake-", dir=path.parent, delete=False
-        )
-    except OSError:
-        root = tree.getroot()
-        for element in root.iter():
-            if element.tag == "include" and element.get("file"):
-                element.set("file", str((path.parent / element.get("file", "")).resolve()))
-            if element.tag == "compiler":
-                for attr in ("meshdir", "texturedir", "assetdir"):
-                    if element.get(attr) is not None:
-                        element.set(attr, str((path.parent / element.get(attr, "")).resolve()))
-        handle = tempfile.NamedTemporaryFile("wb", suffix=".xml", prefix=f"{path.stem}-drake-", delete=False)
-    copy = Path(handle.name)
-    try:
-        with handle:
-            tree.write(handle)
+    with edited_copy(path, tree, "drake") as copy:
         yield copy
-    finally:
-        copy.unlink(missing_ok=True)
 
 
 def _fill_package_map(parser: Any, source: ModelSource) -> None:

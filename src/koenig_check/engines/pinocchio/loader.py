@@ -25,6 +25,7 @@ import pinocchio as pin
 
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.edited_copy import edited_copy
 from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
 
@@ -158,39 +159,14 @@ def limitation_hint(source: ModelSource, reason: str) -> str:
 
 @contextmanager
 def _without_keyframes(path: os.PathLike[str] | str) -> Iterator[Path]:
-    """A copy of an MJCF file without its ``<keyframe>`` elements, next to the original (removed afterwards).
-
-    Written in the same directory so that relative ``<include>`` files and asset directories resolve
-    as for the original; in the system's temporary directory, with includes made absolute, when that
-    directory is not writable.
-    """
-    original = Path(path)
-    tree = parse_xml(original)
-    root = tree.getroot()
-    for parent in list(root.iter()):
+    """A copy of an MJCF file without its ``<keyframe>`` elements (removed afterwards)."""
+    tree = parse_xml(Path(path))
+    for parent in list(tree.getroot().iter()):
         for child in list(parent):
             if child.tag == "keyframe":
                 parent.remove(child)
-    try:
-        handle = tempfile.NamedTemporaryFile(
-            "wb", suffix=".xml", prefix=f".{original.stem}-nokeys-", dir=original.parent, delete=False
-        )
-    except OSError:
-        for element in root.iter():
-            if element.tag == "include" and element.get("file"):
-                element.set("file", str((original.parent / element.get("file", "")).resolve()))
-        for element in root.iter("compiler"):
-            for attr in ("meshdir", "texturedir", "assetdir"):
-                if element.get(attr) is not None:
-                    element.set(attr, str((original.parent / element.get(attr, "")).resolve()))
-        handle = tempfile.NamedTemporaryFile("wb", suffix=".xml", prefix=f"{original.stem}-nokeys-", delete=False)
-    copy = Path(handle.name)
-    try:
-        with handle:
-            tree.write(handle)
+    with edited_copy(Path(path), tree, "nokeys") as copy:
         yield copy
-    finally:
-        copy.unlink(missing_ok=True)
 
 
 @contextmanager
