@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-
 from typing import Any
 
 from koenig_check.cli.parsing import add_command, check_models, load_options_of, positive, tolerance, usage_error
@@ -56,7 +55,7 @@ def add(sub: argparse._SubParsersAction) -> None:
 
 
 def parity_diagnosis(model: Any, rtol: float, poses: int = VERDICT_POSES, seed: int = 0) -> Any:
-    """The diagnosis ``parity`` prints: import parity, and the verdicts of three engines on energies and mass properties.
+    """What ``parity`` prints: import parity, and the three engines' verdicts on energies and mass properties.
 
     Parameters
     ----------
