@@ -112,6 +112,44 @@ def test_non_symmetric_full_inertia_in_mjcf_is_named(tmp_path: Path) -> None:
     _one_line_naming(info.value, str(path), "arm")
 
 
+#: A geom MuJoCo refuses for its own value, and how the one-line error must name it: the body the user finds it in
+#: and the geom (by name, or by its place among the body's geoms: MuJoCo's message names an unnamed geom '').
+GEOM_REFUSALS = {
+    "unnamed-geom": (
+        '<mujoco><worldbody><body name="arm"><joint name="hinge" type="hinge"/>'
+        '<geom type="sphere" size="0.1" mass="-1"/></body></worldbody></mujoco>',
+        "body 'arm', geom #1 (unnamed, line 1)",
+    ),
+    "named-geom": (
+        '<mujoco><worldbody><body name="arm"><joint name="hinge" type="hinge"/>'
+        '<geom name="rod" type="sphere" size="0.1" mass="-1"/></body></worldbody></mujoco>',
+        "body 'arm', geom 'rod' (line 1)",
+    ),
+    "second-geom-of-a-later-body": (
+        '<mujoco><worldbody><geom type="plane" size="1 1 1"/>\n'
+        '<body name="upper"><joint type="hinge"/><geom type="sphere" size="0.1"/>\n'
+        '<body name="fore"><joint type="hinge"/><geom type="sphere" size="0.1"/>\n'
+        '<geom type="box" size="0.1 0.1 0.1" density="-5"/></body></body></worldbody></mujoco>',
+        "body 'fore', geom #2 (unnamed, line 4)",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", list(GEOM_REFUSALS))
+def test_a_geom_mujoco_refuses_is_named_by_its_body_and_place(tmp_path: Path, case: str) -> None:
+    """MuJoCo's reason whole, and the element the user can find: never ``body ''`` (the geom's empty name)."""
+    content, element = GEOM_REFUSALS[case]
+    path = tmp_path / "geom.xml"
+    path.write_text(content)
+    for repair in (False, True):  # no body repair changes a geom's own mass: the same refusal
+        with pytest.raises(ValueError) as info:
+            load_model(path, repair_inertia=repair)
+        text = _one_line_naming(info.value, str(path), element, "mass, inertia or density are negative in geom")
+        assert "body ''" not in text and "--repair-inertia" not in text
+    proc = _cli("parity", str(path))
+    assert proc.returncode == 1 and proc.stderr.count("\n") == 1 and element in proc.stderr
+
+
 @pytest.mark.parametrize(
     ("content", "needles"),
     [

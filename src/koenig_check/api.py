@@ -103,7 +103,7 @@ def compare_model(
 
     options = load_options_from(load_options, load_kwargs)
     loaded = load_model(model, options)
-    source = pipeline.ModelSource(str(model), options)
+    source = pipeline.WorkerModel(str(model), options)
     for name in policy.asked_for(options.engines):  # named engines run on every pose, when they can
         loaded.attach(name)
     if pose_file is not None:

@@ -1,12 +1,22 @@
-"""``koenig-check parity``: import parity only, with the diagnosis's root causes and three-engine verdicts."""
+"""``koenig-check parity``: import parity only, with the diagnosis's root causes and three-engine verdicts.
+
+With three engines, the verdicts compare the engines' energies on seeded random states (``--poses``, ``--seed``:
+the first states of the sequence ``compare`` draws with the same options, so both commands reach the same
+verdict on the same file and engines) as well as each segment's mass, COM and inertia at ``qpos0``: a joint
+anchor, an axis or an armature only the motion shows is not missed.
+"""
 
 from __future__ import annotations
 
 import argparse
 import sys
+from typing import Any
 
-from koenig_check.cli.parsing import add_command, check_models, load_options_of, tolerance
+from koenig_check.cli.parsing import add_command, check_models, load_options_of, positive, tolerance, usage_error
 from koenig_check.engines.load_options import add_load_arguments
+
+#: Random states on which a third engine's energies are compared by default (``compare``'s default poses).
+VERDICT_POSES = 20
 
 
 def add(sub: argparse._SubParsersAction) -> None:
@@ -32,12 +42,43 @@ def add(sub: argparse._SubParsersAction) -> None:
         help=f"relative tolerance of the import parity (lengths by the model's size, inertias by the largest "
         f"principal moment; default {PARITY_RTOL:g}): e.g. 1e-6 for a twin written at 6 digits",
     )
+    p.add_argument(
+        "--poses",
+        type=positive,
+        default=VERDICT_POSES,
+        help=f"random states on which the engines' energies are compared for the three-engine verdicts "
+        f"(default {VERDICT_POSES}, the first states `compare` draws with the same --seed)",
+    )
+    p.add_argument("--seed", type=int, default=0, help="seed of those states (default 0)")
     add_load_arguments(p)
     p.set_defaults(func=_cmd_parity)
 
 
-def _cmd_parity(args: argparse.Namespace) -> int:
+def parity_diagnosis(model: Any, rtol: float, poses: int = VERDICT_POSES, seed: int = 0) -> Any:
+    """What ``parity`` prints: import parity, and the three engines' verdicts on energies and mass properties.
+
+    Parameters
+    ----------
+    model : koenig_check.engines.LoadedModel
+        The engines the user named attached already.
+    rtol : float
+    poses : int
+        Seeded random states (:func:`koenig_check.engines.sampling.random_states`) on which the engines' rigid-body
+        and armature energies are compared, as ``compare`` compares them on its first poses.
+    seed : int
+
+    Returns
+    -------
+    koenig_check.diagnosis.diagnose.Diagnosis
+    """
     from koenig_check.diagnosis.diagnose import diagnose
+    from koenig_check.engines.sampling import random_states
+
+    qpos, qvel = random_states(model.mujoco.model, poses, seed)
+    return diagnose(model, rtol=rtol, qpos=qpos, qvel=qvel)
+
+
+def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.diagnosis.policy import asked_for
     from koenig_check.diagnosis.reason import ROUNDING_LEVEL, lead_line, short_reason
     from koenig_check.engines import load_model
@@ -45,12 +86,14 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.report.parity_table import format_parity
     from koenig_check.run.labels import unique_labels
 
+    if args.seed < 0:
+        usage_error(args, f"--seed must be >= 0, got {args.seed}")
     options = load_options_of(args)
     check_models(args, [args.model, *([options.pinocchio_model] if options.pinocchio_model else [])])
     model = load_model(args.model, options)
     for name in asked_for(options.engines):
         model.attach(name)
-    diagnosis = diagnose(model, rtol=args.rtol)
+    diagnosis = parity_diagnosis(model, args.rtol, args.poses, args.seed)
     report = diagnosis.parity
     assert report is not None
     from koenig_check.engines.registry import label as engine_label

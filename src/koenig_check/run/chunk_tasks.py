@@ -1,8 +1,9 @@
 """A model's poses cut into chunk tasks, each naming everything its chunk needs (so that it runs anywhere).
 
-A :class:`ChunkTask` holds the model source and its load options, the formulas, the record mode, the tolerance
-and the pose range (seeded random poses ``start`` to ``stop``, or the poses themselves); :func:`plan` cuts a
-model's poses into such tasks, :func:`probe_normals` fixes once what every chunk must share.
+A :class:`ChunkTask` holds the model a worker loads (:class:`WorkerModel`: the file or name and its load
+options), the formulas, the record mode, the tolerance and the pose range (seeded random poses ``start`` to
+``stop``, or the poses themselves); :func:`plan` cuts a model's poses into such tasks, :func:`probe_normals`
+fixes once what every chunk must share.
 """
 
 from __future__ import annotations
@@ -38,8 +39,11 @@ def chunk_size(n_segments: int) -> int:
 
 
 @dataclass(frozen=True)
-class ModelSource:
-    """A model file or name and how it is loaded (hashable: a process loads each source once).
+class WorkerModel:
+    """How a worker process gets the model of its chunks: the model file or name, and how it is loaded.
+
+    Hashable: a process loads each once (:func:`koenig_check.run.pipeline.loaded`).  Not where a model file comes
+    from: that is :class:`koenig_check.sources.catalogue.ModelSource`.
 
     Attributes
     ----------
@@ -49,6 +53,11 @@ class ModelSource:
 
     model: str
     options: LoadOptions = field(default_factory=LoadOptions)
+
+
+#: The former name of :class:`WorkerModel` (until it was renamed: "model source" means where a file comes from,
+#: :class:`koenig_check.sources.catalogue.ModelSource`), kept importable.
+ModelSource = WorkerModel
 
 
 @dataclass(frozen=True)
@@ -67,7 +76,7 @@ class ChunkTask:
 
     Attributes
     ----------
-    source : ModelSource
+    source : WorkerModel
     label : str
         Model label written in the records.
     formulas : tuple of str
@@ -83,7 +92,7 @@ class ChunkTask:
         The engines run on every pose (MuJoCo, Pinocchio, and Drake when asked for).
     """
 
-    source: ModelSource
+    source: WorkerModel
     label: str
     formulas: tuple[str, ...]
     records: str
@@ -127,7 +136,7 @@ def probe_normals(pair: Any, poses: PoseSet | None, random: RandomRange | None) 
 
 
 def plan(
-    source: ModelSource,
+    source: WorkerModel,
     label: str,
     formulas: Iterable[str],
     records: str,
@@ -143,7 +152,7 @@ def plan(
 
     Parameters
     ----------
-    source : ModelSource
+    source : WorkerModel
     label : str
     formulas : iterable of str
     records : {"segments", "totals", "none"}

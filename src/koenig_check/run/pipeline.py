@@ -27,6 +27,7 @@ from koenig_check.run.chunk_tasks import (
     ChunkTask,
     ModelSource,
     RandomRange,
+    WorkerModel,
     chunk_poses_of,
     chunk_size,
     plan,
@@ -46,6 +47,7 @@ __all__ = [
     "ChunkTask",
     "ModelSource",
     "RandomRange",
+    "WorkerModel",
     "chunk_poses_of",
     "chunk_size",
     "forget",
@@ -59,15 +61,15 @@ __all__ = [
 ]
 
 
-_MODELS: dict[ModelSource, Any] = {}
+_MODELS: dict[WorkerModel, Any] = {}
 
 
-def remember(source: ModelSource, model: Any) -> None:
+def remember(source: WorkerModel, model: Any) -> None:
     """Let this process's chunks reuse a model already loaded (with the optional engines attached to it).
 
     Parameters
     ----------
-    source : ModelSource
+    source : WorkerModel
     model : koenig_check.engines.LoadedModel
     """
     _MODELS.clear()  # one model at a time: memory stays bounded over many models
@@ -79,12 +81,12 @@ def forget() -> None:
     _MODELS.clear()
 
 
-def loaded(source: ModelSource) -> Any:
+def loaded(source: WorkerModel) -> Any:
     """The model of a source, loaded once per process (its optional engines are attached on first use).
 
     Parameters
     ----------
-    source : ModelSource
+    source : WorkerModel
 
     Returns
     -------
@@ -198,7 +200,7 @@ def _pool(jobs: int) -> Executor:
 
 def run_model(
     pair: Any,
-    source: ModelSource,
+    source: WorkerModel,
     label: str,
     formulas: Iterable[str] | None = None,
     *,
@@ -220,7 +222,7 @@ def run_model(
     pair : koenig_check.engines.LoadedModel
         The model, loaded here, with the engines to run on every pose (chunks run here reuse it; other
         processes load ``source`` and attach the same engines).
-    source : ModelSource
+    source : WorkerModel
     label : str
     formulas : iterable of str, optional
         Default: all (path-dependent ones only on a path).

@@ -151,7 +151,9 @@ class EngineAgreement:
     """Engine-versus-engine and engine-versus-exact agreement of one model.
 
     ``reason`` says in full why they do not agree (with the cause's values); ``gap`` says it in a few words, for
-    the one-line reason (:func:`koenig_check.diagnosis.reason.short_reason`).
+    the one-line reason (:func:`koenig_check.diagnosis.reason.short_reason`).  ``reason`` is built from
+    ``symptoms`` (each way the engines differ, one sentence each) and ``cause`` (the known cause, or empty):
+    read those, never ``reason`` cut apart.
     """
 
     model: str
@@ -162,6 +164,8 @@ class EngineAgreement:
     agrees: bool
     reason: str
     gap: str = ""
+    symptoms: tuple[str, ...] = ()
+    cause: str = ""
 
 
 def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> EngineAgreement:
@@ -198,8 +202,6 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
             reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
     gap = _gap(p, rtol) if reasons else ""
     cause = disagreement_cause(comparison.findings) if reasons else ""
-    if cause:
-        reasons.append(f"cause: {cause}")
     return EngineAgreement(
         comparison.model,
         float(p.rigid.value),
@@ -207,8 +209,10 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
         dict(p.self_rel),
         p.rigid.where,
         not reasons,
-        "; ".join(reasons),
+        "; ".join(reasons + ([f"cause: {cause}"] if cause else [])),
         gap,
+        tuple(reasons),
+        cause,
     )
 
 

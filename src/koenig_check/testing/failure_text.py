@@ -35,7 +35,7 @@ def verdict_lines(check: CrossCheck) -> list[str]:
         lines += [f"  root cause: {cause}" for cause in cause_lines(comparison.findings)]  # one a line
         lines += [f"  three engines: {f.message()}" for f in verdicts]
         if not parity.agrees:
-            lines.append(f"  engines: {parity.reason.split('; cause: ')[0]}")
+            lines.append(f"  engines: {'; '.join(parity.symptoms)}")  # the cause is the root-cause line above
         lines += [f"  {f.message()}" for f in unmade]
     return [part for line in lines for part in fold(line, FAILURE_WIDTH)]
 

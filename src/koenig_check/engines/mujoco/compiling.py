@@ -24,6 +24,8 @@ from koenig_check.segments import check_physical_inertia, principal_moments
 from koenig_check.sources.catalogue import ModelSource
 
 _ELEMENT = re.compile(r"Element name '([^']*)'")
+#: MuJoCo's element line: its name, its index among the elements of its type, the line of the file.
+_ELEMENT_AT = re.compile(r"Element name '([^']*)', id (\d+)(?:, line (\d+))?")
 #: Compilations tried per body under repair (the balance margin grows tenfold each time).
 MAX_REPAIR_TRIES = 3
 #: What a refusal says would load the file.
@@ -141,6 +143,45 @@ def _refusal(message: str) -> str:
     return message.split("; Element name")[0].removeprefix("error ").strip()
 
 
+def refused_geom(spec: mujoco.MjSpec, exc: BaseException, what: str = "body") -> str | None:
+    """The geom a MuJoCo refusal is about, as the user finds it in the file; ``None`` when it is about no geom.
+
+    MuJoCo names the element by its name and its index among all geoms (``"... in geom; Element name '', id 3,
+    line 12"``): an unnamed geom's name is empty, so its body and place among the body's geoms name it.
+
+    Parameters
+    ----------
+    spec : mujoco.MjSpec
+        The spec MuJoCo compiled (its geoms in MuJoCo's order).
+    exc : BaseException
+        What MuJoCo raised.
+    what : str
+        ``"body"`` (MJCF) or ``"link"`` (URDF).
+
+    Returns
+    -------
+    str or None
+        ``"body 'arm', geom #2 (unnamed, line 12)"`` or ``"body 'arm', geom 'rod' (line 12)"``.
+    """
+    text = str(exc)
+    head = text.split("Element name")[0].strip()
+    match = _ELEMENT_AT.search(text)
+    if not head.endswith(" in geom") or match is None:
+        return None
+    name, index, line = match.group(1), int(match.group(2)), match.group(3)
+    geoms = list(spec.geoms)
+    geom = geoms[index] if index < len(geoms) and geoms[index].name == name else None
+    if geom is None and name:
+        geom = next((g for g in geoms if g.name == name), None)
+    if geom is None:
+        return None
+    body = geom.parent
+    place = next(k for k, g in enumerate(body.geoms, start=1) if g == geom)
+    notes = ([] if name else ["unnamed"]) + ([f"line {line}"] if line else [])
+    label = (f"geom {name!r}" if name else f"geom #{place}") + (f" ({', '.join(notes)})" if notes else "")
+    return f"{what} {body.name!r}, {label}"
+
+
 def compile_spec(
     spec: mujoco.MjSpec,
     source: ModelSource,
@@ -204,6 +245,9 @@ def compile_spec(
                 files.append(mesh.file)
                 losers += drop_mesh(spec, mesh)
                 continue
+            geom = refused_geom(spec, exc, what)
+            if geom is not None:  # a geom's own value (a negative mass or density): no body repair changes it
+                raise ModelLoadError(f"{source.path}: {geom}: MuJoCo rejects it ({_refusal(message)})") from exc
             if "inertia" in message or "mass" in message:
                 body = spec.body(element) if element else None
                 if repair and body is not None and tries.get(element, 0) < MAX_REPAIR_TRIES:
