@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
-from koenig_check.engines.errors import ModelLoadError
+from koenig_check.exceptions import ModelLoadError
 from koenig_check.modelfile.validate import ModelFileError, preflight
 from koenig_check.sources.uris import resolve_uri
 

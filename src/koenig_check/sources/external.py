@@ -122,7 +122,7 @@ def resolve_external(model: Any, xacro_args: Sequence[tuple[str, str]] = ()) -> 
     ------
     koenig_check.sources.errors.ModelSourceError
         A missing extra, an unknown name (with the closest ones), a download or clone that cannot happen.
-    koenig_check.engines.errors.ModelLoadError
+    koenig_check.exceptions.ModelLoadError
         A xacro file that is missing or does not expand.
     """
     kind = kind_of(model)
