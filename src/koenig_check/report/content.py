@@ -143,6 +143,7 @@ def model_findings(
     ModelFindings
     """
     from koenig_check.diagnosis.reason import lead_line
+    from koenig_check.engines.registry import label as engine_label
 
     if parity is None:
         engines = "no engine comparison"
@@ -166,13 +167,14 @@ def model_findings(
         if all(s.agrees for s in rows):
             exact.append(formula)
             continue
+        # One engine's numbers throughout (the one with the largest error, as in the table beside this line):
+        # shares of different engines do not add up to the poses of either.
         worst = max(rows, key=lambda s: s.max_rel_error)
-        over = max(s.over_fraction for s in rows)
-        under = max(s.under_fraction for s in rows)
+        over, under = worst.over_fraction, worst.under_fraction
         sign = "always over" if under == 0 else "always under" if over == 0 else "both signs"
         inexact.append(
             f"{formula}: up to {_size(worst.max_rel_error)} (median {_size(worst.median_rel_error)}), {sign}: "
-            f"over on {over:.0%} of poses, under on {under:.0%}"
+            f"over on {over:.0%} of poses, under on {under:.0%} ({engine_label(worst.source)})"
         )
     refused = sorted({r["formula"] for r in comp.refusals})
     return ModelFindings(comp.model, describe_poses(comp), engines, exact, inexact, refused)
