@@ -11,7 +11,6 @@ import pytest
 import koenig_check
 import koenig_check.run.records
 from koenig_check.cli import main
-
 from koenig_check.report.content import model_table
 from koenig_check.run.summaries import FormulaSummary
 
