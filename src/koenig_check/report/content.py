@@ -6,7 +6,7 @@ the same content from these functions.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from koenig_check.formulas import FORMULAS
@@ -59,8 +59,8 @@ COLUMNS = {
     "over / under": "share of poses where the formula over- / under-estimates the engine's energy by more than "
     "the tolerance (the sign of the error)",
     "worst pose": "the pose label of the largest error of the total",
-    "worst segment": "the segment (named by the joint that moves it) with the largest per-segment error, and the "
-    "pose where it occurs",
+    "worst segment": "the segment (the link or body as the file names it, and the joint that moves it) with the "
+    "largest per-segment error, and the pose where it occurs",
 }
 
 
@@ -202,7 +202,9 @@ class TableRow:
     worst_segment: str
 
 
-def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> list[TableRow]:
+def model_table(
+    summaries: Sequence[FormulaSummary], engines: Sequence[str], segment_labels: Mapping[str, str] | None = None
+) -> list[TableRow]:
     """The rows of one model's table (see :data:`COLUMNS`).
 
     Parameters
@@ -210,6 +212,8 @@ def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> 
     summaries : sequence of FormulaSummary
         This model's summaries.
     engines : sequence of str
+    segment_labels : mapping of str to str, optional
+        Each segment (keyed by its joint) as the user wrote it (:attr:`ModelComparison.segment_labels`).
 
     Returns
     -------
@@ -221,7 +225,7 @@ def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> 
         worst = max(group, key=lambda s: s.max_rel_error)
         verdict = "exact" if all(s.agrees for s in group) else "differs"
         maxima = " / ".join(fmt(by_engine[e].max_rel_error, ".2e") if e in by_engine else "—" for e in engines)
-        segment = "" if verdict == "exact" else (worst.worst_segment or "").replace(" @ ", " at ")
+        segment = "" if verdict == "exact" else _segment_at(worst.worst_segment or "", segment_labels or {})
         rows.append(
             TableRow(
                 formula,
@@ -235,6 +239,13 @@ def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> 
             )
         )
     return rows
+
+
+def _segment_at(where: str, labels: Mapping[str, str]) -> str:
+    """``"joint @ pose"`` as ``"link L (joint J) at pose"``: the segment as the user wrote it."""
+    segment, _, pose = where.partition(" @ ")
+    name = labels.get(segment, segment).removeprefix("segment ")
+    return f"{name} at {pose}" if pose else name
 
 
 def refusal_lines(comp: ModelComparison) -> list[str]:
