@@ -87,7 +87,10 @@ def test_every_command_names_the_option_on_a_written_twin(
         argv += {"compare": ["--quiet"], "dynamics": ["--poses", "3", "--formulas", "exact"]}.get(command, [])
     assert main(argv) == 1
     out, err = capsys.readouterr()
-    assert "6 significant digits" in out + err and "--rtol 1e-05 accepts it" in out + err
+    verdict = out[out.index("\nverdict: ") :].split("\n\n")[0] if command == "parity" else ""
+    # where each command says it: its stderr line; parity also on its verdict line; export in its list
+    for text in {"compare": [err], "parity": [verdict, err], "dynamics": [err], "export": [out]}[command]:
+        assert "6 significant digits" in text and "--rtol 1e-05 accepts it" in text, text
     assert all(len(line) <= 200 for line in (out + err).splitlines())
     if command == "dynamics":
         assert "exact disagrees" not in err  # it is the engines that differ, not exact
