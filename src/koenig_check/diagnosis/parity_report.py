@@ -209,8 +209,10 @@ class ParityReport:
         if any(c.affects_energy for c in self.causes):
             return float("inf")
         sizes = [self.mass_matrix_max_rel]
-        for item in [*self.differing_segments, *self.differing_dofs]:
+        for item in self.differing_segments:
             sizes += [item.relative.get(c, float("inf")) for c in item.causes]
+        for dof in self.differing_dofs:
+            sizes += [dof.relative.get(c, float("inf")) for c in dof.causes]
         return max(sizes)
 
     def causes_for(self, segment: str, above: float = 0.0) -> tuple[str, ...]:
