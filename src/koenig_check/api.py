@@ -147,6 +147,7 @@ def compare_model(
     sample = _verdict_sample(loaded, pose_set, random)
     diagnosis = diagnose(loaded, disagree=disagree, qpos=sample.qpos, qvel=sample.qvel, rtol=rtol)
     comp.findings = diagnosis.findings
+    comp.segment_labels = diagnosis.parity.segment_labels if diagnosis.parity is not None else {}
     comp.notes = (
         [f"three engines: {f.message()}" for f in diagnosis.verdicts]
         + [f.message() for f in diagnosis.optional_findings]

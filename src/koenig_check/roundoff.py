@@ -44,3 +44,25 @@ def fmt(value: float, spec: str = ".2e", threshold: float = ROUNDOFF) -> str:
         return str(value)
     value = shown(value, threshold)
     return "0" if value == 0 else format(value, spec)
+
+
+def distinct(a: float, b: float, least: int = 6) -> tuple[str, str]:
+    """Two values with the fewest significant digits (at least ``least``) that show them different.
+
+    Values that differ look different (``0.21942`` and ``0.219420244``, not ``0.21942`` twice); equal values
+    are printed with ``least`` digits.
+
+    Parameters
+    ----------
+    a, b : float
+    least : int
+
+    Returns
+    -------
+    (str, str)
+    """
+    for digits in range(least, 18):
+        x, y = f"{a:.{digits}g}", f"{b:.{digits}g}"
+        if x != y or a == b:
+            break
+    return x, y

@@ -2,8 +2,15 @@
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
+
+import numpy as np
 import pytest
 
+import koenig_check
+import koenig_check.run.records
+from koenig_check.cli import main
 from koenig_check.report.content import model_table
 from koenig_check.run.summaries import FormulaSummary
 
@@ -68,7 +75,44 @@ def test_a_models_findings_give_the_worst_engines_error_and_median(order: tuple[
         "mujoco": _summary("mujoco", 3e-4, 1e-4, 0.2, "random-1", False),
         "pinocchio": _summary("pinocchio", 7e-2, 5e-3, 0.6, "random-7", False),
     }
-    found = model_findings(check.comparisons[0], [given[e] for e in order], check.parities[0], check.rtol)
+    found = model_findings(check.comparisons[0], [given[e] for e in order], check.parities[0], 1e-9)
     assert found.exact == []
     (line,) = found.inexact
     assert line.startswith("koenig_world: up to 7 % (median 0.5 %), always over: over on 60% of poses")
+
+
+DM_CONTROL = Path(__import__("dm_control").__file__).parent
+
+
+def _shares_from_records(records: koenig_check.run.records.RecordTable, formula: str, engine: str, rtol: float):
+    """Over / under shares of one engine's states against its own energy, from the records read back."""
+    rows = records.where(records.mask(formula=formula, source=engine, reference=engine, scope="total"))
+    signed, ref = np.asarray(rows["signed_error"]), np.asarray(rows["reference_value"])
+    return float(np.mean(signed > rtol * ref)), float(np.mean(signed < -rtol * ref)), float(np.max(rows["rel_error"]))
+
+
+def test_a_models_findings_give_one_engines_shares_as_its_table_does(tmp_path: Path) -> None:
+    """dm_control's jaco_arm.xml: the engines' shares of over / under differ (their files disagree); the line of
+    summary.md and of report.html gives the shares of the engine with the largest error, the same as the table
+    beside it, read back from the records (not MuJoCo's over share with Pinocchio's under share: 105 %)."""
+    model = DM_CONTROL / "third_party" / "kinova" / "jaco_arm.xml"
+    formulas = ["exact", "koenig_world", "alyushin_paper:rotvec"]
+    assert main(["compare", str(model), "--poses", "20", "--formulas", *formulas, "--out", str(tmp_path)]) == 1
+    records = koenig_check.read_records(tmp_path / "records.parquet")
+    summary = (tmp_path / "summary.md").read_text(encoding="utf-8")
+    page = (tmp_path / "report.html").read_text(encoding="utf-8")
+    mixed = 0
+    for formula in ("koenig_world", "alyushin_paper:rotvec"):
+        shares = {e: _shares_from_records(records, formula, e, 1e-9) for e in ("mujoco", "pinocchio")}
+        worst = max(shares, key=lambda e: shares[e][2])
+        over, under, _ = shares[worst]
+        other = shares["pinocchio" if worst == "mujoco" else "mujoco"]
+        mixed += max(over, other[0]) != over or max(under, other[1]) != under  # a max over engines would mix
+        line = next(x for x in summary.splitlines() if f"`{formula}` up to" in x)
+        shown = [int(x) / 100 for x in re.findall(r"(\d+)% ", line + " ")[:2]]
+        assert shown == pytest.approx([over, under], abs=0.005), line
+        assert sum(shown) <= 1.0
+        row = next(x for x in summary.splitlines() if x.startswith(f"| `{formula}`"))
+        assert f"| {over:.0%} / {under:.0%} |" in row  # the table: the same engine
+        assert f"over on {over:.0%} of poses, under on {under:.0%}" in page
+    assert mixed  # the case the fix is for: on at least one formula the engines' shares differ

@@ -36,8 +36,8 @@ def add(sub: argparse._SubParsersAction) -> None:
         type=tolerance,
         default=None,
         help="tolerance of the engines' readings of the model against each other (engine against engine, a "
-        "route on one engine against the other), when larger than --m-rtol/--q-rtol: e.g. 1e-6 for a twin "
-        "written at 6 digits (default: --m-rtol/--q-rtol)",
+        "route on one engine against the other), when larger than --m-rtol/--q-rtol: 1e-5 for a twin "
+        "written at 6 significant digits, rounded by up to 5e-6 per number (default: --m-rtol/--q-rtol)",
     )
     p.set_defaults(func=_cmd_dynamics)
 
@@ -71,7 +71,7 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         print("\n" + file_listing(args.out, written))
     if result.ok:
         return 0
-    line = as_given(f"koenig-check: exact disagrees with an engine: {result.reason()}", [args.model])
+    line = as_given(f"koenig-check: {result.reason()}", [args.model])  # the reason says which check failed
     if len(line) > LINE_LIMIT:  # one line: the file by its name, the details in the table above
         line = cut(as_given(line, [args.model], short=True), LINE_LIMIT)
     print(line, file=sys.stderr)

@@ -40,7 +40,8 @@ def add(sub: argparse._SubParsersAction) -> None:
         type=tolerance,
         default=PARITY_RTOL,
         help=f"relative tolerance of the import parity (lengths by the model's size, inertias by the largest "
-        f"principal moment; default {PARITY_RTOL:g}): e.g. 1e-6 for a twin written at 6 digits",
+        f"principal moment; default {PARITY_RTOL:g}): 1e-5 for a twin written at 6 significant digits, "
+        "rounded by up to 5e-6 per number",
     )
     p.add_argument(
         "--poses",
@@ -80,7 +81,7 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = VERDICT_POSES, seed: 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.diagnosis.policy import asked_for
-    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, lead_line, short_reason
+    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, lead_line, rounding_hint, short_reason
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
     from koenig_check.report.parity_table import format_parity
@@ -124,7 +125,8 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         return 0
     label = unique_labels([args.model], options.floating, options.xacro_args)[0]
     line = short_reason(label, diagnosis.findings)  # one sentence: the details are in the table above
-    if line == f"{label}: ":  # every difference at the level of a written file's rounding
-        line += f"import differences, each at most {ROUNDING_LEVEL:g} relative: a written file's rounding"
+    if line == f"{label}: ":  # every difference at the level of a written file's rounding: the option that accepts it
+        hint = rounding_hint(report.largest_relative(), args.rtol)
+        line += hint or f"import differences, each at most {ROUNDING_LEVEL:g} relative: a written file's rounding"
     print(f"koenig-check: {line}", file=sys.stderr)
     return 1

@@ -194,6 +194,27 @@ class ParityReport:
                 out |= _EXPLAINS.get(c.kind, _ALL_SYMPTOMS)
         return out
 
+    def largest_relative(self) -> float:
+        """The largest relative difference of any differing quantity (segments, dofs), or inf when one has none.
+
+        A difference without a measured size (a segment one engine lacks, a root cause) counts as infinite: only
+        differences all of a known small size can be a written file's rounding.
+
+        Returns
+        -------
+        float
+        """
+        if self.only_in_mujoco or self.only_in_pinocchio or self.massless_in_mujoco or self.massless_in_pinocchio:
+            return float("inf")
+        if any(c.affects_energy for c in self.causes):
+            return float("inf")
+        sizes = [self.mass_matrix_max_rel]
+        for item in self.differing_segments:
+            sizes += [item.relative.get(c, float("inf")) for c in item.causes]
+        for dof in self.differing_dofs:
+            sizes += [dof.relative.get(c, float("inf")) for c in dof.causes]
+        return max(sizes)
+
     def causes_for(self, segment: str, above: float = 0.0) -> tuple[str, ...]:
         """The causes found for one segment (empty when it matches).
 
@@ -285,7 +306,8 @@ class ParityReport:
                 name = item.name if isinstance(item, SegmentParity) else item.joint
                 rest = [c for c in item.causes if c not in self.explained(name)]
                 if rest:
-                    parts.append(f"{label} {name}: {', '.join(rest)}")
+                    shown = self.label(name) if isinstance(item, SegmentParity) else f"{label} {name}"
+                    parts.append(f"{shown}: {', '.join(rest)}")
         for label, names in (
             ("segments only in MuJoCo", self.only_in_mujoco),
             ("segments only in Pinocchio", self.only_in_pinocchio),

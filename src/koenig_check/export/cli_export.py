@@ -89,12 +89,14 @@ def _usage(args: argparse.Namespace) -> str:
     return ""
 
 
-def print_proof(proof: Proof) -> None:
+def print_proof(proof: Proof, shown: Callable[[str], str] = str) -> None:
     """Print the proof: per engine, the skipped engines, and the verdict last.
 
     Parameters
     ----------
     proof : Proof
+    shown : callable, optional
+        How a line names the files (default: as it is; the command line: as the user gave them).
     """
     for e in proof.engines:
         if e.compared:
@@ -105,9 +107,9 @@ def print_proof(proof: Proof) -> None:
     from koenig_check.report.line_width import fold_text
 
     for line in proof.skipped():
-        print(fold_text(f"  not compared: {line}"))
+        print(fold_text(shown(f"  not compared: {line}")))
     for line in proof.notes():
-        print(fold_text(f"  note: {line}"))
+        print(fold_text(shown(f"  note: {line}")))
     if proof.equivalent:
         print(proof.summary())
         return
@@ -192,7 +194,9 @@ def run_export(
         original, export = args.check_only
         proof = prove(original, export, options, poses=args.poses, seed=args.seed, rtol=args.rtol, engines=engines)
         print(fold_text(f"{export} against {original}:"))
-        print_proof(proof)
+        from koenig_check.sources.shown_paths import as_given
+
+        print_proof(proof, lambda text: as_given(text, [original, export]))  # the files as the user named them
         return 0 if proof.equivalent else 1
     try:
         result = export_model(

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from koenig_check.export.carried import NotCarried
+from koenig_check.roundoff import distinct
 
 
 @dataclass(frozen=True)
@@ -30,10 +31,10 @@ class EngineProof:
         Max over poses of ``max|τ_export - τ_original| / max|τ_original|``: the inverse dynamics with gravity and
         passive forces off and the armature's forces removed, at q̈ = q̇.
     own_reading : float
-        The largest relative difference (mass matrix, energy or inverse dynamics) between this engine's readings of the
-        export and of the original; NaN when it cannot load the original.  Large while ``mass_matrix``
-        is small: the engine reads the original differently from MuJoCo, and reads the export as MuJoCo
-        reads the original.
+        Max over poses of ``|T_engine - T_mujoco| / |T_mujoco|``, the rigid energies of this engine's and MuJoCo's
+        readings of the original (the measure ``koenig-check compare`` gives the engines' gap); NaN when it
+        cannot load the original.  Large while ``mass_matrix`` is small: the engine reads the original
+        differently from MuJoCo, and reads the export as MuJoCo reads the original.
     """
 
     engine: str
@@ -68,7 +69,7 @@ class SegmentDifference:
         Relative difference (mass: of the mass; COM: difference of distances over the model's extent;
         inertia: largest difference of the principal moments over the largest moment).
     original, export : float
-        The mass, the distance, or the largest principal moment, on each side.
+        The mass, the distance, or the principal moment that differs the most, on each side.
     """
 
     engine: str
@@ -86,9 +87,10 @@ class SegmentDifference:
         -------
         str
         """
+        original, export = distinct(self.original, self.export)  # digits enough to show the difference
         return (
             f"{self.engine}: link {self.link} (joint {self.segment}): {self.quantity} off by "
-            f"{self.relative:.3g} relative (original {self.original:.9g}, export {self.export:.9g})"
+            f"{self.relative:.3g} relative (original {original}, export {export})"
         )
 
 
@@ -159,6 +161,13 @@ class Proof:
                 )
         if not any(e.compared for e in self.engines):
             out.append("no engine loaded the export")
+        elif not self.problems:  # every difference at a written file's rounding: say so, and the option
+            from koenig_check.diagnosis.reason import rounding_hint
+
+            sizes = [max(e.mass_matrix, e.energy, e.inverse_dynamics) for e in self.engines if e.compared]
+            sizes += [s.relative for s in self.segments]
+            hint = rounding_hint(max(sizes), self.rtol, between="the original and the export")
+            out += [hint] if hint else []
         return out
 
     def notes(self) -> list[str]:
@@ -169,7 +178,8 @@ class Proof:
         list of str
         """
         return [
-            f"{e.engine} reads the original differently from MuJoCo (relative difference {e.own_reading:.2g}); "
+            f"{e.engine} reads the original differently from MuJoCo (rigid energies differ by up to "
+            f"{e.own_reading:.2g} relative to MuJoCo's over {e.poses} poses, as compare measures the gap); "
             "it reads the export as MuJoCo reads the original"
             for e in self.engines
             if e.compared and e.equivalent and e.own_reading > self.rtol

@@ -139,8 +139,12 @@ class DynamicsResult:
         float
         """
         tol = self.m_rtol if e.quantity == "M" else self.q_rtol
-        across = e.formula == ENGINE_PARITY or e.route.rpartition("@")[2] != e.engine
-        return max(tol, self.rtol) if across and self.rtol is not None else tol
+        return max(tol, self.rtol) if self._across(e) and self.rtol is not None else tol
+
+    @staticmethod
+    def _across(e: Discrepancy) -> bool:
+        """True where two engines' readings of the model meet: the engines, or a route against the other engine."""
+        return e.formula == ENGINE_PARITY or e.route.rpartition("@")[2] != e.engine
 
     def failures(self) -> list[Discrepancy]:
         """Comparisons of ``exact`` (every route) and of the engines with each other beyond tolerance."""
@@ -175,7 +179,14 @@ class DynamicsResult:
             return ""
         e = max(bad, key=lambda d: d.max_rel_error / self.tolerance(d))
         tol = self.tolerance(e)
-        who = "engines disagree" if e.formula == ENGINE_PARITY else f"exact by {e.route}"
+        if all(self._across(d) for d in bad):  # only where the engines' readings meet: a file's rounding?
+            from koenig_check.diagnosis.reason import rounding_hint
+
+            worst = max(bad, key=lambda d: d.max_rel_error)
+            hint = rounding_hint(worst.max_rel_error, max(self.tolerance(d) for d in bad))
+            if hint:
+                return f"{self.model}: {hint}"
+        who = "engines disagree" if e.formula == ENGINE_PARITY else f"exact disagrees with an engine by {e.route}"
         return (
             f"{self.model}: {who}: {e.quantity} of {e.route} against {e.engine} off by {e.max_rel_error:.3g} "
             f"relative (tolerance {tol:g}) at pose {e.max_pose}, worst entry {self.entry_name(e)} "
@@ -307,7 +318,8 @@ def dynamics(
     rtol : float, optional
         How closely the two engines' readings of the model must agree: the tolerance of the engines against
         each other and of a route on one engine's states against the other engine, when it is larger than
-        ``m_rtol`` / ``q_rtol`` (e.g. ``1e-6`` for a twin file written at 6 significant digits).  Default: no
+        ``m_rtol`` / ``q_rtol``: ``1e-5`` for a twin file written at 6 significant digits (each number rounded by up
+        to 5e-6 of itself; MuJoCo and Pinocchio then differ by about 1e-6, more than ``1e-6`` allows).  Default: no
         more than ``m_rtol`` / ``q_rtol``.
     load_options : LoadOptions, optional
         How the model is loaded; the load keywords below override its fields.

@@ -6,7 +6,7 @@ the same content from these functions.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from koenig_check.formulas import FORMULAS
@@ -59,8 +59,8 @@ COLUMNS = {
     "over / under": "share of poses where the formula over- / under-estimates the engine's energy by more than "
     "the tolerance (the sign of the error)",
     "worst pose": "the pose label of the largest error of the total",
-    "worst segment": "the segment (named by the joint that moves it) with the largest per-segment error, and the "
-    "pose where it occurs",
+    "worst segment": "the segment (the link or body as the file names it, and the joint that moves it) with the "
+    "largest per-segment error, and the pose where it occurs",
 }
 
 
@@ -143,6 +143,7 @@ def model_findings(
     ModelFindings
     """
     from koenig_check.diagnosis.reason import lead_line
+    from koenig_check.engines.registry import label as engine_label
 
     if parity is None:
         engines = "no engine comparison"
@@ -166,13 +167,14 @@ def model_findings(
         if all(s.agrees for s in rows):
             exact.append(formula)
             continue
+        # One engine's numbers throughout (the one with the largest error, as in the table beside this line):
+        # shares of different engines do not add up to the poses of either.
         worst = max(rows, key=lambda s: s.max_rel_error)
-        over = max(s.over_fraction for s in rows)
-        under = max(s.under_fraction for s in rows)
+        over, under = worst.over_fraction, worst.under_fraction
         sign = "always over" if under == 0 else "always under" if over == 0 else "both signs"
         inexact.append(
             f"{formula}: up to {_size(worst.max_rel_error)} (median {_size(worst.median_rel_error)}), {sign}: "
-            f"over on {over:.0%} of poses, under on {under:.0%}"
+            f"over on {over:.0%} of poses, under on {under:.0%} ({engine_label(worst.source)})"
         )
     refused = sorted({r["formula"] for r in comp.refusals})
     return ModelFindings(comp.model, describe_poses(comp), engines, exact, inexact, refused)
@@ -200,7 +202,9 @@ class TableRow:
     worst_segment: str
 
 
-def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> list[TableRow]:
+def model_table(
+    summaries: Sequence[FormulaSummary], engines: Sequence[str], segment_labels: Mapping[str, str] | None = None
+) -> list[TableRow]:
     """The rows of one model's table (see :data:`COLUMNS`).
 
     Parameters
@@ -208,6 +212,8 @@ def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> 
     summaries : sequence of FormulaSummary
         This model's summaries.
     engines : sequence of str
+    segment_labels : mapping of str to str, optional
+        Each segment (keyed by its joint) as the user wrote it (:attr:`ModelComparison.segment_labels`).
 
     Returns
     -------
@@ -219,7 +225,7 @@ def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> 
         worst = max(group, key=lambda s: s.max_rel_error)
         verdict = "exact" if all(s.agrees for s in group) else "differs"
         maxima = " / ".join(fmt(by_engine[e].max_rel_error, ".2e") if e in by_engine else "—" for e in engines)
-        segment = "" if verdict == "exact" else (worst.worst_segment or "").replace(" @ ", " at ")
+        segment = "" if verdict == "exact" else _segment_at(worst.worst_segment or "", segment_labels or {})
         rows.append(
             TableRow(
                 formula,
@@ -233,6 +239,13 @@ def model_table(summaries: Sequence[FormulaSummary], engines: Sequence[str]) -> 
             )
         )
     return rows
+
+
+def _segment_at(where: str, labels: Mapping[str, str]) -> str:
+    """``"joint @ pose"`` as ``"link L (joint J) at pose"``: the segment as the user wrote it."""
+    segment, _, pose = where.partition(" @ ")
+    name = labels.get(segment, segment).removeprefix("segment ")
+    return f"{name} at {pose}" if pose else name
 
 
 def refusal_lines(comp: ModelComparison) -> list[str]:

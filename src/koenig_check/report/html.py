@@ -94,7 +94,7 @@ def _table(comp: ModelComparison, summaries: Sequence[FormulaSummary]) -> str:
     engines = list(comp.engines)
     out = [f"<p>Max rel. error: {_e(', then '.join(engines))}.</p>", "<table>"]
     out.append("<thead><tr>" + "".join(f"<th>{_e(t)}</th>" for t in titles) + "</tr></thead><tbody>")
-    for row in model_table(summaries, engines):
+    for row in model_table(summaries, engines, comp.segment_labels):
         maxima = "<br>".join(map(_e, row.max_error.split(" / ")))
         out.append(
             f'<tr class="{row.verdict}"><td><code>{_breakable(row.formula)}</code><br>'

@@ -107,7 +107,7 @@ def summary_markdown(
         lines.append("")
         lines.append("| " + " | ".join(COLUMN_TITLES) + " |")
         lines.append("| " + " | ".join("---" for _ in COLUMN_TITLES) + " |")
-        for row in model_table(by_model.get(comp.model, []), engines):
+        for row in model_table(by_model.get(comp.model, []), engines, comp.segment_labels):
             lines.append(
                 f"| `{row.formula}` [{row.equations}] | {row.verdict} | {row.max_error} | {row.median} | "
                 f"{row.over_under} | {row.worst_pose} | {row.worst_segment or '—'} |"

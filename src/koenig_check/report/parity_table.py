@@ -22,7 +22,12 @@ def format_parity(report: ParityReport, model: str = "") -> str:
     -------
     str
     """
+    from koenig_check.diagnosis.reason import rounding_hint
+
     lines = [f"Import parity of {model or report.model} (relative tolerance {report.rtol:g})"]
+    # a segment as the user wrote it: its link or body, and the joint that moves it
+    names = {s.name: report.label(s.name).removeprefix("segment ") for s in report.segments}
+    width = min(max([28, *map(len, names.values())]), _NAME_WIDTH)
     if report.causes:
         lines.append("\nroot causes:")
         for c in report.causes:
@@ -34,7 +39,7 @@ def format_parity(report: ParityReport, model: str = "") -> str:
         f"(the whole model in Pinocchio: {report.model_mass:.9g} kg, static bodies included)",
         f"mass matrices differ by at most {report.mass_matrix_max_rel:.2e} relative",
         "",
-        f"{'segment':28s} {'mass MuJoCo':>13s} {'mass Pin.':>13s} {'|ΔCOM| m':>10s} {'|ΔI|_F':>10s} "
+        f"{'segment':{width}s} {'mass MuJoCo':>13s} {'mass Pin.':>13s} {'|ΔCOM| m':>10s} {'|ΔI|_F':>10s} "
         f"{'|Δanchor| m':>11s}  principal moments MuJoCo / Pinocchio   verdict",
     ]
     for s in report.segments:
@@ -43,9 +48,9 @@ def format_parity(report: ParityReport, model: str = "") -> str:
             + " / "
             + " ".join(f"{v:.4g}" for v in s.principal_moments[1])
         )
-        verdict = "same" if not s.causes else "DIFFERS: " + ", ".join(s.causes)
+        verdict = "same" if not s.causes else "DIFFERS: " + _sized(s.causes, s.relative)
         cells = (
-            f"{s.name[:28]:28s} {s.mass[0]:13.6g} {s.mass[1]:13.6g} {s.com_distance:10.2e} "
+            f"{names[s.name][:width]:{width}s} {s.mass[0]:13.6g} {s.mass[1]:13.6g} {s.com_distance:10.2e} "
             f"{s.inertia_frobenius:10.2e} {s.pole_distance:11.2e}  {pm:38s} "
         )
         lines += hanging(cells, verdict)
@@ -54,7 +59,7 @@ def format_parity(report: ParityReport, model: str = "") -> str:
         f"{'dof':24s} {'armature MuJoCo':>16s} {'armature Pin.':>14s} {'|ΔJacobian|':>12s}  verdict",
     ]
     for d in report.dofs:
-        verdict = "same" if not d.causes else "DIFFERS: " + ", ".join(d.causes)
+        verdict = "same" if not d.causes else "DIFFERS: " + _sized(d.causes, d.relative)
         cells = (
             f"{d.joint[:24]:24s} {shown(d.armature[0]):16.6g} {shown(d.armature[1]):14.6g} "
             f"{d.jacobian_difference:12.2e}  "
@@ -72,5 +77,16 @@ def format_parity(report: ParityReport, model: str = "") -> str:
     if report.findings:
         lines.append("\nfindings:")
         lines += [f"  - {f}" for f in report.findings]
-    lines.append("\nverdict: " + ("no import difference" if report.clean else report.headline(brief=True)))
+    hint = "" if report.clean else rounding_hint(report.largest_relative(), report.rtol)
+    verdict = "no import difference" if report.clean else hint or report.headline(brief=True)
+    lines.append(f"\nverdict: {verdict}")
     return fold_text("\n".join(lines))
+
+
+#: The widest segment column (a longer link and joint name is cut).
+_NAME_WIDTH = 48
+
+
+def _sized(causes: tuple[str, ...], relative: dict[str, float]) -> str:
+    """The differing quantities, each with its relative size: values equal to the printed digits still differ."""
+    return ", ".join(f"{c} ({relative[c]:.2g} relative)" if c in relative else c for c in causes)

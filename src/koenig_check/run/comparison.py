@@ -44,6 +44,9 @@ class ModelComparison:
     pose_kind : str
     engines : tuple of str
         The engines that produced states and energies.
+    segment_labels : dict of str to str
+        Each segment (keyed by the joint that moves it) as the user wrote it: ``"link forearm (joint elbow)"``
+        (empty when unknown: the report then names the joint).
     """
 
     model: str
@@ -57,6 +60,7 @@ class ModelComparison:
     n_poses: int = 0
     pose_kind: str = ""
     engines: tuple[str, ...] = ENGINES
+    segment_labels: dict[str, str] = field(default_factory=dict)
 
     def __repr__(self) -> str:
         return (

@@ -22,7 +22,7 @@ def verdict_lines(check: CrossCheck) -> list[str]:
     list of str
         Empty when :attr:`CrossCheck.ok`.
     """
-    from koenig_check.diagnosis.reason import cause_lines
+    from koenig_check.diagnosis.reason import cause_lines, rounding_hint
     from koenig_check.report.line_width import fold
 
     lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
@@ -36,6 +36,9 @@ def verdict_lines(check: CrossCheck) -> list[str]:
         lines += [f"  three engines: {f.message()}" for f in verdicts]
         if not parity.agrees:
             lines.append(f"  engines: {'; '.join(parity.symptoms)}")  # the cause is the root-cause line above
+            hint = rounding_hint(parity.rigid_max_rel, check.rtol)
+            if hint and parity.gap == hint:  # the gap alone, at a written file's rounding: the option for it
+                lines.append(f"  {hint}")
         lines += [f"  {f.message()}" for f in unmade]
     return [part for line in lines for part in fold(line, FAILURE_WIDTH)]
 
