@@ -1,4 +1,4 @@
-"""An optional engine (Drake) whose parser does not read what the model uses: it checks another robot, and casts no vote.
+"""An optional engine (Drake) whose parser does not read what the model uses: it checks another robot, no vote.
 
 When Drake's parser is known not to read a construct the model uses (it drops, ignores or replaces it), Drake
 was given another robot than the file's.  The rule, the same for every quantity and whatever the values say:
