@@ -115,7 +115,7 @@ def _dm_control(rel: str) -> str:
     return str(Path(dm_control.__file__).parent / rel)
 
 
-#: Real files: (command line, its exit status).  cartpole and bolt disagree (bolt's feet: Drake departs),
+#: Real files: (command line, its exit status).  cartpole and bolt disagree (bolt's feet: fusestatic),
 #: quadruped is refused by Pinocchio (height field), alex_psyonic_hands by MuJoCo (inertia), hopper,
 #: ball_in_cup and rodent (12 bodies) cannot be written as URDF (several joints in one body).
 REAL = {

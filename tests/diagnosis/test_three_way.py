@@ -175,30 +175,90 @@ def test_drake_reason_is_one_line_without_repeating_the_path() -> None:
 
 
 @needs_drake
-def test_all_three_differ_each_construct_named() -> None:
-    """A + B < C: MuJoCo repairs it (asked), Pinocchio keeps it, Drake's parser replaces it (its own warning)."""
+def test_an_inertia_drake_replaces_takes_drake_out_of_the_vote() -> None:
+    """A + B < C: MuJoCo repairs it (asked), Pinocchio keeps it, Drake's parser replaces it (its own warning).
+
+    Drake was given another link than the file's: it casts no vote (no "all three engines differ"); MuJoCo's
+    repair, the pair's cause, is the root cause, and Drake's replaced inertia stays a finding, with its values.
+    """
     check = koenig_check.compare(
         TIEBREAK / "unbalanced_inertia.urdf", n_poses=2, formulas=["exact"], repair_inertia=True
     )
-    verdict = {f.element: f for f in _verdicts(check)}["link arm (joint swing) principal moments"]
-    assert verdict.engine == "all"
-    assert (
-        verdict.summary == "all three engines differ; constructs: MuJoCo: link arm (repair); Drake: link arm (inertia)"
-    )
-    assert verdict.values["pinocchio"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)  # the file's moments
+    assert not _verdicts(check)  # Drake consulted (its finding below), and no vote
+    assert check.reason().startswith("unbalanced_inertia.urdf: root cause: link arm: mass and principal moments")
     replaced = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.INERTIA]
     assert [f.element for f in replaced] == ["link arm"] and replaced[0].segments == ("swing",)
     assert replaced[0].values["moments in the file"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)
+    assert replaced[0].values["moments in Drake"] != pytest.approx([0.1, 0.1, 0.25], rel=1e-3)
 
 
 @needs_drake
-def test_a_construct_both_other_engines_skip_is_named_not_blamed_on_mujoco() -> None:
-    """Pinocchio and Drake both skip the <frame>'s geom and agree: MuJoCo is the odd one out, but reads the file."""
-    check = koenig_check.compare(HERE / "models" / "causes" / "frame_geom.xml", n_poses=3, formulas=["exact"])
-    verdict = {f.element: f for f in _verdicts(check)}["rigid-body energy"]
-    assert verdict.engine == "mujoco"
-    assert "Pinocchio and Drake both skip frame #1 in body base: MuJoCo reads the file as written" in verdict.summary
-    assert "<frame> not read" in verdict.hint and not check.ok
+@pytest.mark.parametrize("engines", [None, ALL], ids=["consulted", "named"])
+def test_a_construct_both_other_engines_skip_is_named_not_blamed_on_mujoco(engines) -> None:
+    """Pinocchio and Drake both skip the <frame>'s geom and agree: MuJoCo reads the file as written.
+
+    Drake skips it through a known limit of its parser: its agreement with Pinocchio is no vote, so MuJoCo is not
+    said to depart; the <frame> Pinocchio does not read is the root cause, and named Drake could not check it.
+    """
+    from koenig_check.engines import load_model
+    from koenig_check.engines.sampling import random_states
+
+    path = HERE / "models" / "causes" / "frame_geom.xml"
+    model = load_model(path, engines=ALL)
+    model.attach("drake")
+    qpos, qvel = random_states(model.mujoco.model, 3, 0)
+    energy = {name: e.kinetic_energy(qpos, qvel).rigid for name, e in model.engines.items()}
+    assert energy["drake"] == pytest.approx(energy["pinocchio"], rel=1e-12)  # the premise: a 2-of-3 "majority"
+    assert energy["drake"] != pytest.approx(energy["mujoco"], rel=1e-3)
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=engines)
+    drake = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.IGNORED_CONSTRUCT]
+    assert drake and not _verdicts(check) and not check.ok  # Drake used (its finding), and no vote
+    reason = check.reason()
+    assert reason.startswith("frame_geom.xml: root cause: frame #1 in body base: <frame> not read by Pinocchio's")
+    assert "departs" not in reason and "engines differ" not in reason
+    unable = [f for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]
+    assert [f.summary for f in unable] == (
+        []
+        if engines is None
+        else ["Drake cannot check this model: its MJCF parser ignores <frame> (elements: frame #1 in body base)"]
+    )
+
+
+@needs_drake
+@pytest.mark.parametrize("path", [TIEBREAK / "settotalmass.xml", "dm:suite/cheetah.xml"], ids=str)
+def test_the_cause_list_blames_the_engine_the_verdict_names(path, capsys: pytest.CaptureFixture[str]) -> None:
+    """settotalmass: the pair's cause says "Pinocchio does not rescale"; with Drake, MuJoCo alone applies it.
+
+    Expected from each engine's own total mass: MuJoCo's is the file's settotalmass, Pinocchio's and Drake's are
+    equal to each other and not to it.  The parity's root causes name the engine the verdict names.
+    """
+    import numpy as np
+
+    from koenig_check.diagnosis.diagnose import diagnose
+    from koenig_check.engines import load_model
+
+    if str(path).startswith("dm:"):
+        dm_control = pytest.importorskip("dm_control")
+        path = Path(dm_control.__file__).parent / str(path)[3:]
+    from koenig_check.modelfile.validate import parse_xml
+
+    written = float(parse_xml(path).getroot().find("compiler").get("settotalmass"))
+    model = load_model(path, engines=ALL)
+    model.attach("drake")
+    q0, zero = np.asarray(model.mujoco.model.qpos0)[None], np.zeros((1, model.mujoco.nv))
+    mass = {n: float(np.sum(e.segment_states(q0, zero).mass)) for n, e in model.engines.items()}
+    assert mass["mujoco"] == pytest.approx(written, rel=1e-12)  # MuJoCo rescaled to the option's total
+    assert mass["drake"] == pytest.approx(mass["pinocchio"], rel=1e-12)
+    assert mass["pinocchio"] != pytest.approx(mass["mujoco"], rel=1e-3)
+    diagnosis = diagnose(model)
+    (verdict,) = [f for f in diagnosis.verdicts if " mass" in f.element]
+    (cause,) = [c for c in diagnosis.parity.causes if c.element == "compiler settotalmass"]
+    assert verdict.engine == cause.engine == "mujoco"
+    assert [f.engine for f in diagnosis.findings if f.element == "compiler settotalmass"] == ["mujoco"]
+    assert main(["parity", str(path)]) == 1
+    out, err = capsys.readouterr()
+    assert "changes the kinetic energy] mujoco: compiler settotalmass: " in out
+    assert err.startswith(f"koenig-check: {Path(path).name}: MuJoCo departs; root cause: compiler settotalmass")
 
 
 @needs_drake

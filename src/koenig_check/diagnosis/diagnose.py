@@ -8,13 +8,14 @@ which engine departs (:mod:`koenig_check.diagnosis.three_way`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from koenig_check.diagnosis import policy, three_way
-from koenig_check.diagnosis.engine_limits import limited_departures
+from koenig_check.diagnosis.engine_limits import limited_engines, unable_findings
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
 from koenig_check.diagnosis.root_frame import root_frame_offset
@@ -98,16 +99,43 @@ def diagnose(
             optional.append(why)
     optional = model.optional_findings + optional
     findings = list(model.findings) + parity.as_findings() + optional
+    limits = limited_engines(findings, model.mujoco.model)  # engines given another robot: they do not vote
+    voters = [name for name in model.engines if name not in limits]
     verdicts: list[Finding] = []
-    if len(model.engines) >= 3:  # a majority can then say which engine departs
-        verdicts = _verdicts(model, parity.segment_labels, findings, qpos, qvel, rtol, include_armature)
-    verdicts, unable = limited_departures(verdicts, findings, model.mujoco.model, policy.asked_for(engines))
-    unmade = unable + policy.unmade_checks(optional, engines)
+    if len(voters) >= 3:  # a majority can then say which engine departs
+        verdicts = _verdicts(model, voters, parity.segment_labels, findings, qpos, qvel, rtol, include_armature)
+    parser = "URDF" if Path(model.path).suffix.lower() == ".urdf" else "MJCF"
+    unmade = unable_findings(limits, policy.asked_for(engines), parser) + policy.unmade_checks(optional, engines)
+    findings, parity = _blamed_as_verdicts_say(verdicts, findings, parity)
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
+
+
+def _blamed_as_verdicts_say(
+    verdicts: list[Finding], findings: list[Finding], parity: ParityReport
+) -> tuple[list[Finding], ParityReport]:
+    """The causes the verdicts name, recorded against the engine that departs (as the verdict says).
+
+    Two engines cannot say which applies a construct alone; the pair's finding may name the other one (compiler
+    ``settotalmass``: "Pinocchio does not rescale").  With three engines the verdict knows
+    (:func:`koenig_check.diagnosis.three_way.departure_cause`), and the cause lists (``parity``'s root causes,
+    the report) must say the same engine.
+    """
+    moved: dict[int, Finding] = {}  # by identity: a finding's values are not hashable
+    for v in verdicts:
+        if v.engine == "all":
+            continue
+        cause = three_way.departure_cause(findings, v.engine, v.segments)
+        if cause is not None and cause.engine != v.engine:
+            moved.setdefault(id(cause), replace(cause, engine=v.engine))
+    if not moved:
+        return findings, parity
+    causes = [moved.get(id(c), c) for c in parity.causes]
+    return [moved.get(id(f), f) for f in findings], replace(parity, causes=causes)
 
 
 def _verdicts(
     model: Any,
+    voters: list[str],
     labels: dict[str, str],
     findings: list[Finding],
     qpos: np.ndarray | None,
@@ -115,11 +143,12 @@ def _verdicts(
     rtol: float,
     include_armature: bool,
 ) -> list[Finding]:
-    """Which engine departs: on the energies at the given states, on the mass properties at ``qpos0``."""
+    """Which of the ``voters`` departs: on the energies at the given states, on the mass properties at ``qpos0``."""
+    engines = {name: model.engines[name] for name in voters}
     out: list[Finding] = []
     if qpos is not None and qvel is not None:
         try:
-            energies = {name: e.kinetic_energy(qpos, qvel) for name, e in model.engines.items()}
+            energies = {name: e.kinetic_energy(qpos, qvel) for name, e in engines.items()}
         except ValueError as err:  # an engine produced an invalid state: name the file
             raise ValueError(f"{model.path}: {one_line(err)}") from err
         if not include_armature:
@@ -127,7 +156,7 @@ def _verdicts(
         out += three_way.energy_verdicts(energies, findings, rtol)
     q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     zero = np.zeros((1, model.mujoco.nv))
-    states = {name: e.segment_states(q0, zero) for name, e in model.engines.items()}
+    states = {name: e.segment_states(q0, zero) for name, e in engines.items()}
     offset, _ = root_frame_offset(model)
     if offset is not None:  # Pinocchio dropped a jointless root body's pose: compare in MuJoCo's world
         states["pinocchio"] = offset.segment_states(states["pinocchio"])

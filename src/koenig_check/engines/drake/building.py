@@ -87,6 +87,11 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
     own ``pos``*, so that joint turns about another point (the file's pose at ``q = ref`` is right;
     the motion is not).  Each such joint is a root cause (engine ``drake``) naming both anchors.
 
+    Slide joints are not compared: a translation has no point it turns about, and translations commute, so
+    a body's ``pos`` moved past a slide (Drake puts it on the body's last joint: dm_control's cheetah, whose
+    torso has ``rootx``, ``rootz`` slides then the ``rooty`` hinge) moves no part of the robot; were the body
+    itself moved, the next hinge's anchor here and the segment COMs of the verdicts would show it.
+
     Parameters
     ----------
     plant : pydrake.multibody.plant.MultibodyPlant
@@ -105,7 +110,7 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
     index = {n: k for k, n in enumerate(names)}
     out = []
     for p in state_map.pairs:
-        if p.kind == "free":
+        if p.kind in ("free", "slide"):  # a slide has no point it turns about: see below
             continue
         k = index[p.name]
         joint = plant.GetJointByName(p.drake_name)
