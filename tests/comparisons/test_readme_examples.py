@@ -86,7 +86,7 @@ def test_the_plugin_example_is_what_pytest_prints(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize(
     "context",
-    [r"Drake's parser warns and builds other values \(([^:]+):", r"or a massless moving link \(([^)]+)\)"],
+    [r"which\s+it replaces: ([^:]+?) get other moments", r"or a massless moving link \(([^)]+)\)"],
 )
 def test_robots_the_readme_names_are_names_the_tool_accepts(context: str) -> None:
     """Each robot of a README list resolves (``hyq`` does not: ``hyq_no_sensors`` does)."""
