@@ -154,5 +154,6 @@ def dropped_meshes_line(findings: Sequence[Finding], shown: int = 2) -> str:
     files = [str(f) for x in findings if x.kind is Kind.LOAD for f in x.values.get(DROPPED_FILES, ())]
     if not files:
         return ""
-    names = ", ".join(Path(f).name for f in files[:shown]) + (f" (+{len(files) - shown} more)" if len(files) > shown else "")
+    names = ", ".join(Path(f).name for f in files[:shown])
+    names += f" (+{len(files) - shown} more)" if len(files) > shown else ""
     return f"note: {len(files)} unreadable mesh file(s) dropped with their geoms, no mass from them: {names}"
