@@ -153,10 +153,7 @@ def _load(
         joints = list(tops[0].joints) if len(tops) == 1 else []
         already = len(joints) == 1 and joints[0].type == mujoco.mjtJoint.mjJNT_FREE
         if len(tops) != 1 or (joints and not already):
-            names = [b.name for b in tops]
-            raise ModelLoadError(
-                f"{path}: floating=True needs exactly one top-level {what} without joints, found {names}"
-            )
+            raise ModelLoadError(f"{path}: --floating (floating=True): {_not_floatable(tops, what)}")
         if already:
             notes.append(
                 Finding(
@@ -235,6 +232,18 @@ def _load(
             )
         )
     return model, notes, diffs
+
+
+def _not_floatable(tops: list[mujoco.MjsBody], what: str) -> str:
+    """Why ``floating`` cannot add a free joint: the root already moves, or there is no single root."""
+    if len(tops) == 1:
+        joints = [j.name or str(j.type).split("_")[-1].lower() for j in tops[0].joints]
+        return (
+            f"the top-level {what} {tops[0].name!r} already has joints ({', '.join(joints)}): "
+            "it moves without --floating"
+        )
+    names = ", ".join(repr(b.name) for b in tops[:3]) + (f" (+{len(tops) - 3} more)" if len(tops) > 3 else "")
+    return f"a free joint goes on the one top-level {what}, the robot's root; the file has {len(tops)}: {names}"
 
 
 def root_free_joint(model: mujoco.MjModel) -> str | None:
