@@ -87,8 +87,7 @@ def mass_mesh_error(path: Path, mesh: mujoco.MjsMesh, reason: str, geoms: list[t
     if file.is_absolute() and file.is_relative_to(Path(path).parent):  # as written, beside the model
         file = file.relative_to(Path(path).parent)
     return ModelLoadError(
-        f"{path}: mesh file '{file}' {reason}; {named} of body {body!r}{more} takes its mass and inertia "
-        "from it"
+        f"{path}: mesh file '{file}' {reason}; {named} of body {body!r}{more} takes its mass and inertia from it"
     )
 
 
