@@ -8,7 +8,8 @@ What this module changes in the spec, and records as findings (:class:`~koenig_c
 * Mesh files: ``package://`` and ``file://`` URIs are resolved to absolute paths.  A mesh that is
   missing, that MuJoCo has no decoder for (``.dae``) or that MuJoCo refuses to compile (ASCII STL,
   degenerate volume) is dropped together with its geoms: the model loads inertia-only for those
-  geoms.  A mesh never makes a model fail.
+  geoms.  A mesh that gives its body mass and inertia (MJCF, inertia from geoms) is not dropped: a
+  :class:`ModelLoadError` names the file, the geom and the body.
 * ``floating=True`` adds a free joint named :data:`ROOT_JOINT_NAME` to the single top-level body.
 * Inertia rejected by MuJoCo raises :class:`InertiaError` naming the link and its principal
   moments, unless ``balance_inertia=True`` (MuJoCo's ``compiler.balanceinertia``), in which case the
