@@ -68,7 +68,7 @@ def _cmd_models(args: argparse.Namespace) -> int:
     return 0
 
 
-def _loads_in_both(name: str, width: int) -> str:
+def _loads_in_both(name: str, width: int = LINE_LIMIT) -> str:
     """``yes``, or ``no: <engine's reason in one short line>`` for one model name (default load options).
 
     The reason is :func:`~koenig_check.diagnosis.reason.short_error`'s, within ``width`` characters (the whole

@@ -25,7 +25,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from koenig_check.engines.errors import InertiaError, ModelLoadError
+from koenig_check.engines.errors import InertiaError, ModelLoadError, NotFloatableError
 from koenig_check.engines.mujoco.compiling import (
     MAX_REPAIR_TRIES,
     REPAIR_HINT,
@@ -154,7 +154,9 @@ def _load(
         joints = list(tops[0].joints) if len(tops) == 1 else []
         already = len(joints) == 1 and joints[0].type == mujoco.mjtJoint.mjJNT_FREE
         if len(tops) != 1 or (joints and not already):
-            raise ModelLoadError(f"{path}: --floating (floating=True): {_not_floatable(tops, what)}")
+            raise NotFloatableError(
+                f"{path}: --floating (floating=True): {_not_floatable(tops, what)}", [b.name for b in tops]
+            )
         if already:
             notes.append(
                 Finding(
@@ -243,6 +245,8 @@ def _not_floatable(tops: list[mujoco.MjsBody], what: str) -> str:
             f"the top-level {what} {tops[0].name!r} already has joints ({', '.join(joints)}): "
             "it moves without --floating"
         )
+    if not tops:
+        return f"a free joint goes on the top-level {what}, the robot's root; the file has none"
     names = ", ".join(repr(b.name) for b in tops[:3]) + (f" (+{len(tops) - 3} more)" if len(tops) > 3 else "")
     return f"a free joint goes on the one top-level {what}, the robot's root; the file has {len(tops)}: {names}"
 
