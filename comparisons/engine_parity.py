@@ -99,7 +99,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
     from koenig_check.engines import load_model
     from koenig_check.engines.drake.building import load_drake_engine
     from koenig_check.engines.drake.loader import drake_available
-    from koenig_check.engines.errors import InertiaError
+    from koenig_check.engines.errors import InertiaError, NotFloatableError
     from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME, load_mujoco, root_free_joint
     from koenig_check.engines.pinocchio.loader import load_pinocchio
     from koenig_check.engines.sampling import random_states
@@ -117,7 +117,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
         row.mujoco = row.pinocchio = _refusal(err)
         row.verdict = "refused"
         return row
-    repair, mj_model = False, None
+    repair, mj_model, not_floatable = False, None, False
     try:
         mj_model, _, _ = load_mujoco(source, floating=floating)
         row.mujoco = "loads"
@@ -130,6 +130,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
             row.mujoco = _refusal(err2)
     except Exception as err:
         row.mujoco = _refusal(err)
+        not_floatable = isinstance(err, NotFloatableError)
     root = root_free_joint(mj_model) if mj_model is not None else (ROOT_JOINT_NAME if floating else None)
     try:
         load_pinocchio(source, root_joint=root)
@@ -147,7 +148,7 @@ def _check(task: tuple[str, bool, int, bool]) -> Row:
             row.drake = "loads"
         except Exception as err:
             row.drake = _refusal(err)
-    if mj_model is None and floating and "floating=True needs" in row.mujoco:
+    if mj_model is None and floating and not_floatable:
         row.verdict = "not applicable (no single jointless top body to float)"
         row.seconds = time.perf_counter() - start
         return row

@@ -20,7 +20,7 @@ from pathlib import Path
 
 from common import HERE, display_name, dm_control_corpus, erd_corpus, progress, scrub, table
 
-from koenig_check.engines.errors import InertiaError, ModelLoadError
+from koenig_check.engines.errors import InertiaError, ModelLoadError, NotFloatableError
 from koenig_check.export import ExportRefusedError, export_model
 from koenig_check.modelfile.validate import ModelFileError
 
@@ -41,7 +41,7 @@ def _export(path: Path, to: str, out: Path) -> tuple[str, str, str, str]:
             options["repair_inertia"] = True
             continue
         except (ModelLoadError, ModelFileError) as err:
-            if options.get("floating") and "found []" in str(err):
+            if options.get("floating") and isinstance(err, NotFloatableError) and not err.top_level:
                 return "nothing moves", "", "no body: a fragment of a model", _words(options)
             return "original does not load", "", scrub(str(err)), _words(options)
         proof = result.proof

@@ -36,7 +36,7 @@ OLD_HOMES = {
 
 
 #: Exceptions born in koenig_check.exceptions (no old home).
-NEW = {"NoMassError", "EngineUnavailableError"}
+NEW = {"NoMassError", "EngineUnavailableError", "NotFloatableError"}
 
 
 def _cause(element: str) -> Finding:

@@ -26,7 +26,7 @@ Hierarchy::
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -46,6 +46,7 @@ __all__ = [
     "ModelLoadError",
     "NoMassError",
     "NoMovingSegmentError",
+    "NotFloatableError",
     "NotPlaneParallelError",
     "PathDependentError",
     "PoseFileError",
@@ -108,6 +109,22 @@ class ModelFileError(KoenigCheckError, ValueError):
 
 class ModelLoadError(KoenigCheckError, ValueError):
     """A model file cannot be loaded by one engine; the message names the file and the element."""
+
+
+class NotFloatableError(ModelLoadError):
+    """``floating`` asked for a model whose root already moves, or that has no single root.
+
+    Parameters
+    ----------
+    message : str
+        Names the file and the top-level bodies.
+    top_level : sequence of str
+        The file's top-level bodies (links): none, several, or one that already has joints.
+    """
+
+    def __init__(self, message: str, top_level: Sequence[str] = ()) -> None:
+        super().__init__(message)
+        self.top_level = tuple(top_level)
 
 
 class InertiaError(ModelLoadError):

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines import specs
 from koenig_check.exceptions import KoenigCheckError as KoenigCheckError  # its old import path
-from koenig_check.roundoff import fmt
+from koenig_check.roundoff import fmt, side_by_side
 
 #: What a finding can concern besides one engine.  ``both`` is a finding about the pair (a joint mapping, a
 #: coupling both engines ignore); ``all`` is a three-engine verdict where every engine differs; ``file`` is a
@@ -138,7 +138,8 @@ class Finding:
         text = f"{self.engine}: {self.element}: {self.summary}"
         if self.values:
             whole = self.kind in _WHOLE_VALUE_KINDS
-            text += " (" + ", ".join(f"{k} {_fmt(v, whole)}" for k, v in self.values.items()) + ")"
+            paired = _before_after(self.values)  # a value before and after a change, with digits that differ
+            text += " (" + ", ".join(f"{k} {paired.get(k) or _fmt(v, whole)}" for k, v in self.values.items()) + ")"
         if self.hint:
             text += f"; {self.hint}"
         return text
@@ -197,6 +198,30 @@ def _fmt(value: Any, whole: bool = False) -> str:
         inner = ", ".join(_fmt(v, whole) for v in value)  # 6 significant digits, as a single number
         return f"[{inner}]" if isinstance(value, list) else f"({inner})"
     return str(value)
+
+
+def _before_after(values: Mapping[str, Any]) -> dict[str, str]:
+    """``X before`` and ``X after`` numbers printed side by side (:func:`~koenig_check.roundoff.side_by_side`).
+
+    ``mass before 0.0096, mass after 0.0096`` hid a change below the 6th digit.
+    """
+    out = {}
+    for key, before in values.items():
+        stem = key.removesuffix(" before")
+        after = values.get(f"{stem} after")
+        if stem == key or after is None:
+            continue
+        if isinstance(before, float) and isinstance(after, float):
+            out[key], out[f"{stem} after"] = side_by_side([before, after])
+        elif _floats(before) and _floats(after) and len(before) == len(after) <= SHOWN_ITEMS:
+            pairs = [side_by_side([b, a]) for b, a in zip(before, after, strict=True)]
+            out[key] = "[" + ", ".join(p[0] for p in pairs) + "]"
+            out[f"{stem} after"] = "[" + ", ".join(p[1] for p in pairs) + "]"
+    return out
+
+
+def _floats(value: Any) -> bool:
+    return isinstance(value, (list, tuple)) and bool(value) and all(isinstance(v, float) for v in value)
 
 
 def _jsonable(value: Any) -> Any:

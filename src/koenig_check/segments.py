@@ -13,6 +13,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from koenig_check.roundoff import relative_zeros
+
 #: Relative tolerance used to decide whether an inertia tensor is symmetric.
 SYMMETRY_RTOL = 1e-9
 #: Absolute tolerance on ``R^T R - 1`` used to decide whether a rotation is orthonormal.
@@ -316,7 +318,7 @@ def check_physical_inertia(mass: float, inertia: np.ndarray, rtol: float = 1e-9)
     if np.abs(inertia - inertia.T).max() > rtol * scale:
         return "inertia is not symmetric"
     lam = principal_moments(inertia)
-    moments = ", ".join(f"{v:.6g}" for v in lam)
+    moments = relative_zeros(lam)  # round-off of a rotated inertia as 0, at the scale of the largest
     if lam[0] < -rtol * scale:
         return f"inertia is not positive semi-definite (principal moments {moments})"
     a, b, c = lam

@@ -132,6 +132,11 @@ REAL = {
     "bolt parity": (["parity", "bolt"], 1),
     "bolt dynamics": (["dynamics", "bolt", "--poses", "2"], 1),
     "alex_psyonic_hands compare": (["compare", "alex_psyonic_hands", "--poses", "2", "--quiet"], 1),
+    "cheetah compare with drake": (
+        ["compare", "dm:suite/cheetah.xml", "--engines", "mujoco,pinocchio,drake", "--poses", "2", "--quiet"],
+        1,
+    ),
+    "cheetah parity": (["parity", "dm:suite/cheetah.xml"], 1),
 }
 
 
@@ -152,6 +157,24 @@ def test_export_check_only_of_a_corrupted_export_fits(deep: Path, capfd: pytest.
     exported.write_text(text.replace('<mass value="', '<mass value="1', 2))  # two links 10x heavier or more
     status, out, _ = assert_fits(capfd, "export", "--check-only", str(original), str(exported))
     assert status == 1 and "not equivalent" in out
+
+
+#: Models ``models --check`` refuses with a long reason: MuJoCo's inertia refusals with their moments (up to 477
+#: characters), Pinocchio's parser naming the file's whole path.
+REFUSED_BY_NAME = ["alex_psyonic_hands", "anymal-kinova", "b1", "human", "ur3"]
+
+
+def test_models_check_fits(monkeypatch: pytest.MonkeyPatch, capfd: pytest.CaptureFixture[str]) -> None:
+    import koenig_check.sources.model_names as names
+
+    every = names.model_names()
+    monkeypatch.setattr(names, "model_names", lambda: [e for e in every if e.name in REFUSED_BY_NAME])
+    status, out, _ = assert_fits(capfd, "models", "--check")
+    assert status == 0
+    refusals = [line.strip() for line in out.splitlines() if line.strip().startswith("no: ")]
+    assert len(refusals) == len(REFUSED_BY_NAME), out
+    assert any("link 'LeftPsyonicAbilityBaseLink': MuJoCo rejects its inertia" in r for r in refusals), out
+    assert not any("/" in r for r in refusals), out  # the row names the model, its reason not the file's path
 
 
 def test_models_and_selfcheck_fit(capfd: pytest.CaptureFixture[str]) -> None:
@@ -279,3 +302,24 @@ def test_pytest_failure_text_fits(pytester: pytest.Pytester) -> None:
     assert "root cause:" in failures and "repair_needed.urdf: failed" in failures
     assert failures.count("AssertionError") >= 1
     assert not over_width(failures)
+
+
+LOAD_FAILURE_TEST = """
+from koenig_check.testing import assert_energy_parity
+
+
+def test_refused():
+    assert_energy_parity({path!r})
+"""
+
+
+@pytest.mark.parametrize("rel", ["suite/finger.xml"])
+def test_pytest_load_failure_fits(pytester: pytest.Pytester, rel: str) -> None:
+    """A model an engine refuses (finger: Pinocchio reads only its first root body): folded as energy failures are."""
+    path = _dm_control(rel)
+    pytester.makepyfile(test_refused=LOAD_FAILURE_TEST.format(path=path))
+    result = pytester.runpytest_subprocess("-p", "no:cacheprovider")
+    text = result.stdout.str()
+    failures = text[text.index("= FAILURES =") : text.index("short test summary")]
+    assert "AssertionError" in failures and "finger.xml" in failures and "root cause" in failures
+    assert not over_width(failures), [line for line in failures.splitlines() if len(line) > LINE_LIMIT]

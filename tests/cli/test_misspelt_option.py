@@ -31,3 +31,26 @@ def test_no_suggestion_for_nothing_close(capsys):
     assert stop.value.code == 2
     err = capsys.readouterr().err
     assert "unrecognized argument --zzzzzz" in err and "did you mean" not in err
+
+
+@pytest.mark.parametrize(("word", "closest"), [("compar", "compare"), ("parit", "parity"), ("dynamic", "dynamics")])
+def test_closest_command(word, closest, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main([word, "ur5"])
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert f"invalid choice: '{word}'; did you mean '{closest}'?" in err and len(err.splitlines()) == 2
+
+
+def test_no_command_suggestion_for_nothing_close(capsys):
+    with pytest.raises(SystemExit):
+        main(["zzzz", "ur5"])
+    assert "did you mean" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("engines", "whole"), [("drake", "mujoco,pinocchio,drake"), ("pinocchio", "mujoco,pinocchio")])
+def test_engines_without_the_required_ones_says_what_to_write(engines, whole, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["compare", "ur5", "--engines", engines])
+    assert stop.value.code == 2
+    assert f"write '{whole}'" in capsys.readouterr().err

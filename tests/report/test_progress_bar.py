@@ -16,15 +16,21 @@ import pytest
 COMMAND = [sys.executable, "-m", "koenig_check.cli", "compare", "double_pendulum", "gimbal", "--poses", "40000"]
 
 
-def run_on(stderr_is_terminal: bool, *extra: str) -> tuple[int, str]:
-    """Run the command with its stderr on a pseudo-terminal (120 columns) or a pipe; return its stderr."""
-    env = dict(os.environ, KOENIG_CHECK_PROGRESS_DELAY="0", MPLBACKEND="Agg")
+def run_on(stderr_is_terminal: bool, *extra: str, columns: int = 120) -> tuple[int, str]:
+    """Run the command with its stderr on a pseudo-terminal (``columns`` wide) or a pipe; return its stderr.
+
+    On a pseudo-terminal, standard output goes there too (as on a user's terminal): the table follows the bar.
+    """
+    # A delay above 0, as by default (2 s): a bar shown only after it must still be erased (tqdm thought such a
+    # bar never drawn when each model restarted its clock); the run lasts several times longer.
+    env = dict(os.environ, KOENIG_CHECK_PROGRESS_DELAY="0.1", MPLBACKEND="Agg")
     if not stderr_is_terminal:
         done = subprocess.run([*COMMAND, *extra], capture_output=True, env=env, timeout=300)
         return done.returncode, done.stderr.decode()
     main, child = os.openpty()
-    fcntl.ioctl(child, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 120, 0, 0))
-    proc = subprocess.Popen([*COMMAND, *extra], stdout=subprocess.DEVNULL, stderr=child, env=env)
+    rows = 24 if columns else 0
+    fcntl.ioctl(child, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
+    proc = subprocess.Popen([*COMMAND, *extra], stdout=child, stderr=child, env=env)
     os.close(child)
     out = b""
     while True:
@@ -53,6 +59,49 @@ def test_bar_on_a_terminal_counts_poses_per_model(on_terminal):
     assert any(0 < n < 40000 for n in counts), counts  # a count between the chunks
 
 
+def rendered(text: str) -> list[str]:
+    """The lines a terminal shows for ``text``: ``\\r`` returns to the line's start, ``ESC[K`` erases to its end."""
+    lines, line, col = [], [], 0
+    for token in re.findall(r"\x1b\[[0-9;]*[A-Za-z]|\r\n|.|\n", text, flags=re.S):
+        if token in ("\n", "\r\n"):
+            lines.append("".join(line).rstrip())
+            line, col = [], 0
+        elif token == "\r":
+            col = 0
+        elif token.startswith("\x1b["):
+            if token[-1] == "K":
+                del line[col:]
+        else:
+            line[col : col + 1] = [token]
+            col += 1
+    return [*lines, "".join(line).rstrip()]
+
+
+def test_bar_is_erased_before_the_table(on_terminal):
+    """What stays on the screen: the table's first line alone on its line, no frame of the bar before it."""
+    status, out = on_terminal
+    assert status == 0
+    (header,) = [line for line in rendered(out) if "Models:" in line]
+    assert header.startswith("Models:"), repr(header)
+    assert not any("poses/s" in line for line in rendered(out)), rendered(out)[:5]
+
+
+def test_rate_has_three_significant_digits(on_terminal):
+    _, out = on_terminal
+    rates = re.findall(r"([0-9.]+)([kMG]?) poses/s", out)
+    assert rates, out[-2000:]
+    for number, _ in rates:  # 45.7k, 457, 4.57: tqdm's own '45743.98' has 7
+        assert len(number.replace(".", "").lstrip("0")) <= 3, number
+
+
+def test_bar_on_a_terminal_of_unknown_width():
+    """A terminal that reports 0 columns (some containers, serial consoles) still gets the bar, then erases it."""
+    status, out = run_on(True, columns=0)
+    assert status == 0
+    assert re.search(r"\d+/40000 \[", out), out[-2000:]
+    assert next(line for line in rendered(out) if "Models:" in line).startswith("Models:")
+
+
 def test_no_bar_on_a_pipe():
     status, err = run_on(False)
     assert status == 0
@@ -62,7 +111,7 @@ def test_no_bar_on_a_pipe():
 def test_no_bar_with_quiet():
     status, err = run_on(True, "--quiet")
     assert status == 0
-    assert "poses" not in err and "models:" not in err
+    assert "poses/s" not in err and "models:" not in err and "\r" not in err.replace("\r\n", "\n")
 
 
 def test_no_bar_for_a_short_run():

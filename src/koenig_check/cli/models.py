@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from koenig_check.cli.parsing import add_command
+from koenig_check.report.line_width import LINE_LIMIT
 
 
 def add(sub: argparse._SubParsersAction) -> None:
@@ -59,7 +60,7 @@ def _cmd_models(args: argparse.Namespace) -> int:
         if args.paths:
             print(f"{'':{width}s} {entry.path}")
         if args.check:
-            verdict = _loads_in_both(entry.name)
+            verdict = _loads_in_both(entry.name, LINE_LIMIT - width - 1)
             loaded_both += verdict == "yes"
             print(f"{'':{width}s} {verdict}")
     if args.check:
@@ -67,11 +68,15 @@ def _cmd_models(args: argparse.Namespace) -> int:
     return 0
 
 
-def _loads_in_both(name: str) -> str:
-    """``yes``, or ``no: <engine's one-line reason>`` for one model name (default load options)."""
+def _loads_in_both(name: str, width: int = LINE_LIMIT) -> str:
+    """``yes``, or ``no: <engine's reason in one short line>`` for one model name (default load options).
+
+    The reason is :func:`~koenig_check.diagnosis.reason.short_error`'s, within ``width`` characters (the whole
+    is ``koenig-check compare NAME``'s).
+    """
     import warnings
 
-    from koenig_check.api import one_line
+    from koenig_check.diagnosis.reason import short_error
     from koenig_check.engines import load_model
     from koenig_check.sources.catalogue import resolve_model
 
@@ -80,6 +85,10 @@ def _loads_in_both(name: str) -> str:
             warnings.simplefilter("ignore")
             load_model(name)
     except Exception as err:  # each model's reason, the list goes on
-        text = one_line(err).replace(f"{resolve_model(name).path}: ", "")  # the file is the row's
-        return f"no: {text}"
+        path = resolve_model(name).path
+
+        def shorter(text: str) -> str:  # the file is the row's
+            return text.replace(f"{path}: ", "").replace(str(path), path.name)
+
+        return "no: " + short_error(err, width - len("no: "), rename=shorter)
     return "yes"

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import difflib
+import re
 import sys
 from dataclasses import replace
 from typing import Any, NoReturn
@@ -44,11 +45,37 @@ class Parser(argparse.ArgumentParser):
         """Exit with status 2: the short usage line, then the error in one line."""
         from koenig_check.report.line_width import LINE_LIMIT, elided_paths
 
-        line = f"{self.prog}: error: {message}"
+        line = f"{self.prog}: error: {closest_choice(message)}"
         see = "" if f"{self.prog} --help" in message else f" (see {self.prog} --help)"  # said once
         if len(line + see) > LINE_LIMIT:  # one line: the help's pointer goes, then a long path's folders
             line, see = elided_paths(line), ""
         self.exit(2, f"{self.short_usage()}\n{line}{see}\n")
+
+
+#: argparse's message for a value outside an argument's choices (a misspelt command).
+_INVALID_CHOICE = re.compile(r"invalid choice: '([^']*)' \(choose from (.*)\)")
+
+
+def closest_choice(message: str) -> str:
+    """The message of argparse for a value outside the choices, with the closest (``did you mean 'compare'?``).
+
+    Parameters
+    ----------
+    message : str
+        argparse's error message; any other message is returned as it is.
+
+    Returns
+    -------
+    str
+    """
+    found = _INVALID_CHOICE.search(message)
+    if not found:
+        return message
+    choices = re.findall(r"'([^']*)'", found.group(2))
+    close = difflib.get_close_matches(found.group(1), choices, n=1, cutoff=0.6)
+    if not close:
+        return message
+    return f"{message[: found.end(1) + 1]}; did you mean {close[0]!r}? {message[found.end(1) + 2 :]}"
 
 
 def unrecognized(parser: argparse.ArgumentParser, extras: list[str]) -> str:

@@ -14,6 +14,7 @@ from koenig_check.exceptions import (
     ModelLoadError,
     NoMassError,
     NoMovingSegmentError,
+    NotFloatableError,
 )
 
 __all__ = [
@@ -25,4 +26,5 @@ __all__ = [
     "ModelLoadError",
     "NoMassError",
     "NoMovingSegmentError",
+    "NotFloatableError",
 ]

@@ -146,7 +146,8 @@ def parse_engines(text: str) -> tuple[str, ...]:
         raise ValueError(f"engines: unknown {unknown}; choose among {list(known)}")
     required = [s.name for s in engine_specs.specs() if s.required]
     if not set(required) <= set(asked):
-        raise ValueError(f"engines: {' and '.join(required)} are always run, got {asked}")
+        whole = ",".join(n for n in known if n in {*asked, *required})
+        raise ValueError(f"engines: {' and '.join(required)} are always run and named: write {whole!r}, not {text!r}")
     return tuple(n for n in known if n in asked)
 
 

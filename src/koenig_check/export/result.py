@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from koenig_check.export.carried import NotCarried
-from koenig_check.roundoff import distinct
+from koenig_check.roundoff import side_by_side
 
 
 @dataclass(frozen=True)
@@ -87,7 +87,7 @@ class SegmentDifference:
         -------
         str
         """
-        original, export = distinct(self.original, self.export)  # digits enough to show the difference
+        original, export = side_by_side([self.original, self.export])  # digits enough to show the difference
         return (
             f"{self.engine}: link {self.link} (joint {self.segment}): {self.quantity} off by "
             f"{self.relative:.3g} relative (original {original}, export {export})"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from koenig_check.diagnosis.import_parity import ParityReport
 from koenig_check.report.line_width import fold_text, hanging
-from koenig_check.roundoff import ROUNDOFF, shown
+from koenig_check.roundoff import ROUNDOFF, shown, side_by_side
 
 
 def format_parity(report: ParityReport, model: str = "") -> str:
@@ -34,9 +34,10 @@ def format_parity(report: ParityReport, model: str = "") -> str:
             effect = "changes the kinetic energy" if c.affects_energy else "no effect on the kinetic energy"
             lines.append(f"  - [{c.kind.value}, {effect}] {c.message()}")
         lines.append("")
+    mujoco, pinocchio, whole = side_by_side([*report.total_mass, report.model_mass])  # the same digits each
     lines += [
-        f"moving mass: MuJoCo {report.total_mass[0]:.9g} kg, Pinocchio {report.total_mass[1]:.9g} kg "
-        f"(the whole model in Pinocchio: {report.model_mass:.9g} kg, static bodies included)",
+        f"moving mass: MuJoCo {mujoco} kg, Pinocchio {pinocchio} kg "
+        f"(the whole model in Pinocchio: {whole} kg, static bodies included)",
         f"mass matrices differ by at most {report.mass_matrix_max_rel:.2e} relative",
         "",
         f"{'segment':{width}s} {'mass MuJoCo':>13s} {'mass Pin.':>13s} {'|ΔCOM| m':>10s} {'|ΔI|_F':>10s} "

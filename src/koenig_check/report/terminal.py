@@ -105,6 +105,7 @@ _ROW_REASON = 1000
 
 def _cause(check: CrossCheck, model: str) -> str:
     from koenig_check.diagnosis.reason import REASON_WIDTH, changes_line, lead_line, short_reason
+    from koenig_check.engines.mujoco.meshes import dropped_meshes_line
 
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         if parity.model == model:
@@ -115,7 +116,8 @@ def _cause(check: CrossCheck, model: str) -> str:
                 text = short_reason(model, comparison.findings, parity.gap, width=width)
                 short = text.removeprefix(f"{model}: ")
             changes = changes_line(comparison.findings)  # a model changed to be loaded says so, agreeing or not
-            return "; ".join(t for t in (short, changes) if t)
+            dropped = dropped_meshes_line(comparison.findings)  # so does one loaded without some of its meshes
+            return "; ".join(t for t in (short, changes, dropped) if t)
     return ""
 
 

@@ -82,7 +82,7 @@ def assert_energy_parity(
     try:
         pair = load_model(model, options)
     except KoenigCheckError as refused:  # the file's own problem in one line, no frame of the library below
-        raise AssertionError(one_line(refused)) from None
+        raise AssertionError(_folded(one_line(refused))) from None
     for name in policy.asked_for(options.engines):  # named engines are compared on every pose
         pair.attach(name)
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
@@ -91,9 +91,8 @@ def assert_energy_parity(
     only_a = sorted(set(sa.names) - set(sb.names))
     only_b = sorted(set(sb.names) - set(sa.names))
     if only_a or only_b:
-        raise AssertionError(
-            f"{model}: segments differ between the engines: only in MuJoCo {only_a}, only in Pinocchio {only_b}"
-        )
+        only = f"only in MuJoCo {only_a}, only in Pinocchio {only_b}"
+        raise AssertionError(_folded(f"{model}: segments differ between the engines: {only}"))
     sb = sb.select(segments=list(sa.names))
     ea, eb = FORMULAS["exact"](sa), FORMULAS["exact"](sb)
     scale = np.maximum(np.abs(ea).sum(axis=1, keepdims=True), 1e-300)  # per pose: total energy
@@ -162,3 +161,15 @@ def _one_item_a_line(head: str, problems: list[str]) -> str:
     for problem in rest:
         lines += fold(f"  {problem}", LINE_LIMIT - len("E       "))
     return "\n".join(lines)
+
+
+def _folded(text: str) -> str:
+    """A refusal's whole text folded to lines that fit after pytest's ``E       AssertionError: ``.
+
+    As the energy failures are (:func:`koenig_check.testing.failure_text.verdict_lines`); the first line is
+    written after the exception's name.
+    """
+    from koenig_check.report.line_width import fold
+    from koenig_check.testing.failure_text import FAILURE_WIDTH
+
+    return "\n".join(fold(text, FAILURE_WIDTH - len("AssertionError: ")))

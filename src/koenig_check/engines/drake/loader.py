@@ -155,7 +155,7 @@ def warning_findings(messages: list[str], path: Path) -> list[Finding]:
     """
     grouped: dict[tuple[str, str], list[int]] = {}
     for message in messages:
-        first = " ".join(message.split())
+        first = without_build_location(" ".join(message.split()))  # Drake's reason, not its build tree
         m = _LOCATION.match(first)
         line = int(m["line"]) if m else 0
         body = first[m.end() :] if m else first

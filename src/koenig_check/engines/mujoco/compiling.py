@@ -18,8 +18,9 @@ import numpy as np
 from koenig_check.engines.errors import InertiaError, ModelLoadError
 from koenig_check.engines.mujoco.inertia_repair import Repair, repair_body
 from koenig_check.engines.mujoco.mass_changes import BodyFinding
-from koenig_check.engines.mujoco.meshes import drop_mesh, inertia_only
+from koenig_check.engines.mujoco.meshes import drop_mesh, inertia_only, mass_geoms, mass_mesh_error
 from koenig_check.findings import Finding, Kind
+from koenig_check.roundoff import relative_zeros
 from koenig_check.segments import check_physical_inertia, principal_moments
 from koenig_check.sources.catalogue import ModelSource
 
@@ -78,7 +79,7 @@ def mujoco_reason(exc: BaseException) -> str:
 
 
 def _moments_text(inertia: np.ndarray) -> str:
-    return ", ".join(f"{v:.6g}" for v in principal_moments(inertia))
+    return relative_zeros(principal_moments(inertia))
 
 
 def _inertia_error(
@@ -240,6 +241,9 @@ def compile_spec(
                 None,
             )
             if mesh is not None:
+                geoms = mass_geoms(spec, mesh)
+                if geoms:  # dropped, its body would have no mass: MuJoCo's refusal of the mesh is the reason
+                    raise mass_mesh_error(source.path, mesh, f"refused by MuJoCo ({message})", geoms) from exc
                 refused.append(mesh.name)
                 reasons.append(message)
                 files.append(mesh.file)

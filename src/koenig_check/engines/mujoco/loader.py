@@ -8,7 +8,8 @@ What this module changes in the spec, and records as findings (:class:`~koenig_c
 * Mesh files: ``package://`` and ``file://`` URIs are resolved to absolute paths.  A mesh that is
   missing, that MuJoCo has no decoder for (``.dae``) or that MuJoCo refuses to compile (ASCII STL,
   degenerate volume) is dropped together with its geoms: the model loads inertia-only for those
-  geoms.  A mesh never makes a model fail.
+  geoms.  A mesh that gives its body mass and inertia (MJCF, inertia from geoms) is not dropped: a
+  :class:`ModelLoadError` names the file, the geom and the body.
 * ``floating=True`` adds a free joint named :data:`ROOT_JOINT_NAME` to the single top-level body.
 * Inertia rejected by MuJoCo raises :class:`InertiaError` naming the link and its principal
   moments, unless ``balance_inertia=True`` (MuJoCo's ``compiler.balanceinertia``), in which case the
@@ -24,7 +25,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from koenig_check.engines.errors import InertiaError, ModelLoadError
+from koenig_check.engines.errors import InertiaError, ModelLoadError, NotFloatableError
 from koenig_check.engines.mujoco.compiling import (
     MAX_REPAIR_TRIES,
     REPAIR_HINT,
@@ -153,9 +154,8 @@ def _load(
         joints = list(tops[0].joints) if len(tops) == 1 else []
         already = len(joints) == 1 and joints[0].type == mujoco.mjtJoint.mjJNT_FREE
         if len(tops) != 1 or (joints and not already):
-            names = [b.name for b in tops]
-            raise ModelLoadError(
-                f"{path}: floating=True needs exactly one top-level {what} without joints, found {names}"
+            raise NotFloatableError(
+                f"{path}: --floating (floating=True): {_not_floatable(tops, what)}", [b.name for b in tops]
             )
         if already:
             notes.append(
@@ -235,6 +235,20 @@ def _load(
             )
         )
     return model, notes, diffs
+
+
+def _not_floatable(tops: list[mujoco.MjsBody], what: str) -> str:
+    """Why ``floating`` cannot add a free joint: the root already moves, or there is no single root."""
+    if len(tops) == 1:
+        joints = [j.name or str(j.type).split("_")[-1].lower() for j in tops[0].joints]
+        return (
+            f"the top-level {what} {tops[0].name!r} already has joints ({', '.join(joints)}): "
+            "it moves without --floating"
+        )
+    if not tops:
+        return f"a free joint goes on the top-level {what}, the robot's root; the file has none"
+    names = ", ".join(repr(b.name) for b in tops[:3]) + (f" (+{len(tops) - 3} more)" if len(tops) > 3 else "")
+    return f"a free joint goes on the one top-level {what}, the robot's root; the file has {len(tops)}: {names}"
 
 
 def root_free_joint(model: mujoco.MjModel) -> str | None:
