@@ -305,7 +305,7 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
     model : str or path
         The model as the user gave it.
     label : str
-        Its label, which names the file: the path as given is left out when the line would not fit with it.
+        Its label, which names the file: the path (as given, or resolved from a name) is left out.
 
     Returns
     -------
@@ -321,8 +321,7 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
         return given(text).replace(f"{model}: ", "").replace(str(model), label)
 
     width = reason.REASON_WIDTH - len(label) - 2
-    whole = reason.short_error(err, 10**6, given).removeprefix(f"{label}: ")  # the file named once
-    return f"{label}: {whole if len(whole) <= width else reason.short_error(err, width, named)}"
+    return f"{label}: {reason.short_error(err, width, named)}"  # the file named once, by its label
 
 
 #: The keywords of :func:`compare` passed on to :func:`compare_model` for every model.

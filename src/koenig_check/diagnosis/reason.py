@@ -6,6 +6,7 @@ import re
 from collections.abc import Callable, Sequence
 
 from koenig_check.diagnosis.cause_effect import by_effect
+from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, clause, element_words, more_causes
 from koenig_check.findings import Finding, Kind, root_causes
 
 #: Kinds of per-segment import differences (symptoms, after the root causes in a reason).
@@ -33,9 +34,11 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
     Root causes that change the energy come first (a repaired or compiler-altered inertia, a construct one
     parser ignores), those whose values show their effect ordered by it, the largest first
     (:func:`koenig_check.diagnosis.cause_effect.by_effect`); then the per-segment import differences no root
-    cause explains, the largest relative difference first; then each engine's inconsistencies with itself.
+    cause explains (a symptom on segments a root cause names is its consequence, not another cause), the
+    largest relative difference first; then each engine's inconsistencies with itself.
     A symptom whose relative difference is at the level of a written file's rounding
-    (:data:`ROUNDING_LEVEL`) is never listed.
+    (:data:`ROUNDING_LEVEL`) is never listed, nor the findings of an optional engine (Drake) that no
+    three-engine verdict blames: it agrees with an engine, its import is not why they differ.
 
     Parameters
     ----------
@@ -45,9 +48,12 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
     -------
     list of Finding
     """
-    energy = [f for f in findings if f.affects_energy]
+    blamed = _blamed(findings)
+    energy = [f for f in findings if f.affects_energy and (f.engine not in _optional() or f.engine in blamed)]
     roots = by_effect([f for f in root_causes(energy) if f.affects_energy])  # the largest change of energy first
+    explained = {s for f in roots for s in f.segments}
     symptoms = [f for f in energy if f.kind in _SYMPTOMS and f not in roots]
+    symptoms = [f for f in symptoms if not (f.segments and set(f.segments) <= explained)]
     symptoms = [f for f in symptoms if "relative difference" not in f.values or _relative(f) > ROUNDING_LEVEL]
     symptoms.sort(key=lambda f: -_relative(f))
     selves = [f for f in energy if f.kind is Kind.SELF_CONSISTENCY and f not in roots]
@@ -56,6 +62,32 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
         if f not in chosen:
             chosen.append(f)
     return chosen
+
+
+def _optional() -> tuple[str, ...]:
+    from koenig_check.engines.registry import optional
+
+    return tuple(optional())
+
+
+def _blamed(findings: Sequence[Finding]) -> set[str]:
+    """The optional engines a three-engine verdict blames: the one that departs, or every one when all differ."""
+    engines = {f.engine for f in findings if f.kind is Kind.VERDICT}
+    return set(_optional()) if "all" in engines else engines
+
+
+def root_cause_groups(findings: Sequence[Finding]) -> list[CauseGroup]:
+    """The causes of :func:`ordered_causes`, the same cause on several elements made one.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+
+    Returns
+    -------
+    list of CauseGroup
+    """
+    return cause_groups(ordered_causes(findings))
 
 
 def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
@@ -76,7 +108,10 @@ def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
 
 
 def cause_lines(findings: Sequence[Finding], limit: int = 3) -> list[str]:
-    """The causes of :func:`disagreement_cause`, one item each, then how many more (for a view of several lines).
+    """The causes of :func:`disagreement_cause`, one item each, the last saying how many more (a view of lines).
+
+    The same cause found on several elements is one item naming them (:func:`root_cause_groups`); the last item
+    ends with ``; and N more root causes`` when more were found.
 
     Parameters
     ----------
@@ -87,10 +122,11 @@ def cause_lines(findings: Sequence[Finding], limit: int = 3) -> list[str]:
     -------
     list of str
     """
-    chosen = ordered_causes(findings)
-    lines = [f.message() for f in chosen[:limit]]
-    if len(chosen) > limit:
-        lines.append(f"and {len(chosen) - limit} more finding(s)")
+    groups = root_cause_groups(findings)
+    lines = [g.message() for g in groups[:limit]]
+    more = more_causes(groups[limit:])
+    if more:
+        lines[-1] += f"; {more}"
     return lines
 
 
@@ -107,15 +143,7 @@ def short_cause(f: Finding) -> str:
     -------
     str
     """
-    element = f.element
-    more = re.search(r" \(\+(\d+) more\)$", element)
-    listed = element[: more.start()] if more else element
-    if ", " in listed:
-        first, rest = listed.split(", ", 1)
-        extra = rest.count(", ") + 1 + (int(more.group(1)) if more else 0)
-        element = f"{first} (+{extra} more)"
-    clause = re.sub(r" \([^)]*\)", "", f.summary.split("; ")[0])
-    return f"{element}: {clause}"
+    return f"{element_words(f)}: {clause(f)}"
 
 
 def _departures(findings: Sequence[Finding]) -> str:
@@ -136,12 +164,13 @@ def short_reason(
 ) -> str:
     """Why a model fails, in one sentence of at most :data:`REASON_WIDTH` characters.
 
-    The engine that departs first, then at most ``limit`` root causes, the most important first, and how many
-    more, then the engines' gap, and last a check asked for and not made, with the engine's own reason (cut at
-    a word when it does not fit: the verdict table's row, ``summary.md`` and the report hold it whole, and
-    ``koenig-check parity`` the details).  To fit, the gap loses its pose,
-    then the gap goes (the verdict table shows it), then causes after the first go ("and N more"), and last the
-    first cause is cut at a word ("…").
+    The engine that departs first, then at most ``limit`` root causes, the most important first (the same cause
+    on several elements is one cause naming them), and how many more (``; and 2 more root causes``), then the
+    engines' gap, and last a check asked for and not made, with the engine's own reason (cut at a word when it
+    does not fit: the verdict table's row, ``summary.md`` and the report hold it whole, and ``koenig-check
+    parity`` the details).  To fit, whole parts go, never half of one: the gap loses its pose, then the gap goes
+    (the verdict table shows it), then the causes after the first ("and N more"), then "and N more"; only then is
+    the line cut at a word ("…"), never inside a parenthesis.
 
     Parameters
     ----------
@@ -158,8 +187,6 @@ def short_reason(
     -------
     str
     """
-    from koenig_check.report.line_width import cut
-
     unable_findings = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
     unmade = "; ".join(f.summary for f in unable_findings)  # each summary names its engine and gives its reason
     head = _departures(findings)
@@ -167,23 +194,24 @@ def short_reason(
         hints = "; ".join(f.hint for f in unable_findings if f.hint)
         text = f"{label}: {unmade}"
         hinted = f"{text}; {hints}" if hints else text
-        return hinted if len(hinted) <= width else cut(text, width)  # whole: the table row
+        return hinted if len(hinted) <= width else closed_cut(text, width)  # whole: the table row
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
-    causes = [short_cause(f) for f in ordered_causes(findings) if f.engine not in unable]
+    groups = cause_groups(f for f in ordered_causes(findings) if f.engine not in unable)
+    causes = [g.short() for g in groups]
     gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
     if head or causes:  # the gap may go when something else says why (the verdict table shows it)
         gaps.append("")
     room = min(len(unmade) + 2, _UNMADE_ROOM) if unmade else 0  # kept for the check not made, which closes the line
+    tries = [(n, g, True) for n in range(min(limit, len(causes)), 0, -1) for g in gaps]
+    tries += [(1, "", False)] if causes else [(0, g, False) for g in gaps]
     text = ""
-    for n in range(min(limit, len(causes)), 0 if causes else -1, -1):
-        for g in gaps:
-            said = "; ".join(causes[:n]) + (f" and {len(causes) - n} more" if len(causes) > n else "")
-            parts = [head, f"root cause: {said}" if n else "", g]
-            text = f"{label}: " + "; ".join(t for t in parts if t)
-            if len(text) + room <= width:
-                return _closed(text, unmade, width)
-    text = text[: width - room - 1].rsplit(" ", 1)[0] + "…"  # one long cause cut at a word
-    return _closed(text, unmade, width)
+    for n, g, counted in tries:
+        said = "; ".join(causes[:n] + ([more_causes(groups[n:])] if counted and len(causes) > n else []))
+        parts = [head, f"root cause: {said}" if n else "", g]
+        text = f"{label}: " + "; ".join(t for t in parts if t)
+        if len(text) + room <= width:
+            return _closed(text, unmade, width)
+    return _closed(closed_cut(text, width - room), unmade, width)  # the first cause too long: cut at a word
 
 
 def short_error(
@@ -192,10 +220,14 @@ def short_error(
     """An error in one sentence of at most ``width`` characters: its message, then at most ``limit`` root causes.
 
     The message is the error's brief form when it has one (:attr:`KoenigCheckError.brief`), else its message
-    without the root causes appended to it; the root causes follow, those that change the energy first, each
-    once: in a few words each (:func:`short_cause`), or, to fit, the first ones so and the others by their
-    element, and how many more.  To fit further the message is cut at a word (``…``), the causes kept.  The
-    whole message stays ``str(err)`` (the report's failures, ``--debug``).
+    without the root causes appended to it; the root causes follow, those that change the energy first (the
+    others only when none does), each once (the same cause on several elements is one cause naming them), in a
+    few words each, never one the message already says.  To fit, whole parts go, never half of one: a keyword's
+    Python spelling in parentheses (``(repair_inertia=True)``), then the causes after the first ("; and N more
+    root causes"), then each cause's explanation after its first clause, then the engine's own detail in
+    parentheses (its verbatim reason), the last first, then "and N more", then the causes (counted); only then is the
+    line cut at a word (``…``), never inside a parenthesis.  The whole message stays ``str(err)`` (the report's
+    failures, ``--debug``).
 
     Parameters
     ----------
@@ -210,35 +242,102 @@ def short_error(
     str
     """
     from koenig_check.exceptions import one_line
-    from koenig_check.report.line_width import cut
 
     def tidy(text: str) -> str:
         text = " ".join(text.split())
         return rename(text) if rename else text
 
-    causes = sorted(getattr(err, "causes", ()), key=lambda c: not c.affects_energy)  # energy first, stable
-    head = tidy(getattr(err, "brief", "") or (getattr(err, "head", "") if causes else "") or one_line(err))
-    named: dict[str, str] = {}  # a cause in a few words -> by its element alone
-    for c in causes:
-        name = tidy(short_cause(c))
-        if name not in named and name not in head:
-            named[name] = tidy(f"{c.element}")
-    if not named:
-        return cut(head, width)
-    shorts, elements = list(named), list(named.values())
+    found = list(getattr(err, "causes", ()))
+    energy = [c for c in found if c.affects_energy]
+    head = tidy(getattr(err, "brief", "") or (getattr(err, "head", "") if found else "") or one_line(err))
+    groups = [g for g in cause_groups(energy or found) if not _said(g, head)]
+    shorts = [tidy(g.short(joints=not any(j in head for j in g.lost_joints()))) for g in groups]
+    plain = _PYTHON_SPELLING.sub("", head)
+    heads = (plain, *_without_details(plain))
+    briefs = [tidy(g.short(joints=not any(j in head for j in g.lost_joints()), brief=True)) for g in groups]
     n = min(limit, len(shorts))
-    more = f" and {len(shorts) - n} more" if len(shorts) > n else ""
-    for k in range(n, -1, -1):  # every cause up to the limit: the first k in a few words, the others by element
-        tail = "; root cause: " + "; ".join(shorts[:k] + elements[k:n]) + more
-        if len(head) + len(tail) <= width:
-            return head + tail
-        if len(tail) <= width - _SHORTEST_HEAD:  # the message cut at a word, the causes kept
-            return cut(head, width - len(tail)) + tail
-    return cut(cut(head, _SHORTEST_HEAD) + tail, width)
+    counts = range(n, 0, -1)
+    tries = [(h, k, True, shorts) for h in dict.fromkeys((head, plain)) for k in counts]  # causes -> "and N more"
+    tries += [(plain, k, True, briefs) for k in counts]  # then each cause's explanation after its first clause
+    tries += [(h, 1, True, said) for h in heads[1:] for said in (shorts, briefs)]  # then the engine's detail
+    tries += [(h, min(n, 1), False, briefs) for h in heads]  # then "and N more"
+    tries += [(plain, 0, True, shorts)] if shorts else []  # what to do kept whole, the causes counted
+    for h, k, counted, said_as in tries:
+        said = said_as[:k] + ([more_causes(groups[k:])] if counted and len(shorts) > k else [])
+        text = h + ("; root cause: " + "; ".join(said) if k else "")
+        if not k and shorts:
+            text += f"; {len(shorts)} root cause{'s' if len(shorts) > 1 else ''} not shown"
+        if len(text) <= width:
+            return text
+    return closed_cut(heads[-1] + ("; root cause: " + briefs[0] if briefs else ""), width)  # the last resort
 
 
-#: The fewest characters of an error's own message kept before its root causes.
-_SHORTEST_HEAD = 40
+def _said(group: CauseGroup, head: str) -> bool:
+    """Whether an error's message already says a cause (``nothing moves (no joint)`` and ``no joint: ...``)."""
+    first = group.findings[0]
+    if clause(first) in head:
+        return True
+    lead = clause(first).split(":")[0].split(",")[0].strip()
+    return first.element == "model" and len(lead) > 3 and lead in head
+
+
+#: A parenthesis holding a keyword's Python spelling (``(repair_inertia=True)``, ``(pinocchio_model=...)``).
+_PYTHON_SPELLING = re.compile(r" \(\w+=[^()]*\)")
+
+
+def _groups(text: str) -> list[tuple[int, int]]:
+    """The outermost parentheses of ``text`` (start, end), the last first."""
+    spans, depth, start = [], 0, 0
+    for i, ch in enumerate(text):
+        if ch == "(":
+            if depth == 0:
+                start = i
+            depth += 1
+        elif ch == ")" and depth:
+            depth -= 1
+            if depth == 0:
+                spans.append((start, i + 1))
+    return spans[::-1]
+
+
+def _without_details(head: str) -> list[str]:
+    """An error's message without its parentheses (the engine's verbatim detail), one more gone each, last first."""
+    heads = []
+    for start, end in _groups(head):  # the last first: the engine's detail follows what it refused
+        cut_from = start - 1 if start and head[start - 1] == " " else start
+        head = head[:cut_from] + head[end:]
+        heads.append(head)
+    return heads
+
+
+def closed_cut(text: str, width: int) -> str:
+    """``text`` cut at a word to fit ``width`` (``…``), never inside a parenthesis or bracket it opens.
+
+    Parameters
+    ----------
+    text : str
+    width : int
+
+    Returns
+    -------
+    str
+    """
+    from koenig_check.report.line_width import cut
+
+    if len(text) <= width:
+        return text
+    kept = cut(text, width)[:-1]
+    pairs = {"(": ")", "[": "]", "{": "}"}
+    while True:
+        opened: list[int] = []
+        for i, ch in enumerate(kept):
+            if ch in pairs:
+                opened.append(i)
+            elif ch in pairs.values() and opened:
+                opened.pop()
+        if not opened:
+            return kept.rstrip(" ;,:") + "…"
+        kept = kept[: opened[0]].rstrip(" ;,:(")
 
 
 #: The room a reason keeps for a check asked for and not made (the rest of its text is in the verdict table's row).
@@ -247,14 +346,12 @@ _UNMADE_ROOM = 80
 
 def _closed(text: str, unmade: str, width: int) -> str:
     """A reason closed by the checks asked for and not made, cut at a word to fit (whole in the table's row)."""
-    from koenig_check.report.line_width import cut
-
     if not unmade:
         return text
-    return cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
+    return closed_cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
 
 
-def rounding_hint(max_relative: float, rtol: float) -> str:
+def rounding_hint(max_relative: float, rtol: float, cli: bool = False) -> str:
     """A hint when every difference is at the level a written file's rounding explains, else empty.
 
     Parameters
@@ -263,6 +360,9 @@ def rounding_hint(max_relative: float, rtol: float) -> str:
         The largest relative difference of the engines' energies.
     rtol : float
         The tolerance it exceeds.
+    cli : bool
+        Name the option as the command line spells it (``--rtol 1e-06``); by default as the Python API does
+        (``rtol=1e-06``: :func:`koenig_check.compare`, :func:`koenig_check.testing.assert_energy_parity`).
 
     Returns
     -------
@@ -271,9 +371,10 @@ def rounding_hint(max_relative: float, rtol: float) -> str:
     if not rtol < max_relative <= ROUNDING_LEVEL:
         return ""
     option = next(t for t in (1e-6, ROUNDING_LEVEL) if max_relative <= t)
+    spelt = f"--rtol {option:g}" if cli else f"rtol={option:g}"
     return (
         f"MuJoCo and Pinocchio differ by at most {max_relative:.2g} relative, what a file written with 6 "
-        f"significant digits explains: --rtol {option:g} accepts it"
+        f"significant digits explains: {spelt} accepts it"
     )
 
 
