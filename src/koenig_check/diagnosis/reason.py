@@ -262,6 +262,8 @@ def short_error(
     tries += [(h, 1, True, said) for h in heads[1:] for said in (shorts, briefs)]  # then the engine's detail
     tries += [(h, min(n, 1), False, briefs) for h in heads]  # then "and N more"
     tries += [(plain, 0, True, shorts)] if shorts else []  # what to do kept whole, the causes counted
+    if not shorts:  # no cause: the message, then without its details
+        tries = [(h, 0, False, shorts) for h in dict.fromkeys((head, *heads))]
     for h, k, counted, said_as in tries:
         said = said_as[:k] + ([more_causes(groups[k:])] if counted and len(shorts) > k else [])
         text = h + ("; root cause: " + "; ".join(said) if k else "")

@@ -138,9 +138,7 @@ def limitation_hint(source: ModelSource, reason: str) -> str:
     str
     """
     if "hfields are not supported" in reason:
-        return (
-            "give Pinocchio a copy without the <hfield> and its geoms: --pinocchio-model (pinocchio_model=...)"
-        )
+        return "give Pinocchio a copy without the <hfield> and its geoms: --pinocchio-model (pinocchio_model=...)"
     if "No such node (body)" in reason and source.format == "mjcf":
         try:
             world = parse_xml(source.path).getroot().find("worldbody")
