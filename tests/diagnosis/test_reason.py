@@ -130,3 +130,15 @@ def test_the_helper_reports_a_file_it_cannot_load_in_one_line() -> None:
 def test_a_dynamics_result_has_a_short_repr() -> None:
     text = repr(koenig_check.dynamics("gimbal.xml", n_poses=1, formulas=["exact"]))
     assert text.startswith("<DynamicsResult ") and "ok=True" in text and len(text) < 200
+
+
+def test_more_root_causes_end_the_last_cause_line_never_a_line_of_their_own() -> None:
+    from koenig_check.diagnosis.reason import cause_lines
+
+    roots = [
+        Finding(Kind.COMPILER, "mujoco", f"body b{k}", f"option {k} changes it", affects_energy=True, root_cause=True)
+        for k in range(5)
+    ]
+    lines = cause_lines(roots)
+    assert len(lines) == 3 and lines[-1].endswith("; and 2 more root causes"), lines
+    assert not any(line.startswith("and ") for line in lines)

@@ -162,7 +162,7 @@ def _unbalanced_links(path: str) -> list[str]:
 
 
 def _more(line: str) -> int:
-    found = re.search(r"; and (\d+) more root causes?\b", line)
+    found = re.search(r"\band (\d+) more (?:root )?causes?\b", line)  # root causes or other causes
     return int(found.group(1)) if found else 0
 
 
