@@ -153,9 +153,9 @@ def _load(
         joints = list(tops[0].joints) if len(tops) == 1 else []
         already = len(joints) == 1 and joints[0].type == mujoco.mjtJoint.mjJNT_FREE
         if len(tops) != 1 or (joints and not already):
-            names = ", ".join(b.name or "an unnamed one" for b in tops)
+            names = [b.name for b in tops]
             raise ModelLoadError(
-                f"{path}: floating=True needs exactly one top-level {what} without joints, found {len(tops)}: {names}"
+                f"{path}: floating=True needs exactly one top-level {what} without joints, found {names}"
             )
         if already:
             notes.append(
