@@ -277,8 +277,8 @@ TENDON = """<mujoco><compiler inertiafromgeom="false"/><worldbody>
     ("name", "content", "needles"),
     [
         ("mimic.urdf", MIMIC, ["joint j2", "mimic", "leader j1", "multiplier 2"]),
-        ("loop.xml", LOOP, ["equality close", "connect closes a loop", "['b', 'world']"]),
-        ("tendon.xml", TENDON, ["equality tie", "tendons ['couple']", "joints ['ja', 'jb']"]),
+        ("loop.xml", LOOP, ["equality close", "connect closes a loop", "(between b, world)"]),
+        ("tendon.xml", TENDON, ["equality tie", "tendons couple", "joints ja, jb"]),
     ],
 )
 def test_coupled_joints_and_loops_are_loaded_and_named(tmp_path: Path, name: str, content: str, needles: list) -> None:

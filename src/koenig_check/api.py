@@ -7,6 +7,7 @@ Its result is :class:`~koenig_check.run.cross_check.CrossCheck`; poses are drawn
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -306,7 +307,7 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
     model : str or path
         The model as the user gave it.
     label : str
-        Its label, which names the file: the path as given is left out when the line would not fit with it.
+        Its label, which names the file: the path (as given, or resolved from a name) is left out.
 
     Returns
     -------
@@ -318,8 +319,10 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
     def given(text: str) -> str:
         return as_given(text, [model])
 
-    def named(text: str) -> str:
-        return given(text).replace(f"{model}: ", "").replace(str(model), label)
+    def named(text: str) -> str:  # the label names the file: its path goes, as given or resolved from a name
+        text = given(text).replace(f"{model}: ", "").replace(str(model), label)
+        leading = re.match(r"/\S+?([^/\s]+)\.\w+: ", text)  # a source name's resolved file (menagerie:...:scene)
+        return text[leading.end() :] if leading and leading.group(1) in label else text
 
     width = reason.REASON_WIDTH - len(label) - 2
     whole = reason.short_error(err, 10**6, given).removeprefix(f"{label}: ")  # the file named once

@@ -188,14 +188,15 @@ class JointMismatch(KoenigCheckError, ValueError):  # noqa: N818 - the name the 
         self.only_in_mujoco = list(only_in_mujoco)
         self.only_in_pinocchio = list(only_in_pinocchio)
         self.kind_mismatch = list(kind_mismatch or [])
-        parts = []
-        if self.only_in_mujoco:
-            parts.append(f"only in MuJoCo: {self.only_in_mujoco}")
-        if self.only_in_pinocchio:
-            parts.append(f"only in Pinocchio: {self.only_in_pinocchio}")
-        if self.kind_mismatch:
-            parts.append(f"incompatible types: {self.kind_mismatch}")
+        named = (
+            ("only in MuJoCo", self.only_in_mujoco),
+            ("only in Pinocchio", self.only_in_pinocchio),
+            ("of incompatible types", self.kind_mismatch),
+        )
+        parts = [f"{what.removeprefix('of ')}: {', '.join(names)}" for what, names in named if names]
         super().__init__(f"{path}: joints do not match between the engines ({'; '.join(parts)})")
+        shown = [f"joints {what} ({_first_names(names)})" for what, names in named if names]  # a few names each
+        self.brief = f"{path}: {'; '.join(shown)}"
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Rebuild from the fields, not from the message (a worker process sends the error back pickled)."""
@@ -241,6 +242,12 @@ class NotPlaneParallelError(KoenigCheckError, ValueError):
 
 class PathDependentError(KoenigCheckError):
     """Raised when a formula's energy depends on the path, not on the state ``(q, q̇)``."""
+
+
+def _first_names(names: list[str], shown: int = 6) -> str:
+    """``a, b, c`` and, past ``shown`` names, how many more."""
+    more = f" (+{len(names) - shown} more)" if len(names) > shown else ""
+    return ", ".join(names[:shown]) + more
 
 
 def one_line(err: BaseException) -> str:

@@ -136,10 +136,11 @@ class Finding:
         str
         """
         text = f"{self.engine}: {self.element}: {self.summary}"
-        if self.values:
+        shown = {k: v for k, v in self.values.items() if not _empty(v)}  # an empty list says nothing
+        if shown:
             whole = self.kind in _WHOLE_VALUE_KINDS
             paired = _before_after(self.values)  # a value before and after a change, with digits that differ
-            text += " (" + ", ".join(f"{k} {paired.get(k) or _fmt(v, whole)}" for k, v in self.values.items()) + ")"
+            text += " (" + ", ".join(f"{k} {paired.get(k) or _fmt(v, whole)}" for k, v in shown.items()) + ")"
         if self.hint:
             text += f"; {self.hint}"
         return text
@@ -188,15 +189,24 @@ SHOWN_ITEMS = 6
 _WHOLE_VALUE_KINDS = frozenset({Kind.REPAIR})
 
 
+def _empty(value: Any) -> bool:
+    """A value that says nothing: an empty sequence or mapping, an empty string."""
+    return isinstance(value, (tuple, list, dict, set, frozenset, str)) and not value
+
+
 def _fmt(value: Any, whole: bool = False) -> str:
+    """A value for people: 6 significant digits; names listed ``a, b, c`` (never a Python repr)."""
     if isinstance(value, float):  # round-off printed as 0, as everywhere else (as_dict keeps the value)
         return format(value, ".6g") if whole else fmt(value, ".6g")
-    if isinstance(value, (tuple, list)) and len(value) > SHOWN_ITEMS:
-        head = ", ".join(repr(v) if isinstance(v, str) else _fmt(v, whole) for v in value[: SHOWN_ITEMS - 2])
-        return f"({head}, +{len(value) - SHOWN_ITEMS + 2} more)"
     if isinstance(value, (tuple, list)) and value and all(isinstance(v, float) for v in value):
-        inner = ", ".join(_fmt(v, whole) for v in value)  # 6 significant digits, as a single number
+        inner = ", ".join(_fmt(v, whole) for v in value)  # a vector: 6 significant digits, as a single number
         return f"[{inner}]" if isinstance(value, list) else f"({inner})"
+    if isinstance(value, (tuple, list, set, frozenset)):  # names (joints, bodies), line numbers: a plain list
+        items = list(value)
+        if len(items) > SHOWN_ITEMS:
+            head = ", ".join(_fmt(v, whole) for v in items[: SHOWN_ITEMS - 2])
+            return f"{head} (+{len(items) - SHOWN_ITEMS + 2} more)"
+        return ", ".join(_fmt(v, whole) for v in items)
     return str(value)
 
 

@@ -118,7 +118,7 @@ def _finish(check, out: str | None, extra_figures: dict | None = None, records=N
         print("\n" + file_listing(out, written))
     if check.ok:
         return 0
-    for line in check.reasons():  # one sentence per failing model, the details in the report
+    for line in check.reasons(cli=True):  # one sentence per failing model, the details in the report
         print(f"koenig-check: {line}", file=sys.stderr)
     return 1
 

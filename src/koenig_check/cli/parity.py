@@ -126,7 +126,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     label = unique_labels([args.model], options.floating, options.xacro_args)[0]
     line = short_reason(label, diagnosis.findings)  # one sentence: the details are in the table above
     if line == f"{label}: ":  # every difference at the level of a written file's rounding: the option that accepts it
-        hint = rounding_hint(report.largest_relative(), args.rtol)
+        hint = rounding_hint(report.largest_relative(), args.rtol, cli=True)
         line += hint or f"import differences, each at most {ROUNDING_LEVEL:g} relative: a written file's rounding"
     print(f"koenig-check: {line}", file=sys.stderr)
     return 1

@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 from koenig_check.diagnosis.cause_effect import by_effect
+from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, clause, element_words, more_causes
+from koenig_check.diagnosis.one_line import closed_cut, short_error
+
+__all__ = ["closed_cut", "short_error"]  # their home is one_line; imported from here by earlier code
 from koenig_check.findings import Finding, Kind, root_causes
 
 #: Kinds of per-segment import differences (symptoms, after the root causes in a reason).
@@ -33,9 +37,11 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
     Root causes that change the energy come first (a repaired or compiler-altered inertia, a construct one
     parser ignores), those whose values show their effect ordered by it, the largest first
     (:func:`koenig_check.diagnosis.cause_effect.by_effect`); then the per-segment import differences no root
-    cause explains, the largest relative difference first; then each engine's inconsistencies with itself.
+    cause explains (a symptom on segments a root cause names is its consequence, not another cause), the
+    largest relative difference first; then each engine's inconsistencies with itself.
     A symptom whose relative difference is at the level of a written file's rounding
-    (:data:`ROUNDING_LEVEL`) is never listed.
+    (:data:`ROUNDING_LEVEL`) is never listed, nor the findings of an optional engine (Drake) that no
+    three-engine verdict blames: it agrees with an engine, its import is not why they differ.
 
     Parameters
     ----------
@@ -45,9 +51,12 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
     -------
     list of Finding
     """
-    energy = [f for f in findings if f.affects_energy]
+    blamed = _blamed(findings)
+    energy = [f for f in findings if f.affects_energy and (f.engine not in _optional() or f.engine in blamed)]
     roots = by_effect([f for f in root_causes(energy) if f.affects_energy])  # the largest change of energy first
+    explained = {s for f in roots for s in f.segments}
     symptoms = [f for f in energy if f.kind in _SYMPTOMS and f not in roots]
+    symptoms = [f for f in symptoms if not (f.segments and set(f.segments) <= explained)]
     symptoms = [f for f in symptoms if "relative difference" not in f.values or _relative(f) > ROUNDING_LEVEL]
     symptoms.sort(key=lambda f: -_relative(f))
     selves = [f for f in energy if f.kind is Kind.SELF_CONSISTENCY and f not in roots]
@@ -56,6 +65,32 @@ def ordered_causes(findings: Sequence[Finding]) -> list[Finding]:
         if f not in chosen:
             chosen.append(f)
     return chosen
+
+
+def _optional() -> tuple[str, ...]:
+    from koenig_check.engines.registry import optional
+
+    return tuple(optional())
+
+
+def _blamed(findings: Sequence[Finding]) -> set[str]:
+    """The optional engines a three-engine verdict blames: the one that departs, or every one when all differ."""
+    engines = {f.engine for f in findings if f.kind is Kind.VERDICT}
+    return set(_optional()) if "all" in engines else engines
+
+
+def root_cause_groups(findings: Sequence[Finding]) -> list[CauseGroup]:
+    """The causes of :func:`ordered_causes`, the same cause on several elements made one.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+
+    Returns
+    -------
+    list of CauseGroup
+    """
+    return cause_groups(ordered_causes(findings))
 
 
 def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
@@ -76,7 +111,10 @@ def disagreement_cause(findings: Sequence[Finding], limit: int = 3) -> str:
 
 
 def cause_lines(findings: Sequence[Finding], limit: int = 3) -> list[str]:
-    """The causes of :func:`disagreement_cause`, one item each, then how many more (for a view of several lines).
+    """The causes of :func:`disagreement_cause`, one item each, the last saying how many more (a view of lines).
+
+    The same cause found on several elements is one item naming them (:func:`root_cause_groups`); the last item
+    ends with ``; and N more root causes`` when more were found.
 
     Parameters
     ----------
@@ -87,10 +125,11 @@ def cause_lines(findings: Sequence[Finding], limit: int = 3) -> list[str]:
     -------
     list of str
     """
-    chosen = ordered_causes(findings)
-    lines = [f.message() for f in chosen[:limit]]
-    if len(chosen) > limit:
-        lines.append(f"and {len(chosen) - limit} more finding(s)")
+    groups = root_cause_groups(findings)
+    lines = [g.message() for g in groups[:limit]]
+    more = more_causes(groups[limit:])
+    if more:
+        lines[-1] += f"; {more}"
     return lines
 
 
@@ -107,15 +146,7 @@ def short_cause(f: Finding) -> str:
     -------
     str
     """
-    element = f.element
-    more = re.search(r" \(\+(\d+) more\)$", element)
-    listed = element[: more.start()] if more else element
-    if ", " in listed:
-        first, rest = listed.split(", ", 1)
-        extra = rest.count(", ") + 1 + (int(more.group(1)) if more else 0)
-        element = f"{first} (+{extra} more)"
-    clause = re.sub(r" \([^)]*\)", "", f.summary.split("; ")[0])
-    return f"{element}: {clause}"
+    return f"{element_words(f)}: {clause(f)}"
 
 
 def _departures(findings: Sequence[Finding]) -> str:
@@ -136,12 +167,13 @@ def short_reason(
 ) -> str:
     """Why a model fails, in one sentence of at most :data:`REASON_WIDTH` characters.
 
-    The engine that departs first, then at most ``limit`` root causes, the most important first, and how many
-    more, then the engines' gap, and last a check asked for and not made, with the engine's own reason (cut at
-    a word when it does not fit: the verdict table's row, ``summary.md`` and the report hold it whole, and
-    ``koenig-check parity`` the details).  To fit, the gap loses its pose,
-    then the gap goes (the verdict table shows it), then causes after the first go ("and N more"), and last the
-    first cause is cut at a word ("…").
+    The engine that departs first, then at most ``limit`` root causes, the most important first (the same cause
+    on several elements is one cause naming them), and how many more (``; and 2 more root causes``), then the
+    engines' gap, and last a check asked for and not made, with the engine's own reason (cut at a word when it
+    does not fit: the verdict table's row, ``summary.md`` and the report hold it whole, and ``koenig-check
+    parity`` the details).  To fit, whole parts go, never half of one: the gap loses its pose, then the gap goes
+    (the verdict table shows it), then the causes after the first ("and N more"), then "and N more"; only then is
+    the line cut at a word ("…"), never inside a parenthesis.
 
     Parameters
     ----------
@@ -158,8 +190,6 @@ def short_reason(
     -------
     str
     """
-    from koenig_check.report.line_width import cut
-
     unable_findings = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
     unmade = "; ".join(f.summary for f in unable_findings)  # each summary names its engine and gives its reason
     head = _departures(findings)
@@ -167,78 +197,24 @@ def short_reason(
         hints = "; ".join(f.hint for f in unable_findings if f.hint)
         text = f"{label}: {unmade}"
         hinted = f"{text}; {hints}" if hints else text
-        return hinted if len(hinted) <= width else cut(text, width)  # whole: the table row
+        return hinted if len(hinted) <= width else closed_cut(text, width)  # whole: the table row
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
-    causes = [short_cause(f) for f in ordered_causes(findings) if f.engine not in unable]
+    groups = cause_groups(f for f in ordered_causes(findings) if f.engine not in unable)
+    causes = [g.short() for g in groups]
     gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
     if head or causes:  # the gap may go when something else says why (the verdict table shows it)
         gaps.append("")
     room = min(len(unmade) + 2, _UNMADE_ROOM) if unmade else 0  # kept for the check not made, which closes the line
+    tries = [(n, g, True) for n in range(min(limit, len(causes)), 0, -1) for g in gaps]
+    tries += [(1, "", False)] if causes else [(0, g, False) for g in gaps]
     text = ""
-    for n in range(min(limit, len(causes)), 0 if causes else -1, -1):
-        for g in gaps:
-            said = "; ".join(causes[:n]) + (f" and {len(causes) - n} more" if len(causes) > n else "")
-            parts = [head, f"root cause: {said}" if n else "", g]
-            text = f"{label}: " + "; ".join(t for t in parts if t)
-            if len(text) + room <= width:
-                return _closed(text, unmade, width)
-    text = text[: width - room - 1].rsplit(" ", 1)[0] + "…"  # one long cause cut at a word
-    return _closed(text, unmade, width)
-
-
-def short_error(
-    err: BaseException, width: int = REASON_WIDTH, rename: Callable[[str], str] | None = None, limit: int = 3
-) -> str:
-    """An error in one sentence of at most ``width`` characters: its message, then at most ``limit`` root causes.
-
-    The message is the error's brief form when it has one (:attr:`KoenigCheckError.brief`), else its message
-    without the root causes appended to it; the root causes follow, those that change the energy first, each
-    once: in a few words each (:func:`short_cause`), or, to fit, the first ones so and the others by their
-    element, and how many more.  To fit further the message is cut at a word (``…``), the causes kept.  The
-    whole message stays ``str(err)`` (the report's failures, ``--debug``).
-
-    Parameters
-    ----------
-    err : BaseException
-    width : int
-    rename : callable, optional
-        Applied to the message and the causes (e.g. a resolved path written as the user gave it).
-    limit : int
-
-    Returns
-    -------
-    str
-    """
-    from koenig_check.exceptions import one_line
-    from koenig_check.report.line_width import cut
-
-    def tidy(text: str) -> str:
-        text = " ".join(text.split())
-        return rename(text) if rename else text
-
-    causes = sorted(getattr(err, "causes", ()), key=lambda c: not c.affects_energy)  # energy first, stable
-    head = tidy(getattr(err, "brief", "") or (getattr(err, "head", "") if causes else "") or one_line(err))
-    named: dict[str, str] = {}  # a cause in a few words -> by its element alone
-    for c in causes:
-        name = tidy(short_cause(c))
-        if name not in named and name not in head:
-            named[name] = tidy(f"{c.element}")
-    if not named:
-        return cut(head, width)
-    shorts, elements = list(named), list(named.values())
-    n = min(limit, len(shorts))
-    more = f" and {len(shorts) - n} more" if len(shorts) > n else ""
-    for k in range(n, -1, -1):  # every cause up to the limit: the first k in a few words, the others by element
-        tail = "; root cause: " + "; ".join(shorts[:k] + elements[k:n]) + more
-        if len(head) + len(tail) <= width:
-            return head + tail
-        if len(tail) <= width - _SHORTEST_HEAD:  # the message cut at a word, the causes kept
-            return cut(head, width - len(tail)) + tail
-    return cut(cut(head, _SHORTEST_HEAD) + tail, width)
-
-
-#: The fewest characters of an error's own message kept before its root causes.
-_SHORTEST_HEAD = 40
+    for n, g, counted in tries:
+        said = "; ".join(causes[:n] + ([more_causes(groups[n:])] if counted and len(causes) > n else []))
+        parts = [head, f"root cause: {said}" if n else "", g]
+        text = f"{label}: " + "; ".join(t for t in parts if t)
+        if len(text) + room <= width:
+            return _closed(text, unmade, width)
+    return _closed(closed_cut(text, width - room), unmade, width)  # the first cause too long: cut at a word
 
 
 #: The room a reason keeps for a check asked for and not made (the rest of its text is in the verdict table's row).
@@ -247,18 +223,16 @@ _UNMADE_ROOM = 80
 
 def _closed(text: str, unmade: str, width: int) -> str:
     """A reason closed by the checks asked for and not made, cut at a word to fit (whole in the table's row)."""
-    from koenig_check.report.line_width import cut
-
     if not unmade:
         return text
-    return cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
+    return closed_cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
 
 
-def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and Pinocchio") -> str:
+def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and Pinocchio", cli: bool = False) -> str:
     """A hint when every difference is at the level a written file's rounding explains, else empty.
 
     A number written with 6 significant digits is rounded by up to 5e-6 of itself, and an energy or a mass
-    matrix, quadratic in lengths, by up to about twice that: the hint names ``--rtol`` :data:`ROUNDING_LEVEL`,
+    matrix, quadratic in lengths, by up to about twice that: the hint names the tolerance :data:`ROUNDING_LEVEL`,
     the bound that holds at every pose, never a smaller tolerance that the poses drawn happen to meet.
 
     Parameters
@@ -269,6 +243,9 @@ def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and P
         The tolerance it exceeds.
     between : str
         What differs (``"MuJoCo and Pinocchio"``, ``"the original and the export"``).
+    cli : bool
+        Name the option as the command line spells it (``--rtol 1e-06``); by default as the Python API does
+        (``rtol=1e-06``: :func:`koenig_check.compare`, :func:`koenig_check.testing.assert_energy_parity`).
 
     Returns
     -------
@@ -276,9 +253,10 @@ def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and P
     """
     if not rtol < max_relative <= ROUNDING_LEVEL:
         return ""
+    spelt = f"--rtol {ROUNDING_LEVEL:g}" if cli else f"rtol={ROUNDING_LEVEL:g}"
     return (
         f"{between} differ by at most {max_relative:.2g} relative, what a file written with 6 significant "
-        f"digits explains (up to 5e-06 per number): --rtol {ROUNDING_LEVEL:g} accepts it"
+        f"digits explains (up to 5e-06 per number): {spelt} accepts it"
     )
 
 

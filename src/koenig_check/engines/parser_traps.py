@@ -145,8 +145,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 Kind.IGNORED_CONSTRUCT,
                 "pinocchio",
                 f"body {body_label(body, world_bodies)}",
-                f"root body after the first ({body_label(world_bodies[0], world_bodies)}) under <worldbody>: "
-                "Pinocchio's MJCF parser reads only the first",
+                f"Pinocchio's MJCF parser reads only the first root body ({body_label(world_bodies[0], world_bodies)})",
                 values={"joints": joints, "mujoco": "loaded", "pinocchio": "not read"},
                 affects_energy=bool(joints),
                 root_cause=True,

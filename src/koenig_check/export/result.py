@@ -166,7 +166,7 @@ class Proof:
 
             sizes = [max(e.mass_matrix, e.energy, e.inverse_dynamics) for e in self.engines if e.compared]
             sizes += [s.relative for s in self.segments]
-            hint = rounding_hint(max(sizes), self.rtol, between="the original and the export")
+            hint = rounding_hint(max(sizes), self.rtol, between="the original and the export", cli=True)
             out += [hint] if hint else []
         return out
 

@@ -78,7 +78,7 @@ def format_parity(report: ParityReport, model: str = "") -> str:
     if report.findings:
         lines.append("\nfindings:")
         lines += [f"  - {f}" for f in report.findings]
-    hint = "" if report.clean else rounding_hint(report.largest_relative(), report.rtol)
+    hint = "" if report.clean else rounding_hint(report.largest_relative(), report.rtol, cli=True)
     verdict = "no import difference" if report.clean else hint or report.headline(brief=True)
     lines.append(f"\nverdict: {verdict}")
     return fold_text("\n".join(lines))

@@ -106,6 +106,7 @@ _ROW_REASON = 1000
 def _cause(check: CrossCheck, model: str) -> str:
     from koenig_check.diagnosis.reason import REASON_WIDTH, changes_line, lead_line, short_reason
     from koenig_check.engines.mujoco.meshes import dropped_meshes_line
+    from koenig_check.run.summaries import gap_words
 
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):
         if parity.model == model:
@@ -113,7 +114,8 @@ def _cause(check: CrossCheck, model: str) -> str:
             if lead_line(comparison.findings) or not parity.agrees:  # the one-line reason, without the label
                 unmade = any(f.kind is Kind.ENGINE_UNABLE for f in comparison.findings)  # its reason whole
                 width = _ROW_REASON if unmade else REASON_WIDTH
-                text = short_reason(model, comparison.findings, parity.gap, width=width)
+                gap = gap_words(comparison, check.rtol, cli=True) if not parity.agrees else ""  # --rtol named
+                text = short_reason(model, comparison.findings, gap, width=width)
                 short = text.removeprefix(f"{model}: ")
             changes = changes_line(comparison.findings)  # a model changed to be loaded says so, agreeing or not
             dropped = dropped_meshes_line(comparison.findings)  # so does one loaded without some of its meshes
@@ -221,8 +223,9 @@ def terminal_table(check: CrossCheck) -> str:
             cells = f"{status:8s}  {_number(p.rigid_max_rel):>10s}  {_number(exact):>12s}  "
         lines += _row(p.model, mw, cells, _cause(check, p.model) or "—")
     blank = f"{'':>13s}  " + "  ".join(f"{'':>{widths[e]}s}" for e in ran) if ran else f"{'':>10s}"
-    for model, reason in check.failures:
-        lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", reason)
+    for model, reason in check.failures:  # the short failure line, the file as the user gave it
+        short = check.failure_lines.get(model, reason).removeprefix(f"{model}: ")
+        lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the three engines differ most")
     if not check.summaries:

@@ -77,13 +77,18 @@ class CrossCheck(ResultLookup):
         self.parities.append(parity)
         return parity
 
-    def reasons(self) -> list[str]:
+    def reasons(self, cli: bool = False) -> list[str]:
         """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
 
         A model that could not be checked gives its error and at most three root causes (:attr:`failure_lines`;
         the engine's whole reason is in :attr:`failures`); a disagreeing model gives the check asked for and not
         made or the engine that departs, the gap, and at most three root causes, the most important first,
         within 200 characters (the details are in ``koenig-check parity``, ``summary.md`` and the report).
+
+        Parameters
+        ----------
+        cli : bool
+            Options named as the command line spells them (``--rtol 1e-06``), else as the API does (``rtol=1e-06``).
 
         Returns
         -------
@@ -94,7 +99,8 @@ class CrossCheck(ResultLookup):
         for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
             lead = reason.lead_line(comparison.findings)
             if lead or not agreement.agrees:
-                text = reason.short_reason(agreement.model, comparison.findings, agreement.gap)
+                gap = summaries.gap_words(comparison, self.rtol, cli) if not agreement.agrees else ""
+                text = reason.short_reason(agreement.model, comparison.findings, gap)
                 unused = reason.engine_usage(comparison.findings)
                 if not lead and unused and len(text) + len(unused) + 2 <= reason.REASON_WIDTH:
                     text += f"; {unused}"

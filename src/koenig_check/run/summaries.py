@@ -216,7 +216,24 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
     )
 
 
-def _gap(p: Any, rtol: float) -> str:
+def gap_words(comparison: ModelComparison, rtol: float = DEFAULT_RTOL, cli: bool = False) -> str:
+    """The engines' disagreement on a model in a few words (empty when they agree), the option spelt for the CLI.
+
+    Parameters
+    ----------
+    comparison : ModelComparison
+    rtol : float
+    cli : bool
+        The rounding hint names ``--rtol`` (the command line), else ``rtol=`` (the API).
+
+    Returns
+    -------
+    str
+    """
+    return _gap(comparison.stats.parity, rtol, cli) if comparison.stats is not None else ""
+
+
+def _gap(p: Any, rtol: float, cli: bool = False) -> str:
     """The engines' disagreement in a few words, with the rounding hint when a written file's rounding explains it."""
     parts = []
     if p.rigid.value > rtol:
@@ -224,7 +241,7 @@ def _gap(p: Any, rtol: float) -> str:
     if p.armature_scaled > rtol:
         parts.append(f"their armature energies by {p.armature.value:.2g} J")
     parts += [f"{name}'s exact differs from its own energy by {v:.2g}" for name, v in p.self_rel.items() if v > rtol]
-    hint = rounding_hint(float(p.rigid.value), rtol) if len(parts) == 1 else ""
+    hint = rounding_hint(float(p.rigid.value), rtol, cli=cli) if len(parts) == 1 else ""
     return hint or ", ".join(parts)  # within a written file's rounding, the hint says the gap and what to do
 
 

@@ -281,12 +281,12 @@ def resolve_model(
         hits = [s for s in catalogue if s.origin == "example-robot-data" and s.name.split("/")[-1] == name]
     if len(hits) > 1:
         options = sorted(typed_name(s) for s in hits)
-        raise ModelLoadError(f"{text}: ambiguous model name, it names {len(hits)} models: {options}")
+        raise ModelLoadError(f"{text}: ambiguous model name, it names {len(hits)} models: {', '.join(options)}")
     if len(hits) == 1:
         return hits[0]
     looks_like_file = bool(suffix) or "/" in text or os.sep in text
     close = suggest_names(name, strict=looks_like_file)
-    hint = f"; did you mean {close}?" if close else ""
+    hint = f"; did you mean {' or '.join(close)}?" if close else ""
     what = "no such file" if looks_like_file else "no such file and no model of that name"
     raise ModelLoadError(f"{text}: {what} (`koenig-check models` lists every name){hint}")
 

@@ -28,7 +28,7 @@ def resolved_forms(given: str | os.PathLike[str]) -> list[str]:
     text = os.fspath(given)
     path = Path(text).expanduser()
     forms = {str(path.absolute()), str(path.resolve())}
-    if ":" not in text and not path.exists() and os.sep not in text:  # a catalogue name (not a source to fetch)
+    if ":" not in text and not path.exists():  # a catalogue name (``go1``, ``anymal_b_simple/anymal``), not a source
         try:
             from koenig_check.sources.catalogue import resolve_model
 

@@ -134,11 +134,11 @@ def match_drake_joints(mj_model: mujoco.MjModel, plant: Any, path: str) -> list[
     if only_mj or only_drake or mismatch:
         parts = []
         if only_mj:
-            parts.append(f"only in MuJoCo: {only_mj}")
+            parts.append(f"only in MuJoCo: {', '.join(only_mj)}")
         if only_drake:
-            parts.append(f"only in Drake: {only_drake}")
+            parts.append(f"only in Drake: {', '.join(only_drake)}")
         if mismatch:
-            parts.append(f"incompatible types: {mismatch}")
+            parts.append(f"incompatible types: {', '.join(mismatch)}")
         raise DrakeLoadError(f"{path}: joints do not match between MuJoCo and Drake ({'; '.join(parts)})")
     return pairs
 

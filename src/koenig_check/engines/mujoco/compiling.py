@@ -124,8 +124,8 @@ def repair_finding(repair: Repair, message: str, what: str) -> Finding:
         Kind.REPAIR,
         "mujoco",
         f"{what} {repair.body}",
-        "mass and principal moments raised to MuJoCo's bounds and balanced (A + B >= C) so that MuJoCo accepts "
-        "them; Pinocchio keeps the file's values",
+        "inertia changed so that MuJoCo accepts it (mass and principal moments raised to MuJoCo's bounds and "
+        "balanced, A + B >= C); Pinocchio keeps the file's values",
         {
             "mass before": repair.mass[0],
             "mass after": repair.mass[1],

@@ -112,9 +112,10 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
     except (RuntimeError, ValueError) as exc:
         reason = parser_reason(exc, parser_output)
         hint = limitation_hint(source, reason)
-        raise ModelLoadError(
-            f"{path}: Pinocchio cannot parse the file: {reason}" + (f" ({hint})" if hint else "")
-        ) from exc
+        error = ModelLoadError(f"{path}: Pinocchio cannot parse the file: {reason}" + (f" ({hint})" if hint else ""))
+        if "hfields" in reason:  # one line: what to do stays, not in parentheses (where an engine's detail is)
+            error.brief = f"{path}: Pinocchio cannot parse the file: {reason}; {hint}"
+        raise error from exc
     notes += [
         Finding(Kind.LOAD, "pinocchio", "model", f"parser says: {line}")
         for line in parser_output
@@ -137,10 +138,7 @@ def limitation_hint(source: ModelSource, reason: str) -> str:
     str
     """
     if "hfields are not supported" in reason:
-        return (
-            "Pinocchio's MJCF parser does not read height fields: give Pinocchio a copy of the file without the "
-            "<hfield> asset and its geoms with --pinocchio-model (pinocchio_model=...)"
-        )
+        return "give Pinocchio a copy without the <hfield> and its geoms: --pinocchio-model (pinocchio_model=...)"
     if "No such node (body)" in reason and source.format == "mjcf":
         try:
             world = parse_xml(source.path).getroot().find("worldbody")

@@ -1,0 +1,187 @@
+"""Root causes said once: the same cause found on several elements is one cause naming them all.
+
+A repair of four links, a fusestatic drop on two feet, five root bodies Pinocchio does not read: each is one root
+cause (one thing to fix in the file or one option), found on several elements.  A reason counts and names causes,
+not the elements they were found on.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from koenig_check.findings import Finding, _fmt, shown_names
+
+#: The plural of an element's tag (``body ball``, ``body peg`` -> ``bodies ball, peg``).
+_PLURAL = {"body": "bodies", "class": "classes", "mesh": "meshes", "compiler": "compiler"}
+#: Names listed in a group's element before "(+N more)".
+SHOWN_ELEMENTS = 4
+#: Joints listed in a cause that loses them before "(+N more)".
+SHOWN_JOINTS = 6
+
+
+def clause(f: Finding) -> str:
+    """A finding's summary in a few words: its first clause, without parentheses (which hold its values).
+
+    Parameters
+    ----------
+    f : Finding
+
+    Returns
+    -------
+    str
+    """
+    return re.sub(r" \([^()]*\)", "", f.summary.split("; ")[0])
+
+
+def element_words(f: Finding) -> str:
+    """A finding's element, one that lists several names by the first and how many more.
+
+    Parameters
+    ----------
+    f : Finding
+
+    Returns
+    -------
+    str
+    """
+    element = f.element
+    more = re.search(r" \(\+(\d+) more\)$", element)
+    listed = element[: more.start()] if more else element
+    if ", " in listed:
+        first, rest = listed.split(", ", 1)
+        extra = rest.count(", ") + 1 + (int(more.group(1)) if more else 0)
+        element = f"{first} (+{extra} more)"
+    return element
+
+
+@dataclass(frozen=True)
+class CauseGroup:
+    """One cause: findings of the same kind, engine, summary and hint, on one element or several.
+
+    Attributes
+    ----------
+    findings : tuple of Finding
+        In the order the causes were ranked; the first is the most important.
+    """
+
+    findings: tuple[Finding, ...]
+
+    @property
+    def root_cause(self) -> bool:
+        """Whether it is a root cause (a per-segment symptom is not)."""
+        return self.findings[0].root_cause
+
+    def elements(self) -> str:
+        """The elements concerned: ``link base``, ``links link_3.0, link_7.0, link_11.0, link_15.0``."""
+        if len(self.findings) == 1:
+            return element_words(self.findings[0])
+        tags = {f.element.split(" ", 1)[0] for f in self.findings}
+        simple = all(" " in f.element and ", " not in f.element for f in self.findings)
+        if len(tags) == 1 and simple:
+            tag = tags.pop()
+            names = [f.element.split(" ", 1)[1] for f in self.findings]
+            return f"{_PLURAL.get(tag, tag + 's')} {shown_names(names, SHOWN_ELEMENTS)}"
+        return shown_names([element_words(f) for f in self.findings], SHOWN_ELEMENTS)
+
+    def lost_joints(self) -> list[str]:
+        """The joints the engine concerned does not read because of this cause (``joints`` and ``not read``)."""
+        joints: list[str] = []
+        for f in self.findings:
+            if f.values.get(f.engine) == "not read":
+                listed = f.values.get("joints", ())
+                joints += [j for j in listed if isinstance(j, str) and j not in joints]
+        return joints
+
+    def short(self, joints: bool = True, brief: bool = False) -> str:
+        """The cause in a few words: its elements, the first clause of its summary, and the joints it loses.
+
+        Parameters
+        ----------
+        joints : bool
+            Name the joints it loses (False: a message before it names them).
+        brief : bool
+            Only what the summary says before its first colon (``<include> ignored by Pinocchio's MJCF parser``),
+            without the joints it loses, for a line that cannot hold more.
+
+        Returns
+        -------
+        str
+        """
+        said = clause(self.findings[0])
+        text = f"{self.elements()}: {said.split(': ')[0] if brief else said}"
+        lost = self.lost_joints() if joints and not brief else []
+        if lost:
+            from koenig_check.engines.registry import label
+
+            which = "joint" if len(lost) == 1 else "joints"
+            text += f", so {label(self.findings[0].engine)} lacks {which} {shown_names(lost, SHOWN_JOINTS)}"
+        return text
+
+    def message(self) -> str:
+        """The cause in full: engine, elements, summary, the values the elements share, and the hint.
+
+        One finding gives its own :meth:`Finding.message`; several give the values equal on all of them (the
+        values of each are in ``koenig-check parity`` and the report).
+
+        Returns
+        -------
+        str
+        """
+        first = self.findings[0]
+        if len(self.findings) == 1:
+            return first.message()
+        text = f"{first.engine}: {self.elements()}: {first.summary}"
+        shared = {k: v for k, v in first.values.items() if all(f.values.get(k) == v for f in self.findings)}
+        shown = {k: _fmt(v) for k, v in shared.items() if _fmt(v)}
+        if shown:
+            text += " (" + ", ".join(f"{k} {v}" for k, v in shown.items()) + ")"
+        lost = self.lost_joints()
+        if lost:
+            text += f"; lacks joints {shown_names(lost, SHOWN_JOINTS)}"
+        if first.hint:
+            text += f"; {first.hint}"
+        return text
+
+
+def _key(f: Finding) -> tuple[str, str, str, str]:
+    return (f.kind.value, f.engine, clause(f), f.hint)
+
+
+def cause_groups(causes: Iterable[Finding]) -> list[CauseGroup]:
+    """Causes ranked most important first, the same cause on several elements made one (root causes only).
+
+    Parameters
+    ----------
+    causes : iterable of Finding
+        Ranked, e.g. by :func:`koenig_check.diagnosis.reason.ordered_causes`.
+
+    Returns
+    -------
+    list of CauseGroup
+        In the order of each cause's first finding; a per-segment symptom stays a cause of its own (its values
+        rank it).
+    """
+    groups: dict[object, list[Finding]] = {}
+    for i, f in enumerate(causes):
+        key: object = _key(f) if f.root_cause else i
+        groups.setdefault(key, []).append(f)
+    return [CauseGroup(tuple(found)) for found in groups.values()]
+
+
+def more_causes(rest: Sequence[CauseGroup]) -> str:
+    """``and 2 more root causes`` for the causes not named (empty when none).
+
+    Parameters
+    ----------
+    rest : sequence of CauseGroup
+
+    Returns
+    -------
+    str
+    """
+    if not rest:
+        return ""
+    noun = "root cause" if all(g.root_cause for g in rest) else "cause"
+    return f"and {len(rest)} more {noun}{'s' if len(rest) > 1 else ''}"

@@ -1,0 +1,41 @@
+"""An error in one line: whole parts dropped in order, a cut only as the last resort and never inside brackets."""
+
+from __future__ import annotations
+
+import pytest
+
+from koenig_check.diagnosis.one_line import closed_cut, short_error
+from koenig_check.exceptions import ModelLoadError
+from koenig_check.findings import Finding, Kind
+
+
+@pytest.mark.parametrize("width", range(20, 90, 7))
+def test_a_cut_never_leaves_a_bracket_open(width: int) -> None:
+    text = "arm.urdf: link 'base': MuJoCo rejects its inertia (error 'inertia must be positive' [in fullinertia]) here"
+    line = closed_cut(text, width)
+    assert len(line) <= width and line.endswith("…")
+    assert line.count("(") == line.count(")") and line.count("[") == line.count("]"), line
+
+
+def _error(message: str, causes: list[Finding]) -> ModelLoadError:
+    err = ModelLoadError(message)
+    err.attach_causes(causes)
+    return err
+
+
+def _root(element: str, summary: str) -> Finding:
+    return Finding(Kind.IGNORED_CONSTRUCT, "pinocchio", element, summary, affects_energy=True, root_cause=True)
+
+
+def test_the_engines_detail_goes_whole_before_anything_is_cut() -> None:
+    detail = "(the engine's own words, " + "long " * 20 + "and more)"
+    err = _error(f"arm.xml: Pinocchio cannot parse the file {detail}; do this (option=1)", [_root("body b", "b lost")])
+    line = short_error(err, 100)
+    assert line == "arm.xml: Pinocchio cannot parse the file; do this; root cause: body b: b lost"
+
+
+def test_causes_beyond_the_limit_are_counted_as_root_causes() -> None:
+    causes = [_root(f"body b{k}", f"construct {k} ignored by the parser") for k in range(5)]
+    line = short_error(_error("arm.xml: joints do not match", causes), 130)
+    assert line.endswith("; and 3 more root causes") or line.endswith("; and 4 more root causes"), line
+    assert "root cause: body b0: construct 0 ignored by the parser" in line
