@@ -71,7 +71,7 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         print("\n" + file_listing(args.out, written))
     if result.ok:
         return 0
-    line = as_given(f"koenig-check: {result.reason()}", [args.model])  # the reason says which check failed
+    line = as_given(f"koenig-check: {result.reason(cli=True)}", [args.model])  # the reason says which check failed
     if len(line) > LINE_LIMIT:  # one line: the file by its name, the details in the table above
         line = cut(as_given(line, [args.model], short=True), LINE_LIMIT)
     print(line, file=sys.stderr)

@@ -168,8 +168,18 @@ class DynamicsResult:
         """The checks asked for and not made: an engine the user named could not check the model."""
         return [f for f in self.findings if f.kind is Kind.ENGINE_UNABLE]
 
-    def reason(self) -> str:
-        """One line: why the check failed, or ``""``."""
+    def reason(self, cli: bool = False) -> str:
+        """One line: why the check failed, or ``""``.
+
+        Parameters
+        ----------
+        cli : bool
+            Name an option as the command line spells it (``--rtol``); by default as Python does (``rtol=``).
+
+        Returns
+        -------
+        str
+        """
         if self.unmade():
             return f"{self.model}: " + "; ".join(f.message() for f in self.unmade())
         if "exact" in self.refusals:
@@ -183,7 +193,7 @@ class DynamicsResult:
             from koenig_check.diagnosis.reason import rounding_hint
 
             worst = max(bad, key=lambda d: d.max_rel_error)
-            hint = rounding_hint(worst.max_rel_error, max(self.tolerance(d) for d in bad))
+            hint = rounding_hint(worst.max_rel_error, max(self.tolerance(d) for d in bad), cli=cli)
             if hint:
                 return f"{self.model}: {hint}"
         who = "engines disagree" if e.formula == ENGINE_PARITY else f"exact disagrees with an engine by {e.route}"

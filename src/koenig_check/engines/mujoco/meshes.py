@@ -81,13 +81,14 @@ def mass_mesh_error(path: Path, mesh: mujoco.MjsMesh, reason: str, geoms: list[t
     ModelLoadError
     """
     geom, body = geoms[0]
+    owner = f"body {body!r}" if body else "an unnamed body"
     named = f"geom {geom!r}" if geom else f"a geom of mesh {mesh.name!r}"
     more = f" (+{len(geoms) - 1} more geom(s))" if len(geoms) > 1 else ""
     file = Path(mesh.file)
     if file.is_absolute() and file.is_relative_to(Path(path).parent):  # as written, beside the model
         file = file.relative_to(Path(path).parent)
     return ModelLoadError(
-        f"{path}: mesh file '{file}' {reason}; {named} of body {body!r}{more} takes its mass and inertia from it"
+        f"{path}: mesh file '{file}' {reason}; {named} of {owner}{more} takes its mass and inertia from it"
     )
 
 
