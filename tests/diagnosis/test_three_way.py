@@ -185,7 +185,9 @@ def test_an_inertia_drake_replaces_takes_drake_out_of_the_vote() -> None:
         TIEBREAK / "unbalanced_inertia.urdf", n_poses=2, formulas=["exact"], repair_inertia=True
     )
     assert not _verdicts(check)  # Drake consulted (its finding below), and no vote
-    assert check.reason().startswith("unbalanced_inertia.urdf: root cause: link arm: inertia changed so that MuJoCo accepts")
+    assert check.reason().startswith(
+        "unbalanced_inertia.urdf: root cause: link arm: inertia changed so that MuJoCo accepts"
+    )
     replaced = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.INERTIA]
     assert [f.element for f in replaced] == ["link arm"] and replaced[0].segments == ("swing",)
     assert replaced[0].values["moments in the file"] == pytest.approx([0.1, 0.1, 0.25], rel=1e-12)
