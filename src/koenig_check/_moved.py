@@ -38,6 +38,7 @@ MOVED: dict[str, str] = {
     "koenig_check.report_content": "koenig_check.report.content",
     "koenig_check.report_html": "koenig_check.report.html",
     "koenig_check.verdict": "koenig_check.report.terminal",
+    "koenig_check.report.line_width": "koenig_check.line_width",
     "koenig_check.validate": "koenig_check.modelfile.validate",
     "koenig_check.pytest_plugin": "koenig_check.testing.plugin",
     "koenig_check.project_config": "koenig_check.testing.project_config",

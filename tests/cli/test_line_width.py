@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from koenig_check import cli
-from koenig_check.report.line_width import LINE_LIMIT
+from koenig_check.line_width import LINE_LIMIT
 from process_memory import release_memory
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -97,7 +97,7 @@ def _add_quiet(p: argparse.ArgumentParser) -> None:
 def _formulas_epilog() -> str:
     from koenig_check.arguments import POSE_KIND_HELP
     from koenig_check.formulas import FORMULAS
-    from koenig_check.report.line_width import hanging
+    from koenig_check.line_width import hanging
 
     lines = ["formulas (--formulas NAME ...; the paper's equation numbers in brackets):"]
     lines += [f"  {name:30s} {f.equations}" for name, f in FORMULAS.items()]

@@ -59,7 +59,7 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         rtol=args.rtol,
         load_options=load_options,
     )
-    from koenig_check.report.line_width import LINE_LIMIT, cut, fold_text
+    from koenig_check.line_width import LINE_LIMIT, cut, fold_text
     from koenig_check.sources.shown_paths import as_given
 
     print(fold_text(as_given("\n".join(terminal_lines(result)), [args.model])))

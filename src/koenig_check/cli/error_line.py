@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from koenig_check.report.line_width import LINE_LIMIT
+from koenig_check.line_width import LINE_LIMIT
 
 #: What starts the line.
 PREFIX = "koenig-check: error: "

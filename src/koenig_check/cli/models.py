@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from koenig_check.cli.parsing import add_command
-from koenig_check.report.line_width import LINE_LIMIT
+from koenig_check.line_width import LINE_LIMIT
 
 
 def add(sub: argparse._SubParsersAction) -> None:

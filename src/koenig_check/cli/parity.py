@@ -99,7 +99,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     assert report is not None
     from koenig_check.engines.registry import label as engine_label
     from koenig_check.engines.registry import optional
-    from koenig_check.report.line_width import fold_text
+    from koenig_check.line_width import fold_text
     from koenig_check.sources.shown_paths import as_given
 
     def shown(text: str) -> str:  # the file as the user named it; a long cause folded under its line

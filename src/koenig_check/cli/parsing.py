@@ -43,7 +43,7 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         """Exit with status 2: the short usage line, then the error in one line."""
-        from koenig_check.report.line_width import LINE_LIMIT, elided_paths
+        from koenig_check.line_width import LINE_LIMIT, elided_paths
 
         line = f"{self.prog}: error: {closest_choice(message)}"
         see = "" if f"{self.prog} --help" in message else f" (see {self.prog} --help)"  # said once
@@ -160,7 +160,7 @@ def formatter(prog: str) -> argparse.HelpFormatter:
     """The help formatter of every command: epilogs kept as written (examples, formula lists), lines within 200."""
     import shutil
 
-    from koenig_check.report.line_width import LINE_LIMIT
+    from koenig_check.line_width import LINE_LIMIT
 
     width = min(shutil.get_terminal_size().columns - 2, LINE_LIMIT)
     return argparse.RawDescriptionHelpFormatter(prog, max_help_position=32, width=width)

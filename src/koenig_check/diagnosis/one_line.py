@@ -127,7 +127,7 @@ def closed_cut(text: str, width: int) -> str:
     -------
     str
     """
-    from koenig_check.report.line_width import cut
+    from koenig_check.line_width import cut
 
     if len(text) <= width:
         return text

@@ -104,7 +104,7 @@ def print_proof(proof: Proof, shown: Callable[[str], str] = str) -> None:
                 f"  {e.engine}: mass matrix {e.mass_matrix:.2g}, rigid energy {e.energy:.2g}, "
                 f"inverse dynamics {e.inverse_dynamics:.2g} ({e.poses} poses)"
             )
-    from koenig_check.report.line_width import fold_text
+    from koenig_check.line_width import fold_text
 
     for line in proof.skipped():
         print(fold_text(shown(f"  not compared: {line}")))
@@ -136,7 +136,7 @@ def refused_lines(err: ExportRefusedError, target: str, limit: int = 3) -> list[
     import re
 
     from koenig_check.exceptions import one_line
-    from koenig_check.report.line_width import LINE_LIMIT, cut, fold_text
+    from koenig_check.line_width import LINE_LIMIT, cut, fold_text
 
     if not err.constructs:
         return fold_text(f"refused: {one_line(err)}").split("\n")
@@ -179,7 +179,7 @@ def run_export(
     from koenig_check.arguments import ArgumentValueError
     from koenig_check.export.api import check_export_arguments, export_model
     from koenig_check.export.proof import prove
-    from koenig_check.report.line_width import fold_text
+    from koenig_check.line_width import fold_text
 
     problem = _usage(args)
     if not problem and not args.check_only:

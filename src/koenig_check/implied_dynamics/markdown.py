@@ -11,7 +11,7 @@ from koenig_check.findings import Kind
 from koenig_check.implied_dynamics.analysis import ENGINE_PARITY, ENGINES, DynamicsResult
 from koenig_check.implied_dynamics.errors import Discrepancy
 from koenig_check.implied_dynamics.lagrange import CONFIGURATION_STEP, TIME_STEP_SCALE
-from koenig_check.report.line_width import hanging
+from koenig_check.line_width import hanging
 
 
 def _columns(result: DynamicsResult) -> list[tuple[str, str]]:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from koenig_check.diagnosis.import_parity import ParityReport
-from koenig_check.report.line_width import fold_text, hanging
+from koenig_check.line_width import fold_text, hanging
 from koenig_check.roundoff import ROUNDOFF, shown, side_by_side
 
 

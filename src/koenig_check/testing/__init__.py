@@ -154,7 +154,7 @@ def _one_item_a_line(head: str, problems: list[str]) -> str:
     Each line fits 200 characters as pytest prints it (``E       AssertionError: `` before the first line,
     ``E         `` before the others).
     """
-    from koenig_check.report.line_width import LINE_LIMIT, fold
+    from koenig_check.line_width import LINE_LIMIT, fold
 
     first, *rest = problems
     lines = fold(head + first, LINE_LIMIT - len("E       AssertionError: "))
@@ -169,7 +169,7 @@ def _folded(text: str) -> str:
     As the energy failures are (:func:`koenig_check.testing.failure_text.verdict_lines`); the first line is
     written after the exception's name.
     """
-    from koenig_check.report.line_width import fold
+    from koenig_check.line_width import fold
     from koenig_check.testing.failure_text import FAILURE_WIDTH
 
     return "\n".join(fold(text, FAILURE_WIDTH - len("AssertionError: ")))

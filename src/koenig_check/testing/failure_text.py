@@ -23,7 +23,7 @@ def verdict_lines(check: CrossCheck) -> list[str]:
         Empty when :attr:`CrossCheck.ok`.
     """
     from koenig_check.diagnosis.reason import cause_lines, rounding_hint
-    from koenig_check.report.line_width import fold
+    from koenig_check.line_width import fold
 
     lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
     for comparison, parity in zip(check.comparisons, check.parities, strict=True):

@@ -22,7 +22,7 @@ from koenig_check.findings import Finding, Kind, KoenigCheckError
 from koenig_check.modelfile.compiler import compiler_findings
 from koenig_check.report.parity_table import format_parity
 
-CAUSES = Path(__file__).resolve().parent / "models" / "causes"
+CAUSES = Path(__file__).resolve().parents[1] / "models" / "causes"
 
 
 def _compare(name: str) -> Any:
