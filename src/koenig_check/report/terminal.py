@@ -87,8 +87,13 @@ def optional_gap(comparison: ModelComparison, engine: str | None = None) -> tupl
     return None
 
 
-def _gap_cell(gap: tuple[float, bool] | None) -> str:
-    """An optional engine's gap as printed: ``—`` where it did not run, ``*`` where it ran as tie-breaker."""
+def _gap_cell(gap: tuple[float, bool] | None, unable: bool = False) -> str:
+    """An optional engine's gap as printed: ``—`` not run, ``*`` as tie-breaker, ``unable`` where it misreads.
+
+    A gap measured on a robot the engine's parser misread (``ENGINE_UNABLE``) is no measure of the file.
+    """
+    if unable:
+        return "unable"
     return "—" if gap is None else _number(gap[0]) + ("" if gap[1] else "*")
 
 
@@ -217,7 +222,8 @@ def terminal_table(check: CrossCheck) -> str:
         if ran:
             row_gaps = {e: gaps[e][i] for e in ran}
             tiebreak += [e for e, g in row_gaps.items() if g is not None and not g[1] and e not in tiebreak]
-            columns = "".join(f"{_gap_cell(g):>{widths[e]}s}  " for e, g in row_gaps.items())
+            unable = {f.engine for f in comparison.findings if f.kind is Kind.ENGINE_UNABLE}
+            columns = "".join(f"{_gap_cell(g, e in unable):>{widths[e]}s}  " for e, g in row_gaps.items())
             cells = f"{status:8s}  {_number(p.rigid_max_rel):>13s}  {columns}{_number(exact):>12s}  "
         else:
             cells = f"{status:8s}  {_number(p.rigid_max_rel):>10s}  {_number(exact):>12s}  "
