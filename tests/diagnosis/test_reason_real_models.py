@@ -249,3 +249,20 @@ def test_the_cli_and_the_api_name_the_tolerance_each_their_way() -> None:
     assert rounding_hint(3e-7, 1e-9).endswith("rtol=1e-05 accepts it")
     assert rounding_hint(3e-7, 1e-9, cli=True).endswith("--rtol 1e-05 accepts it")
     assert rounding_hint(4e-6, 1e-9).endswith("rtol=1e-05 accepts it")
+
+
+@pytest.mark.parametrize(
+    ("bodies", "advice"),
+    [
+        (1, "--floating, floating=True, gives the root body a free joint"),
+        (3, "3 top-level bodies (a0, a1, a2): --floating frees one only; give each that moves a joint"),
+    ],
+)
+def test_without_a_joint_the_advice_fits_the_file(tmp_path: Path, bodies: int, advice: str) -> None:
+    """--floating frees one top-level body: a file with several gets other advice."""
+    path = tmp_path / "still.xml"
+    text = "".join(f'<body name="a{i}" pos="{i} 0 0"><geom size="0.1"/></body>' for i in range(bodies))
+    path.write_text(f"<mujoco><worldbody>{text}</worldbody></mujoco>")
+    assert len(ET.parse(path).getroot().find("worldbody")) == bodies  # the file's own top-level bodies
+    check = koenig_check.compare(path, **ONE)
+    assert f"({advice})" in check.failures[0][1]

@@ -322,7 +322,7 @@ def load_model(
     if mj_model.nv == 0:
         raise NoMovingSegmentError(
             f"{source.path}: nothing moves (no joint), so there is nothing to compare; not an engine error "
-            "(--floating, floating=True, gives the root body a free joint)"
+            f"({_what_could_move(mj_model, urdf=source.path.suffix.lower() == '.urdf')})"
         )
     _check_moving_mass(mj_model, pin_model, str(source.path), repaired=opts.repair_inertia)
     state_map = build_state_map(mj_model, pin_model, str(source.path))
@@ -353,3 +353,19 @@ def load_model(
             engine.findings.extend(found)
             findings.extend(found)
     return LoadedModel(source, mj, pn, state_map, opts, findings)
+
+
+def _what_could_move(mj_model: Any, urdf: bool) -> str:
+    """What would make a model without joints move: ``--floating`` for one top-level body, else a joint.
+
+    A URDF has one root link, which ``--floating`` frees (MuJoCo fuses it into the world when it is static).
+    """
+    if urdf:
+        return "--floating, floating=True, gives the root link a free joint"
+    roots = [mj_model.body(i).name or f"#{i}" for i in range(1, mj_model.nbody) if mj_model.body_parentid[i] == 0]
+    if len(roots) == 1:
+        return "--floating, floating=True, gives the root body a free joint"
+    if not roots:
+        return "the <worldbody> holds no <body>"
+    shown = ", ".join(roots[:3]) + (f" and {len(roots) - 3} more" if len(roots) > 3 else "")
+    return f"{len(roots)} top-level bodies ({shown}): --floating frees one only; give each that moves a joint"

@@ -230,9 +230,10 @@ def _strip_world_link(source: ModelSource) -> str | None:
         return None
     below = [j for j in robot.findall("joint") if _link_of(j, "parent") == "world"]
     if len(below) != 1 or below[0].get("type") != "fixed":
-        names = [j.get("name") for j in below]
+        found = ", ".join(f"{j.get('name')} ({j.get('type')})" for j in below) or "none"
         raise ModelLoadError(
-            f"{source.path}: link 'world': floating=True needs exactly one fixed joint below it, found {names}"
+            f"{source.path}: link 'world': --floating (floating=True) frees the link below 'world' only when one "
+            f"fixed joint holds it; joints below 'world': {found}"
         )
     robot.remove(below[0])
     for link in robot.findall("link"):
