@@ -129,3 +129,31 @@ def cut(text: str, width: int) -> str:
         return text
     kept = text[: width - 1].rsplit(" ", 1)[0].rstrip(" ;,:(")
     return f"{kept}…"
+
+
+def closed_cut(text: str, width: int) -> str:
+    """``text`` cut at a word to fit ``width`` (``…``), never inside a parenthesis or bracket it opens.
+
+    Parameters
+    ----------
+    text : str
+    width : int
+
+    Returns
+    -------
+    str
+    """
+    if len(text) <= width:
+        return text
+    kept = cut(text, width)[:-1]
+    pairs = {"(": ")", "[": "]", "{": "}"}
+    while True:
+        opened: list[int] = []
+        for i, ch in enumerate(kept):
+            if ch in pairs:
+                opened.append(i)
+            elif ch in pairs.values() and opened:
+                opened.pop()
+        if not opened:
+            return kept.rstrip(" ;,:") + "…"
+        kept = kept[: opened[0]].rstrip(" ;,:(")

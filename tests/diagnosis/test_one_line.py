@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from koenig_check.diagnosis.one_line import closed_cut, short_error
+from koenig_check.diagnosis.one_line import short_error
 from koenig_check.exceptions import ModelLoadError
 from koenig_check.findings import Finding, Kind
+from koenig_check.line_width import closed_cut
 
 
 @pytest.mark.parametrize("width", range(20, 90, 7))

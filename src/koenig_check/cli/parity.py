@@ -15,8 +15,9 @@ from typing import Any
 from koenig_check.cli.parsing import add_command, check_models, load_options_of, positive, tolerance, usage_error
 from koenig_check.engines.load_options import add_load_arguments
 
-#: Random states on which a third engine's energies are compared by default (``compare``'s default poses).
-VERDICT_POSES = 20
+#: Random states on which a third engine's energies are compared by default (``compare``'s default poses; not
+#: :data:`koenig_check.api.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
+DEFAULT_POSES = 20
 
 
 def add(sub: argparse._SubParsersAction) -> None:
@@ -46,16 +47,16 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--poses",
         type=positive,
-        default=VERDICT_POSES,
+        default=DEFAULT_POSES,
         help=f"random states on which the engines' energies are compared for the three-engine verdicts "
-        f"(default {VERDICT_POSES}, the first states `compare` draws with the same --seed)",
+        f"(default {DEFAULT_POSES}, the first states `compare` draws with the same --seed)",
     )
     p.add_argument("--seed", type=int, default=0, help="seed of those states (default 0)")
     add_load_arguments(p)
     p.set_defaults(func=_cmd_parity)
 
 
-def parity_diagnosis(model: Any, rtol: float, poses: int = VERDICT_POSES, seed: int = 0) -> Any:
+def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: int = 0) -> Any:
     """What ``parity`` prints: import parity, and the three engines' verdicts on energies and mass properties.
 
     Parameters

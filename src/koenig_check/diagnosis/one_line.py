@@ -12,6 +12,7 @@ import re
 from collections.abc import Callable
 
 from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, clause, more_causes
+from koenig_check.line_width import closed_cut
 
 #: The longest one-line message (characters): with the command line's ``koenig-check: `` before it, 200.
 WIDTH = 200 - len("koenig-check: ")
@@ -113,33 +114,3 @@ def _without_details(head: str) -> list[str]:
         head = head[:cut_from] + head[end:]
         heads.append(head)
     return heads
-
-
-def closed_cut(text: str, width: int) -> str:
-    """``text`` cut at a word to fit ``width`` (``…``), never inside a parenthesis or bracket it opens.
-
-    Parameters
-    ----------
-    text : str
-    width : int
-
-    Returns
-    -------
-    str
-    """
-    from koenig_check.line_width import cut
-
-    if len(text) <= width:
-        return text
-    kept = cut(text, width)[:-1]
-    pairs = {"(": ")", "[": "]", "{": "}"}
-    while True:
-        opened: list[int] = []
-        for i, ch in enumerate(kept):
-            if ch in pairs:
-                opened.append(i)
-            elif ch in pairs.values() and opened:
-                opened.pop()
-        if not opened:
-            return kept.rstrip(" ;,:") + "…"
-        kept = kept[: opened[0]].rstrip(" ;,:(")

@@ -7,10 +7,11 @@ from collections.abc import Sequence
 
 from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, clause, element_words, more_causes
-from koenig_check.diagnosis.one_line import closed_cut, short_error
-
-__all__ = ["closed_cut", "short_error"]  # their home is one_line; imported from here by earlier code
+from koenig_check.diagnosis.one_line import short_error
 from koenig_check.findings import Finding, Kind, root_causes
+from koenig_check.line_width import closed_cut
+
+__all__ = ["short_error"]  # its home is diagnosis/one_line.py; imported from here by earlier code
 
 #: Kinds of per-segment import differences (symptoms, after the root causes in a reason).
 _SYMPTOMS = (Kind.MASS, Kind.COM, Kind.INERTIA, Kind.ANCHOR, Kind.AXIS, Kind.ARMATURE, Kind.SEGMENTS, Kind.FRAME)
