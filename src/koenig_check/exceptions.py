@@ -136,7 +136,15 @@ class CoupledJointsError(ModelLoadError):
 
 
 class NoMovingSegmentError(ModelLoadError):
-    """The model has no joint: nothing moves, there is no kinetic energy to compare."""
+    """The model has no joint: nothing moves, there is no kinetic energy to compare.
+
+    Attributes
+    ----------
+    advice : str
+        What would make it move (``--floating`` for one top-level body, else a joint); empty when not known.
+    """
+
+    advice: str = ""
 
 
 class NoMassError(ModelLoadError):

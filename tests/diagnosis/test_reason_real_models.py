@@ -266,3 +266,9 @@ def test_without_a_joint_the_advice_fits_the_file(tmp_path: Path, bodies: int, a
     assert len(ET.parse(path).getroot().find("worldbody")) == bodies  # the file's own top-level bodies
     check = koenig_check.compare(path, **ONE)
     assert f"({advice})" in check.failures[0][1]
+    from koenig_check.engines import load_model
+    from koenig_check.exceptions import NoMovingSegmentError
+
+    with pytest.raises(NoMovingSegmentError) as info:
+        load_model(path)
+    assert [c.hint for c in info.value.causes] == [advice]  # the cause the reports show says the same

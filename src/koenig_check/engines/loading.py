@@ -22,7 +22,7 @@ from koenig_check.engines.finite import check_finite, check_segments
 from koenig_check.engines.load_options import ALLOW_COUPLED_DEPRECATION, LoadOptions
 from koenig_check.engines.mujoco.adapter import MujocoEngine
 from koenig_check.engines.mujoco.loader import load_mujoco, root_free_joint
-from koenig_check.engines.parser_traps import explain_load_failures
+from koenig_check.engines.parser_traps import explain_load_failures, moving_advice
 from koenig_check.engines.pinocchio.adapter import PinocchioEngine
 from koenig_check.engines.pinocchio.loader import load_pinocchio
 from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
@@ -320,10 +320,12 @@ def load_model(
         )
     check_finite(mj_model, pin_model, str(source.path))
     if mj_model.nv == 0:
-        raise NoMovingSegmentError(
-            f"{source.path}: nothing moves (no joint), so there is nothing to compare; not an engine error "
-            f"({_what_could_move(mj_model, urdf=source.path.suffix.lower() == '.urdf')})"
+        advice = moving_advice(mj_model, urdf=source.path.suffix.lower() == ".urdf")
+        err = NoMovingSegmentError(
+            f"{source.path}: nothing moves (no joint), so there is nothing to compare; not an engine error ({advice})"
         )
+        err.advice = advice  # the cause explain_load_failures attaches says the same
+        raise err
     _check_moving_mass(mj_model, pin_model, str(source.path), repaired=opts.repair_inertia)
     state_map = build_state_map(mj_model, pin_model, str(source.path))
     mj = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
@@ -353,19 +355,3 @@ def load_model(
             engine.findings.extend(found)
             findings.extend(found)
     return LoadedModel(source, mj, pn, state_map, opts, findings)
-
-
-def _what_could_move(mj_model: Any, urdf: bool) -> str:
-    """What would make a model without joints move: ``--floating`` for one top-level body, else a joint.
-
-    A URDF has one root link, which ``--floating`` frees (MuJoCo fuses it into the world when it is static).
-    """
-    if urdf:
-        return "--floating, floating=True, gives the root link a free joint"
-    roots = [mj_model.body(i).name or f"#{i}" for i in range(1, mj_model.nbody) if mj_model.body_parentid[i] == 0]
-    if len(roots) == 1:
-        return "--floating, floating=True, gives the root body a free joint"
-    if not roots:
-        return "the <worldbody> holds no <body>"
-    shown = ", ".join(roots[:3]) + (f" and {len(roots) - 3} more" if len(roots) > 3 else "")
-    return f"{len(roots)} top-level bodies ({shown}): --floating frees one only; give each that moves a joint"

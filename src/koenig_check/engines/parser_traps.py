@@ -155,7 +155,33 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
     return out
 
 
-def nothing_moves(path: str | os.PathLike[str], has_body: bool = True) -> Finding:
+def moving_advice(mj_model: Any, urdf: bool) -> str:
+    """What would make a model without joints move: ``--floating`` for one top-level body, else a joint.
+
+    A URDF has one root link, which ``--floating`` frees (MuJoCo fuses it into the world when it is static).
+
+    Parameters
+    ----------
+    mj_model : mujoco.MjModel
+    urdf : bool
+        Whether the file is a URDF.
+
+    Returns
+    -------
+    str
+    """
+    if urdf:
+        return "--floating, floating=True, gives the root link a free joint"
+    roots = [mj_model.body(i).name or f"#{i}" for i in range(1, mj_model.nbody) if mj_model.body_parentid[i] == 0]
+    if len(roots) == 1:
+        return "--floating, floating=True, gives the root body a free joint"
+    if not roots:
+        return "the <worldbody> holds no <body>"
+    shown = ", ".join(roots[:3]) + (f" and {len(roots) - 3} more" if len(roots) > 3 else "")
+    return f"{len(roots)} top-level bodies ({shown}): --floating frees one only; give each that moves a joint"
+
+
+def nothing_moves(path: str | os.PathLike[str], has_body: bool = True, advice: str = "") -> Finding:
     """The finding for a model without a joint: nothing to compare, not an engine error.
 
     Parameters
@@ -163,6 +189,8 @@ def nothing_moves(path: str | os.PathLike[str], has_body: bool = True) -> Findin
     path : str or path
     has_body : bool
         Whether the model has a body that ``--floating`` could set free.
+    advice : str
+        What would make it move (:func:`moving_advice`); by default ``--floating``.
 
     Returns
     -------
@@ -176,7 +204,7 @@ def nothing_moves(path: str | os.PathLike[str], has_body: bool = True) -> Findin
         + ("" if has_body else "; the <worldbody> holds no <body>"),
         values={"file": str(path)},
         root_cause=True,
-        hint="--floating (floating=True) gives the root body a free joint" if has_body else "",
+        hint=(advice or "--floating (floating=True) gives the root body a free joint") if has_body else "",
     )
 
 
@@ -202,7 +230,7 @@ def explain_load_failures(load: F) -> F:
         try:
             return load(path_or_name, *args, **kwargs)
         except NoMovingSegmentError as err:
-            err.attach_causes([nothing_moves(getattr(err, "path", path_or_name))], in_message=False)
+            err.attach_causes([nothing_moves(getattr(err, "path", path_or_name), advice=err.advice)], in_message=False)
             raise
         except (CoupledJointsError, InertiaError) as err:  # MuJoCo's refusal or the file's couplings
             err.attach_causes([])
@@ -228,5 +256,5 @@ def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
     except Exception:  # MuJoCo refuses the file itself: Pinocchio's reading of it is not the cause
         return []
     if model.njnt == 0:  # e.g. a <worldbody> without a <body>: Pinocchio fails, but nothing moves anyway
-        return [nothing_moves(source.path, has_body=model.nbody > 1)]
+        return [nothing_moves(source.path, has_body=model.nbody > 1, advice=moving_advice(model, urdf=False))]
     return file_causes(source.path, model)
