@@ -4,6 +4,7 @@ with the CPU at round-off level), so that an example cannot drift from the tool 
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import subprocess
@@ -71,11 +72,16 @@ def test_the_plugin_example_is_what_pytest_prints(tmp_path: Path) -> None:
     shutil.copy(ROOT / "models" / "double_pendulum.xml", tmp_path / "models")  # the project's model
     shutil.copy(ROOT / "tests" / "models" / "causes" / "class_mass.xml", tmp_path / "models")  # its trap file
     quoted = _quoted("$ pytest --koenig-check\n", "```")
+    # The README shows what a user's terminal of 80 columns prints. pytest cuts the short summary's line to the
+    # terminal only when it does not think it runs on CI (the CI or BUILD_NUMBER variable set): there the line is
+    # the whole message. So the quote is compared with a run outside CI, whatever machine runs this test.
+    outside_ci = {k: v for k, v in os.environ.items() if k not in ("CI", "BUILD_NUMBER", "PYTEST_ADDOPTS")}
     run = subprocess.run(
         [sys.executable, "-m", "pytest", "--koenig-check", "-p", "no:cacheprovider"],
         cwd=tmp_path,
         capture_output=True,
         text=True,
+        env={**outside_ci, "COLUMNS": "80"},
     )
     assert run.returncode == 1
     printed = run.stdout[run.stdout.index("collected ") :]
