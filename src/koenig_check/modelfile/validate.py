@@ -100,7 +100,8 @@ def _root_format(path: Path, data: bytes) -> str:
     before ``<?xml ...?>`` and a NUL byte after the last element are refused by Expat and read by both
     engines.  A pre-flight check never refuses what the engines accept: the file is checked again as
     TinyXML2 reads it (leading white space skipped, the text ending at the first NUL byte), and when that
-    fails as well, MuJoCo's parser decides; its refusal is given whole after the line and column.
+    fails as well, MuJoCo's parser decides; its refusal is given whole after the line and column (TinyXML2's
+    own "Line number" is the line of the element it was reading: for a mismatched tag, where that element opens).
     """
     try:
         return _parse(path, data)
@@ -114,31 +115,8 @@ def _root_format(path: Path, data: bytes) -> str:
         refusal = _mujoco_refusal(path)
         if refusal is None and err.root_tag in _FORMATS:
             return _FORMATS[err.root_tag]  # MuJoCo reads it: the engines decide
-        because = f"; MuJoCo: {without_line_number(refusal)}" if refusal else ""
+        because = f"; MuJoCo: {refusal}" if refusal else ""  # whole: its line is where the open element starts
         raise ModelFileError(f"{path}: {err}{because}") from None
-
-
-#: TinyXML2's line in MuJoCo's parse error (the element being read, not where the text stops being XML).
-_TINYXML_LINE = re.compile(r"\s*Line number=\d+:?")
-
-
-def without_line_number(refusal: str) -> str:
-    """MuJoCo's parse error without its line number: the error names one line, the one where Expat stopped.
-
-    TinyXML2 gives the line of the element it was reading (for a mismatched tag, where the open element
-    starts); Expat the line and column where the text stops being XML.  Two line numbers in one line read as
-    a contradiction, so the error keeps Expat's, and MuJoCo's reason the rest of its words.
-
-    Parameters
-    ----------
-    refusal : str
-        MuJoCo's message, on one line.
-
-    Returns
-    -------
-    str
-    """
-    return _TINYXML_LINE.sub("", refusal).strip()
 
 
 _FORMATS = {"mujoco": "mjcf", "robot": "urdf"}
