@@ -150,7 +150,7 @@ def compare_model(
     comp.findings = diagnosis.findings
     comp.segment_labels = diagnosis.parity.segment_labels if diagnosis.parity is not None else {}
     comp.notes = (
-        [f"three engines: {f.message()}" for f in diagnosis.verdicts]
+        [reason.as_note(f) for f in diagnosis.verdicts]
         + [f.message() for f in diagnosis.optional_findings]
         + comp.notes
     )

@@ -28,6 +28,7 @@ from koenig_check.engines import registry
 from koenig_check.engines.base import Engine
 from koenig_check.findings import Kind
 from koenig_check.report import figures
+from koenig_check.report.content import model_findings
 from koenig_check.report.terminal import terminal_table
 
 #: A model on which MuJoCo and Pinocchio agree (so that only the skewed engine departs).
@@ -214,6 +215,10 @@ def test_a_departing_fourth_engine_is_named_by_the_verdict(fourth_engine: str) -
     assert values["gpu"] == pytest.approx(values["mujoco"], rel=1e-12)
     assert not check.ok and "GPU-skewed departs" in check.reason()
     assert _model_row(terminal_table(check), MODEL)[1] == "DISAGREE"
+    note = f"four engines: {verdicts[0].message()}"  # four voted: the note says so, not "three engines"
+    assert note in comparison.notes
+    summaries = [s for s in check.summaries if s.model == comparison.model]
+    assert model_findings(comparison, summaries, check.parities[0], 1e-9).engines.endswith(f"; {note}")
 
 
 def test_the_export_proves_it_reads_the_same_robot(fourth_engine: str, tmp_path: Path) -> None:

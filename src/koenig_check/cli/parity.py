@@ -82,7 +82,7 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.diagnosis.policy import asked_for
-    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, lead_line, rounding_hint, short_reason
+    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, lead_line, rounding_hint, short_reason
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
     from koenig_check.report.parity_table import format_parity
@@ -107,7 +107,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         return fold_text(as_given(text, [args.model]))
 
     print(shown(format_parity(report, args.model)))
-    third = [f"three engines: {f.message()}" for f in diagnosis.findings if f.kind is Kind.VERDICT]
+    third = [as_note(f) for f in diagnosis.findings if f.kind is Kind.VERDICT]
     unable = {f.engine for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE}  # its reason said once, there
     third += [f.message() for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE]
     third += [

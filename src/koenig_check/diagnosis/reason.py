@@ -265,6 +265,27 @@ def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and P
 LEADING_KINDS = (Kind.ENGINE_UNABLE, Kind.VERDICT)
 
 
+_COUNT_WORDS = {3: "three", 4: "four", 5: "five", 6: "six", 7: "seven", 8: "eight", 9: "nine"}
+
+
+def as_note(finding: Finding) -> str:
+    """A finding as a note line: a verdict after the number of engines that voted on it ("three engines: ...").
+
+    Parameters
+    ----------
+    finding : Finding
+        A ``VERDICT`` (its values hold one entry per voting engine) or any other finding (its message alone).
+
+    Returns
+    -------
+    str
+    """
+    if finding.kind is not Kind.VERDICT:
+        return finding.message()
+    voters = len(finding.values)
+    return f"{_COUNT_WORDS.get(voters, str(voters))} engines: {finding.message()}"
+
+
 def lead_line(findings: Sequence[Finding]) -> str:
     """The head of a one-line reason (empty when none): checks asked for and not made, then the verdicts.
 

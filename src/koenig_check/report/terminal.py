@@ -233,7 +233,7 @@ def terminal_table(check: CrossCheck) -> str:
         short = check.failure_lines.get(model, reason).removeprefix(f"{model}: ")
         lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
-        lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the three engines differ most")
+        lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
     if not check.summaries:
         return "\n".join(lines)
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})
