@@ -69,3 +69,34 @@ def test_floating_keyframes_pinocchio_refuses_are_dropped_for_pinocchio_and_said
     assert keys.ids == ("key:bent",) and np.isclose(keys.qpos[0, -1], 0.4)
     check = compare(path, floating=True, n_poses=4)
     assert check.ok, check.reason()
+
+
+#: A URDF whose root link is MuJoCo's world body, with two joints below it: --floating has no one link to free.
+WORLD_TWO_BELOW = """<robot name="two_below">
+  <link name="world"/>
+  <link name="a"><inertial><mass value="1"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="b"><inertial><mass value="2"/>
+    <inertia ixx="0.2" iyy="0.2" izz="0.2" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="hold" type="fixed"><parent link="world"/><child link="a"/></joint>
+  <joint name="swing" type="revolute"><parent link="world"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_pinocchio_refuses_to_float_a_world_link_holding_several_joints_naming_them(tmp_path: Path) -> None:
+    """Compare reaches MuJoCo's refusal of such a file first; Pinocchio's loader says its own reason on its own."""
+    from koenig_check.engines.pinocchio.loader import load_pinocchio
+    from koenig_check.sources.catalogue import resolve_model
+
+    path = tmp_path / "two_below.urdf"
+    path.write_text(WORLD_TWO_BELOW, encoding="utf-8")
+    source = resolve_model(path)
+    with pytest.raises(ModelLoadError) as info:
+        load_pinocchio(source, root_joint="root")
+    msg = str(info.value)
+    assert "\n" not in msg and msg.startswith(f"{path}: link 'world'")
+    assert msg.endswith("joints below 'world': hold (fixed), swing (revolute)")
+    model, _ = load_pinocchio(source)  # fixed base: the file is read as written
+    assert [model.names[j] for j in range(1, model.njoints)] == ["swing"]

@@ -109,6 +109,8 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
                         hint="MuJoCo keeps them (--pose-kind keyframes uses MuJoCo's)",
                     )
                 )
+    except ModelLoadError:
+        raise  # our own refusal, already one line naming the file (not Pinocchio's parser: no "cannot parse")
     except (RuntimeError, ValueError) as exc:
         reason = parser_reason(exc, parser_output)
         hint = limitation_hint(source, reason)
