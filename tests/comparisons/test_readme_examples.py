@@ -65,6 +65,19 @@ def test_the_check_only_example_is_what_the_command_prints(
     assert_same_output(quoted, capsys.readouterr().out)
 
 
+#: Variables that change what pytest prints or which plugins it loads.
+PYTEST_ENVIRONMENT = (
+    "CI",
+    "BUILD_NUMBER",
+    "PYTEST_ADDOPTS",
+    "PYTEST_PLUGINS",
+    "PYTEST_DISABLE_PLUGIN_AUTOLOAD",
+    "PY_COLORS",
+    "FORCE_COLOR",
+    "NO_COLOR",
+)
+
+
 def test_the_plugin_example_is_what_pytest_prints(tmp_path: Path) -> None:
     toml = _quoted("```toml\n", "```")
     (tmp_path / "pyproject.toml").write_text(toml, encoding="utf-8")
@@ -74,8 +87,9 @@ def test_the_plugin_example_is_what_pytest_prints(tmp_path: Path) -> None:
     quoted = _quoted("$ pytest --koenig-check\n", "```")
     # The README shows what a user's terminal of 80 columns prints. pytest cuts the short summary's line to the
     # terminal only when it does not think it runs on CI (the CI or BUILD_NUMBER variable set): there the line is
-    # the whole message. So the quote is compared with a run outside CI, whatever machine runs this test.
-    outside_ci = {k: v for k, v in os.environ.items() if k not in ("CI", "BUILD_NUMBER", "PYTEST_ADDOPTS")}
+    # the whole message. So the quote is compared with a plain run outside CI (no colours, no added options),
+    # whatever machine runs this test.
+    outside_ci = {k: v for k, v in os.environ.items() if k not in PYTEST_ENVIRONMENT}
     run = subprocess.run(
         [sys.executable, "-m", "pytest", "--koenig-check", "-p", "no:cacheprovider"],
         cwd=tmp_path,
