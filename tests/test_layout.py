@@ -82,6 +82,76 @@ def test_no_import_cycle_between_subpackages() -> None:
     ]
 
 
+#: The one import from a top-level module into a subpackage below which nothing would close a cycle: a finding
+#: checks the engine it names against the engines' specs (engines/specs.py imports nothing of the package).
+ALLOWED_UPWARD = {(".findings", "engines.specs")}
+
+
+def _node(dotted: str) -> str:
+    """A subpackage (``run``), or a top-level module as ``.name`` (``.api``), or ``<package>``."""
+    parts = dotted.split(".")
+    return _home(dotted) or (f".{parts[1]}" if len(parts) > 1 else "<package>")
+
+
+def _runtime_imports(tree: ast.AST) -> list[str]:
+    """The modules a source imports when run: every import but those under ``if TYPE_CHECKING:``."""
+    typing_only = {
+        id(inner)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.If) and isinstance(node.test, ast.Name) and node.test.id == "TYPE_CHECKING"
+        for stmt in node.body
+        for inner in ast.walk(stmt)
+    }
+    found = []
+    for node in ast.walk(tree):
+        if id(node) in typing_only:
+            continue
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            found += [_submodule(node.module, alias.name) for alias in node.names]
+        elif isinstance(node, ast.Import):
+            found += [alias.name for alias in node.names]
+    return [m for m in found if m.startswith("koenig_check.")]
+
+
+def _submodule(module: str, name: str) -> str:
+    """``from module import name``: the module ``module.name`` when it is one, else ``module``."""
+    inner = PACKAGE.parent.joinpath(*module.split("."), name)
+    return f"{module}.{name}" if inner.with_suffix(".py").is_file() or inner.is_dir() else module
+
+
+def module_graph() -> dict[str, dict[str, list[str]]]:
+    """Like :func:`import_graph`, with each top-level module a node of its own (``.api``, ``.findings``)."""
+    graph: dict[str, dict[str, list[str]]] = defaultdict(lambda: defaultdict(list))
+    for path in PACKAGE.rglob("*.py"):
+        relative = path.relative_to(PACKAGE.parent).with_suffix("")
+        module = ".".join(relative.parts).removesuffix(".__init__")
+        for target in _runtime_imports(ast.parse(path.read_text(encoding="utf-8"))):
+            a, b = _node(module), _node(target)
+            if a != b and (a, target.removeprefix("koenig_check.")) not in ALLOWED_UPWARD:
+                graph[a][b].append(module)
+    return graph
+
+
+def test_no_import_cycle_through_top_level_modules() -> None:
+    """A top-level module is either below the subpackages (exceptions, findings) or above them (api, demo):
+    never both, e.g. report importing the API that imports report."""
+    graph = module_graph()
+    assert graph[".api"]["run"] and graph["cli"][".api"]  # read: the API uses run, the CLI the API
+    found = cycles(graph)
+    assert not found, [
+        " -> ".join(cycle)
+        + ": "
+        + "; ".join(f"{a}->{b} in {sorted(set(graph[a][b]))[:2]}" for a, b in itertools.pairwise(cycle))
+        for cycle in found
+    ]
+
+
+def test_the_allowed_upward_import_imports_nothing_of_the_package() -> None:
+    for _, target in ALLOWED_UPWARD:
+        source = (PACKAGE / (target.replace(".", "/") + ".py")).read_text(encoding="utf-8")
+        assert not _runtime_imports(ast.parse(source)), target
+
+
 @pytest.mark.parametrize("path", sorted(PACKAGE.rglob("*.py")), ids=lambda p: str(p.relative_to(PACKAGE)))
 def test_no_module_over_about_400_lines(path: Path) -> None:
     if path.name in SHIMS:

@@ -18,6 +18,8 @@ from typing import Any, TypeVar, cast
 from koenig_check.exceptions import ArgumentTypeError, ArgumentValueError
 
 POSE_KINDS = ("random", "keyframes", "grid", "trajectory")
+#: Which records a run keeps: per segment and totals, totals only, or none.
+RECORD_MODES = ("segments", "totals", "none")
 
 #: One line per pose kind, for ``--help`` and the report's glossary.
 POSE_KIND_HELP = {
@@ -265,8 +267,6 @@ def check_compare_arguments(rtol: Any, options: Mapping[str, Any]) -> None:
     ------
     ArgumentTypeError, ArgumentValueError
     """
-    from koenig_check.run.chunks import RECORD_MODES
-
     check_tolerance(rtol)
     kind = options.get("pose_kind", "random")
     if kind not in POSE_KINDS:

@@ -30,7 +30,7 @@ def add(sub: argparse._SubParsersAction) -> None:
     ----------
     sub : argparse._SubParsersAction
     """
-    from koenig_check.run.chunks import RECORD_MODES
+    from koenig_check.arguments import RECORD_MODES
     from koenig_check.run.stats import DEFAULT_RTOL
 
     p = add_command(

@@ -12,10 +12,10 @@ import re
 from collections.abc import Callable
 
 from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, clause, more_causes
-from koenig_check.line_width import closed_cut
+from koenig_check.line_width import LINE_LIMIT, closed_cut
 
 #: The longest one-line message (characters): with the command line's ``koenig-check: `` before it, 200.
-WIDTH = 200 - len("koenig-check: ")
+WIDTH = LINE_LIMIT - len("koenig-check: ")
 
 
 def short_error(

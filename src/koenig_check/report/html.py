@@ -29,7 +29,7 @@ from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.summaries import FormulaSummary
 
 if TYPE_CHECKING:
-    from koenig_check.api import CrossCheck
+    from koenig_check.run.cross_check import CrossCheck
 
 _CSS = """
 body { font-family: system-ui, -apple-system, 'Segoe UI', sans-serif; margin: 0 auto; max-width: 1500px;

@@ -44,7 +44,7 @@ def summary_markdown(
         Models that could not be compared.
     rtol : float
     settings : dict, optional
-        Per model, the run's pose settings (:attr:`koenig_check.api.CrossCheck.settings`).
+        Per model, the run's pose settings (:attr:`koenig_check.run.cross_check.CrossCheck.settings`).
 
     Returns
     -------

@@ -13,18 +13,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from koenig_check.api import CrossCheck
 from koenig_check.engines.registry import label, optional
 from koenig_check.findings import Finding, Kind
+from koenig_check.line_width import LINE_LIMIT
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.run.comparison import ModelComparison
+from koenig_check.run.cross_check import CrossCheck
 from koenig_check.run.stats import relative_error
 from koenig_check.run.summaries import FormulaSummary
 
 #: Terminal width the table fits in.
 WIDTH = 100
-#: No printed line is longer than this, even with a model label or a word longer than :data:`WIDTH`.
-LINE_LIMIT = 200
 
 
 def _number(value: float) -> str:

@@ -20,7 +20,7 @@ from koenig_check.run.records import RECORD_FIELDS, RecordTable
 from koenig_check.run.summaries import EngineParity, FormulaSummary
 
 if TYPE_CHECKING:
-    from koenig_check.api import CrossCheck
+    from koenig_check.run.cross_check import CrossCheck
 
 
 def _jsonable(x: Any) -> Any:

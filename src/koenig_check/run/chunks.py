@@ -16,15 +16,13 @@ from typing import Any
 import numpy as np
 import pyarrow as pa
 
+from koenig_check.arguments import RECORD_MODES as RECORD_MODES  # its home: what a user may ask for
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.cache import SharedStates
 from koenig_check.run.engine_runs import EngineRun
 from koenig_check.run.poses import PoseSet
 from koenig_check.run.records import STORED_SCHEMA, categorical
 from koenig_check.run.stats import DEFAULT_RTOL, Extreme, ModelStats, relative_error
-
-#: Which records a run keeps: per segment and totals, totals only, or none.
-RECORD_MODES = ("segments", "totals", "none")
 
 
 def _evaluate(name: str, run: EngineRun, states: Any, angles: np.ndarray | None, normal=None, ids=None) -> np.ndarray:
