@@ -61,3 +61,70 @@ def test_drake_mass_matrix_of_the_portable_mjcf(tmp_path: Path, name: str) -> No
         values = {n: np.array([rng.uniform(-1, 1)]) for n in names}
         reference, labels = mujoco_matrix(original, values)
         assert relative_difference(in_order(reference, labels, names), _drake_matrix(result.path, values, names)) < RTOL
+
+
+def _tetrahedron_stl(path: Path) -> None:
+    """A binary STL of a unit right tetrahedron, written by hand (80-byte header, count, 4 facets)."""
+    import struct
+
+    corners = [(0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.0, 0.1, 0.0), (0.0, 0.0, 0.1)]
+    faces = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+    data = b"\0" * 80 + struct.pack("<I", len(faces))
+    for face in faces:
+        data += struct.pack("<3f", 0.0, 0.0, 0.0) + b"".join(struct.pack("<3f", *corners[i]) for i in face) + b"\0\0"
+    path.write_bytes(data)
+
+
+#: A body whose inertia comes from an STL mesh (MuJoCo reads STL; Drake's MJCF parser reads .obj only).
+STL_MODEL = """<mujoco model="stl_mesh">
+  <asset><mesh name="tet" file="tet.stl"/></asset>
+  <worldbody>
+    <body name="holder" pos="0 0 0.5">
+      <joint name="turn" type="hinge" axis="0 1 0"/>
+      <geom type="mesh" mesh="tet" density="800"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+@pytest.mark.parametrize(
+    ("engines", "kept"), [(("mujoco", "pinocchio"), True), (None, False)], ids=["without drake", "every engine"]
+)
+def test_an_stl_mesh_is_written_where_no_drake_reads_the_export(tmp_path: Path, engines, kept: bool) -> None:
+    """Without Drake among the readers, an STL mesh geom is written (MuJoCo compiles the same mesh); with it, the
+    geom is left out and the not-carried line says how to keep it.  The inertia is explicit either way."""
+    _tetrahedron_stl(tmp_path / "tet.stl")
+    (tmp_path / "stl_mesh.xml").write_text(STL_MODEL, encoding="utf-8")
+    (tmp_path / "out").mkdir()
+    out = tmp_path / "out" / "export.xml"  # another folder: the mesh path is written relative to the export
+    result = koenig_check.export(tmp_path / "stl_mesh.xml", to="mjcf", out=out, poses=2, engines=engines)
+    assert result.equivalent, result.proof.summary()
+    original, export = mujoco_model(tmp_path / "stl_mesh.xml"), mujoco_model(out)
+    assert np.array_equal(original.body_mass, export.body_mass)  # the inertial is explicit in both cases
+    shapes = [n for n in result.not_carried if n.construct == "geom shape"]
+    if kept:
+        assert not shapes and export.nmesh == 1 and export.ngeom == original.ngeom
+        assert np.array_equal(export.mesh_vert, original.mesh_vert)  # MuJoCo reads the same file
+    else:
+        assert export.nmesh == 0 and "--engines without drake writes it" in shapes[0].reason
+
+
+def test_a_urdf_with_stl_meshes_keeps_them_for_mujoco_and_pinocchio(tmp_path: Path) -> None:
+    """example-robot-data's UR5 (STL collision meshes): every mesh MuJoCo's import read is in the export."""
+    from koenig_check.engines import resolve_model
+
+    path = resolve_model("ur5").path
+    out = tmp_path / "ur5.xml"
+    result = koenig_check.export(path, to="mjcf", out=out, poses=2, engines=("mujoco", "pinocchio"))
+    assert result.equivalent, result.proof.summary()
+    import xml.etree.ElementTree as ET
+
+    collision = {
+        Path(m.get("filename")).name for m in ET.parse(path).getroot().iterfind("link/collision/geometry/mesh")
+    }
+    written = {Path(m.get("file")).name for m in ET.parse(out).getroot().iterfind("asset/mesh")}
+    assert collision and written == collision  # MuJoCo's import keeps the collision meshes: each is written
+    export = mujoco_model(out)  # and MuJoCo reads them back
+    assert export.nmesh == len(collision) and export.mesh_vertnum.min() > 0
+    assert not [n for n in result.not_carried if n.construct == "geom shape"]

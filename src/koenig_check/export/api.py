@@ -79,7 +79,9 @@ def export_model(
     poses, seed, rtol
         The proof's seeded random poses and relative tolerance.
     engines : tuple of str, optional
-        Engines the proof uses (those not installed are reported, not run); default: every engine.
+        Engines the proof uses (those not installed are reported, not run); default: every engine.  An MJCF
+        for engines without Drake keeps mesh geoms of every format MuJoCo reads (Drake's MJCF parser reads
+        ``.obj`` only: with Drake, other meshes are listed as not carried; the inertia is explicit either way).
 
     Returns
     -------
@@ -101,6 +103,7 @@ def export_model(
         source, floating=floating, balance_inertia=balance_inertia, repair_inertia=repair_inertia
     )
     name = source.path.stem
+    any_mesh = engines is not None and "drake" not in engines  # Drake's MJCF parser refuses meshes but .obj
     not_carried: list[NotCarried]
     if to == "urdf":
         text, not_carried = write_urdf(
@@ -108,10 +111,12 @@ def export_model(
         )
     elif source.format == "urdf":
         text, not_carried = write_mjcf_from_urdf(
-            mj_model, findings, body_findings, out, model_name=name, model_dir=source.path.parent
+            mj_model, findings, body_findings, out, model_name=name, model_dir=source.path.parent, any_mesh=any_mesh
         )
     else:
-        text, not_carried = write_portable_mjcf(mj_model, out, model_name=name, model_dir=source.path.parent)
+        text, not_carried = write_portable_mjcf(
+            mj_model, out, model_name=name, model_dir=source.path.parent, any_mesh=any_mesh
+        )
     Path(out).write_text(text, encoding="utf-8")
     proof = prove(source.path, out, options, poses=poses, seed=seed, rtol=rtol, engines=engines)
     floating_base = any(n.construct == "floating base" for n in not_carried)

@@ -59,6 +59,7 @@ def write_mjcf_from_urdf(
     *,
     model_name: str = "robot",
     model_dir: str | os.PathLike[str] | None = None,
+    any_mesh: bool = False,
 ) -> tuple[str, list[NotCarried]]:
     """Write MuJoCo's import of a URDF as MJCF.
 
@@ -71,11 +72,15 @@ def write_mjcf_from_urdf(
     out_file : path
     model_name : str
     model_dir : path, optional
+    any_mesh : bool
+        Write meshes of every format, not ``.obj`` only (see :func:`write_portable_mjcf`).
 
     Returns
     -------
     text : str
     not_carried : list of NotCarried
     """
-    text, not_carried = write_portable_mjcf(model, out_file, model_name=model_name, model_dir=model_dir)
+    text, not_carried = write_portable_mjcf(
+        model, out_file, model_name=model_name, model_dir=model_dir, any_mesh=any_mesh
+    )
     return text, import_not_carried(findings, body_findings) + not_carried

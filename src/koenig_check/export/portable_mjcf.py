@@ -8,7 +8,8 @@ reader derives a zero mass (Drake refuses a zero-mass ``<inertial>``), and no re
 geometry elsewhere.  A joint's ``ref`` is folded into its body's pose where the body has that
 one joint, so that a reader ignoring ``ref`` still puts every body where MuJoCo does at the same ``q``.
 Mesh geoms are written for ``.obj`` files only (Drake's MJCF parser refuses the whole file otherwise);
-the others are listed as not carried.  Several root bodies are wrapped under one jointless root at the
+the others are listed as not carried, unless the export is for readers other than Drake (``any_mesh``):
+then every mesh MuJoCo read is written.  Several root bodies are wrapped under one jointless root at the
 identity (unless one is free or mocap: MuJoCo holds those only at the top level).  Numbers are
 written at full precision (Python's shortest repr, which parses back to the same double).  Joint
 equalities and keyframes are kept; tendons, actuators, sensors and other equalities are listed as not
@@ -69,7 +70,16 @@ def _why(geom: Geom) -> str:
         return f"no {geom.shape} shape written"
     if not geom.mesh_file:
         return "mesh without a file"
-    return "mesh not .obj, which Drake's MJCF parser refuses"
+    return "mesh not .obj, which Drake's MJCF parser refuses; --engines without drake writes it"
+
+
+def _written(geom: Geom, any_mesh: bool) -> bool:
+    """Whether a geom is written: a shape MJCF holds, a mesh with its file (.obj only where Drake reads it)."""
+    if geom.shape not in _WRITABLE:
+        return False
+    if geom.shape != "mesh":
+        return True
+    return bool(geom.mesh_file) and (any_mesh or geom.mesh_file.lower().endswith(".obj"))
 
 
 def _geom(parent: ET.Element, geom: Geom, meshes: dict[str, str], out_file: str | os.PathLike[str]) -> None:
@@ -133,6 +143,7 @@ def write_portable_mjcf(
     *,
     model_name: str = "robot",
     model_dir: str | os.PathLike[str] | None = None,
+    any_mesh: bool = False,
 ) -> tuple[str, list[NotCarried]]:
     """Write a compiled MuJoCo model as one self-contained MJCF document.
 
@@ -144,6 +155,9 @@ def write_portable_mjcf(
     model_name : str
     model_dir : path, optional
         Directory relative mesh paths of the model are read from.
+    any_mesh : bool
+        Write mesh geoms of every file format MuJoCo read (STL, MSH, ...), for readers other than Drake,
+        whose MJCF parser refuses a file with a mesh that is not ``.obj``.  Default: ``.obj`` meshes only.
 
     Returns
     -------
@@ -162,7 +176,7 @@ def write_portable_mjcf(
     by_body: dict[int, list[Geom]] = {}
     skipped: list[Geom] = []
     for g in model_geoms(model, model_dir):
-        if g.shape in _WRITABLE and (g.shape != "mesh" or g.mesh_file.lower().endswith(".obj")):
+        if _written(g, any_mesh):
             by_body.setdefault(g.body, []).append(g)
         else:
             skipped.append(g)
