@@ -64,6 +64,16 @@ def cycles(graph: dict[str, dict[str, list[str]]]) -> list[list[str]]:
     return found
 
 
+def described(graph: dict[str, dict[str, list[str]]]) -> list[str]:
+    """Each cycle of ``graph`` with the modules that make each of its imports (two at most)."""
+    return [
+        " -> ".join(cycle)
+        + ": "
+        + "; ".join(f"{a}->{b} in {sorted(set(graph[a][b]))[:2]}" for a, b in itertools.pairwise(cycle))
+        for cycle in cycles(graph)
+    ]
+
+
 def test_the_cycle_finder_finds_a_cycle() -> None:
     """The check below could fail: a hand-made graph with one cycle of three and one edge outside it."""
     graph = {"a": {"b": ["a.x"]}, "b": {"c": ["b.y"]}, "c": {"a": ["c.z"]}, "d": {"a": ["d.w"]}}
@@ -73,13 +83,7 @@ def test_the_cycle_finder_finds_a_cycle() -> None:
 def test_no_import_cycle_between_subpackages() -> None:
     graph = import_graph()
     assert graph["cli"] and graph["engines"]  # the graph was read (the CLI and the engines import others)
-    found = cycles(graph)
-    assert not found, [
-        " -> ".join(cycle)
-        + ": "
-        + "; ".join(f"{a}->{b} in {sorted(set(graph[a][b]))[:2]}" for a, b in itertools.pairwise(cycle))
-        for cycle in found
-    ]
+    assert not cycles(graph), described(graph)
 
 
 #: The one import from a top-level module into a subpackage below which nothing would close a cycle: a finding
@@ -137,13 +141,7 @@ def test_no_import_cycle_through_top_level_modules() -> None:
     never both, e.g. report importing the API that imports report."""
     graph = module_graph()
     assert graph[".api"]["run"] and graph["cli"][".api"]  # read: the API uses run, the CLI the API
-    found = cycles(graph)
-    assert not found, [
-        " -> ".join(cycle)
-        + ": "
-        + "; ".join(f"{a}->{b} in {sorted(set(graph[a][b]))[:2]}" for a, b in itertools.pairwise(cycle))
-        for cycle in found
-    ]
+    assert not cycles(graph), described(graph)
 
 
 def test_the_allowed_upward_import_imports_nothing_of_the_package() -> None:
