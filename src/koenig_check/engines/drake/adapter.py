@@ -294,18 +294,6 @@ class DrakeEngine(Engine):
                 out[p.vadr] = self._reflected[p.dv]
         return out
 
-    @drake_failures_raised
-    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the reflected inertia :meth:`armature_per_dof` on the diagonal."""
-        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
-        return np.broadcast_to(np.diag(self.armature_per_dof()), (qpos.shape[0], self.nv, self.nv))
-
-    @drake_failures_raised
-    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates."""
-        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        return qacc * self.armature_per_dof()
-
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Drake joint type (``revolute``, ``quaternion_floating``, ...)."""
         width = {"free": 6, "ball": 3}
