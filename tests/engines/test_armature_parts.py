@@ -39,6 +39,7 @@ OWN = (
     "hinge_armature_offset.xml",
     "ball_armature.xml",
     "free_armature.xml",
+    "two_motors_armature.xml",
 )
 CASES = [f"dm_control/{n}" for n in DM_CONTROL] + list(OWN)
 #: Round-off of a difference of two mass matrices (or forces) built by the same code: relative to their largest entry.

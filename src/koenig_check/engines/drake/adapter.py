@@ -79,7 +79,9 @@ class DrakeEngine(Engine):
             actuator = plant.get_joint_actuator(a)
             actuator.SetRotorInertia(self._rigid, 0.0)
             joint = actuator.joint()
-            self._reflected[joint.velocity_start()] += actuator.calc_reflected_inertia(self._context)
+            # Drake's mass matrix and energy count one reflected inertia per joint, the last actuator's (a
+            # hinge driven by two motors: each has armature / gear², the matrix has the armature once).
+            self._reflected[joint.velocity_start()] = actuator.calc_reflected_inertia(self._context)
         for j in plant.GetJointIndices():
             joint = plant.get_joint(j)
             if joint.num_velocities() > 0:
