@@ -85,3 +85,10 @@ SPLIT_OUT = [
 @pytest.mark.parametrize(("old", "name", "home"), SPLIT_OUT)
 def test_a_name_split_out_of_a_module_still_imports_from_it(old: str, name: str, home: str) -> None:
     assert getattr(importlib.import_module(old), name) is getattr(importlib.import_module(home), name)
+
+
+@pytest.mark.parametrize("name", ["add_export_arguments", "run_export", "print_proof", "refused_lines"])
+def test_the_export_command_imports_from_its_old_home(name: str) -> None:
+    """The export command's argparse part moved from export/ into cli/ (export must not import cli)."""
+    old = importlib.import_module("koenig_check.export.cli_export")
+    assert getattr(old, name) is getattr(importlib.import_module("koenig_check.cli.export"), name)

@@ -44,6 +44,7 @@ MOVED: dict[str, str] = {
     "koenig_check.project_config": "koenig_check.testing.project_config",
     "koenig_check.failure_text": "koenig_check.testing.failure_text",
     "koenig_check.implied_dynamics.drake_column": "koenig_check.implied_dynamics.engine_columns",
+    "koenig_check.export.cli_export": "koenig_check.cli.export",
 }
 
 

@@ -154,9 +154,30 @@ class Engine(ABC):
         ndarray, shape (P, nv)
         """
 
-    @abstractmethod
+    def armature_per_dof(self) -> np.ndarray:
+        """Return the armature (rotor inertia) of each canonical dof, for an engine whose armature is diagonal there.
+
+        The defaults of :meth:`armature_matrix` and :meth:`armature_forces` are built on it.  An engine whose
+        armature is diagonal in its own velocity coordinates but not in the canonical ones (Pinocchio's free
+        and ball joints) overrides those two methods instead.
+
+        Returns
+        -------
+        ndarray, shape (nv,)
+
+        Raises
+        ------
+        NotImplementedError
+            The engine overrides :meth:`armature_matrix` and :meth:`armature_forces` instead.
+        """
+        raise NotImplementedError(
+            f"{type(self).__name__} has no armature per canonical dof: it overrides armature_matrix and armature_forces"
+        )
+
     def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
         """Return the armature part of :meth:`mass_matrix`, canonical coordinates.
+
+        The default: :meth:`armature_per_dof` on the diagonal, the same at every pose.
 
         Parameters
         ----------
@@ -165,11 +186,15 @@ class Engine(ABC):
         Returns
         -------
         ndarray, shape (P, nv, nv)
+            Read-only (one matrix broadcast over the poses).
         """
+        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
+        return np.broadcast_to(np.diag(self.armature_per_dof()), (qpos.shape[0], self.nv, self.nv))
 
-    @abstractmethod
     def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Return the armature part of :meth:`inverse_dynamics`, canonical coordinates.
+
+        The default: :meth:`armature_per_dof` times ``qacc``, dof by dof.
 
         Parameters
         ----------
@@ -180,6 +205,8 @@ class Engine(ABC):
         -------
         ndarray, shape (P, nv)
         """
+        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
+        return qacc * self.armature_per_dof()
 
     @abstractmethod
     def dofs_by_kind(self) -> dict[str, np.ndarray]:

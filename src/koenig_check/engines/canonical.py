@@ -46,8 +46,24 @@ def mujoco_joint_names(model: mujoco.MjModel) -> list[str]:
     return names
 
 
-#: (qpos, qvel) sizes of MuJoCo's joint types; hinge and slide have one of each.
+#: (qpos, qvel) sizes of MuJoCo's joint types with more than one coordinate.
 _JOINT_SIZES = {int(mujoco.mjtJoint.mjJNT_FREE): (7, 6), int(mujoco.mjtJoint.mjJNT_BALL): (4, 3)}
+
+
+def joint_sizes(joint_type: int) -> tuple[int, int]:
+    """The number of position and velocity coordinates of a MuJoCo joint type.
+
+    Parameters
+    ----------
+    joint_type : int
+        A ``mujoco.mjtJoint`` value (``model.jnt_type[j]``).
+
+    Returns
+    -------
+    nq, nv : int
+        (7, 6) for a free joint, (4, 3) for a ball, (1, 1) for a hinge or a slide.
+    """
+    return _JOINT_SIZES.get(int(joint_type), (1, 1))
 
 
 def mujoco_coordinate_names(model: mujoco.MjModel) -> tuple[list[str], list[str]]:
@@ -66,7 +82,7 @@ def mujoco_coordinate_names(model: mujoco.MjModel) -> tuple[list[str], list[str]
     qnames = [""] * model.nq
     vnames = [""] * model.nv
     for j, name in enumerate(mujoco_joint_names(model)):
-        nq, nv = _JOINT_SIZES.get(int(model.jnt_type[j]), (1, 1))
+        nq, nv = joint_sizes(model.jnt_type[j])
         for names, adr, size in ((qnames, model.jnt_qposadr[j], nq), (vnames, model.jnt_dofadr[j], nv)):
             for k in range(size):
                 names[adr + k] = name if size == 1 else f"{name}[{k}]"

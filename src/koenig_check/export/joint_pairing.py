@@ -7,10 +7,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from koenig_check.engines.canonical import mujoco_joint_names
+from koenig_check.engines.canonical import joint_sizes, mujoco_joint_names
 from koenig_check.engines.mujoco.loader import root_free_joint
-
-_WIDTH = {int(mujoco.mjtJoint.mjJNT_FREE): (7, 6), int(mujoco.mjtJoint.mjJNT_BALL): (4, 3)}
 
 
 @dataclass(frozen=True)
@@ -92,7 +90,7 @@ def pair_joints(original: mujoco.MjModel, export: mujoco.MjModel) -> JointPairin
         if ta != tb:
             problems.append(f"joint {name}: type {ta} in the original, {tb} in the export")
             continue
-        nq, nv = _WIDTH.get(ta, (1, 1))
+        nq, nv = joint_sizes(ta)
         qa += range(int(original.jnt_qposadr[ja]), int(original.jnt_qposadr[ja]) + nq)
         qb += range(int(export.jnt_qposadr[jb]), int(export.jnt_qposadr[jb]) + nq)
         da += range(int(original.jnt_dofadr[ja]), int(original.jnt_dofadr[ja]) + nv)

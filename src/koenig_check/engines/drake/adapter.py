@@ -79,7 +79,9 @@ class DrakeEngine(Engine):
             actuator = plant.get_joint_actuator(a)
             actuator.SetRotorInertia(self._rigid, 0.0)
             joint = actuator.joint()
-            self._reflected[joint.velocity_start()] += actuator.calc_reflected_inertia(self._context)
+            # Drake's mass matrix and energy count one reflected inertia per joint, the last actuator's (a
+            # hinge driven by two motors: each has armature / gear², the matrix has the armature once).
+            self._reflected[joint.velocity_start()] = actuator.calc_reflected_inertia(self._context)
         for j in plant.GetJointIndices():
             joint = plant.get_joint(j)
             if joint.num_velocities() > 0:
@@ -293,18 +295,6 @@ class DrakeEngine(Engine):
             if p.kind in ("hinge", "slide"):
                 out[p.vadr] = self._reflected[p.dv]
         return out
-
-    @drake_failures_raised
-    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the reflected inertia :meth:`armature_per_dof` on the diagonal."""
-        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
-        return np.broadcast_to(np.diag(self.armature_per_dof()), (qpos.shape[0], self.nv, self.nv))
-
-    @drake_failures_raised
-    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates."""
-        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        return qacc * self.armature_per_dof()
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Drake joint type (``revolute``, ``quaternion_floating``, ...)."""

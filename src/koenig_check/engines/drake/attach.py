@@ -62,7 +62,7 @@ def _file_causes(model: Any) -> list[Finding]:
 
 
 def armature_findings(model: Any, drake: Any) -> list[Finding]:
-    """Joints whose armature MuJoCo has but Drake's model lacks (Drake's MJCF parser reads no ``armature``).
+    """Joints whose armature MuJoCo has but Drake's model lacks (Drake's MJCF parser reads it where a motor drives).
 
     Parameters
     ----------

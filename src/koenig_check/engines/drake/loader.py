@@ -11,8 +11,10 @@ What Drake 1.51's parsers do, verified on the project's files and example-robot-
   name attribute or a model name must be specified").  The file is then parsed from a copy written
   next to it (so that includes and mesh directories resolve) whose ``model`` is the file's stem; a
   ``LOAD`` finding says so.  It ignores ``<keyframe>``, joint ``<equality>``, height fields, the
-  compiler's ``settotalmass``, and joint ``armature`` (each with a warning, except ``armature``, which it
-  drops silently: Drake's analogue is the reflected inertia of an actuator, rotor inertia × gear ratio²).
+  compiler's ``settotalmass``, and the ``armature`` of a joint no ``<motor>`` drives (each with a warning,
+  except ``armature``, which it drops silently).  A driven joint's armature becomes each motor's rotor inertia,
+  armature / gear², with the motor's gear as gear ratio: Drake's reflected inertia, rotor inertia × gear
+  ratio², is then the armature (counted once per joint, however many motors drive it).
   A joint's ``ref`` is honoured as MuJoCo does (the file's pose at ``q = ref``, Drake's default
   position; for a slide, the joint frame on the child is put ``ref`` along the axis).  A ``ball`` joint is a
   ``BallRpyJoint`` (roll-pitch-yaw coordinates, angular velocity in the parent frame); a free joint is a

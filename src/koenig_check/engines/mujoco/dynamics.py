@@ -130,13 +130,6 @@ class MujocoDynamics:
             out[p] = d.qfrc_inverse
         return out
 
-    def armature_matrix(self, qpos: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`mass_matrix` (P, nv, nv), canonical coordinates."""
-        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
-        arm = np.diag(np.asarray(self.model.dof_armature, dtype=float))
-        return np.broadcast_to(arm, (qpos.shape[0], self.nv, self.nv))
-
-    def armature_forces(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
-        """Return the armature part of :meth:`inverse_dynamics` (P, nv), canonical coordinates."""
-        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        return qacc * np.asarray(self.model.dof_armature, dtype=float)
+    def armature_per_dof(self) -> np.ndarray:
+        """Return ``dof_armature``: ``mj_fullM`` has it on the diagonal, ``mj_inverse`` adds ``dof_armature ⊙ q̈``."""
+        return np.array(self.model.dof_armature, dtype=float)
