@@ -7,9 +7,11 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from export_helpers import MODELS
 
 from koenig_check.cli import main
+
+#: The export tests' models (tests/export/models).
+MODELS = Path(__file__).resolve().parents[1] / "export" / "models"
 
 
 def test_export_prints_equivalent(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
