@@ -112,8 +112,8 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
             Kind.IGNORED_CONSTRUCT,
             "drake",
             "joint armature",
-            "Drake's MJCF parser does not read a joint's armature (its analogue is an actuator's reflected "
-            "inertia, rotor inertia × gear ratio²)",
+            "Drake's MJCF parser does not read the armature of a joint no motor drives (a driven joint's it "
+            "reads as the motor's reflected inertia, rotor inertia × gear ratio²)",
             {
                 "joints": joints,
                 "mujoco armature": [float(arm[p.vadr]) for p in drake.state_map.pairs if p.name in joints],
