@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from koenig_check.engines import registry
+from koenig_check.engines.base import Engine
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
@@ -41,13 +42,13 @@ def _relative(a: np.ndarray, b: np.ndarray, axes: tuple[int, ...]) -> np.ndarray
     return np.abs(a - b).max(axis=axes) / np.where(scale > 0, scale, 1.0)
 
 
-def _rigid_mass_matrix(adapter: object, qpos: np.ndarray) -> np.ndarray:
-    return np.asarray(adapter.mass_matrix(qpos)) - np.asarray(adapter.armature_matrix(qpos))  # type: ignore[attr-defined]
+def _rigid_mass_matrix(adapter: Engine, qpos: np.ndarray) -> np.ndarray:
+    return np.asarray(adapter.mass_matrix(qpos)) - np.asarray(adapter.armature_matrix(qpos))
 
 
 def _differences(
-    a: object,
-    b: object,
+    a: Engine,
+    b: Engine,
     pairing: JointPairing,
     states: tuple[np.ndarray, np.ndarray],
     export_states: tuple[np.ndarray, np.ndarray],
@@ -61,23 +62,23 @@ def _differences(
     od, xd = pairing.dof_original, pairing.dof_export
     m_a = _rigid_mass_matrix(a, qpos)[:, od][:, :, od]
     m_b = _rigid_mass_matrix(b, qx)[:, xd][:, :, xd]
-    t_a = np.asarray(a.kinetic_energy(qpos, qvel).rigid)  # type: ignore[attr-defined]
-    t_b = np.asarray(b.kinetic_energy(qx, vx).rigid)  # type: ignore[attr-defined]
+    t_a = np.asarray(a.kinetic_energy(qpos, qvel).rigid)
+    t_b = np.asarray(b.kinetic_energy(qx, vx).rigid)
     de = np.abs(t_a - t_b) / np.where(np.abs(t_a) > 0, np.abs(t_a), 1.0)
-    f_a = np.asarray(a.inverse_dynamics(qpos, qvel, qvel)) - np.asarray(a.armature_forces(qpos, qvel, qvel))  # type: ignore[attr-defined]
-    f_b = np.asarray(b.inverse_dynamics(qx, vx, vx)) - np.asarray(b.armature_forces(qx, vx, vx))  # type: ignore[attr-defined]
+    f_a = np.asarray(a.inverse_dynamics(qpos, qvel, qvel)) - np.asarray(a.armature_forces(qpos, qvel, qvel))
+    f_b = np.asarray(b.inverse_dynamics(qx, vx, vx)) - np.asarray(b.armature_forces(qx, vx, vx))
     di = _relative(f_a[:, od], f_b[:, xd], (1,))
     return float(_relative(m_a, m_b, (1, 2)).max()), float(de.max()), float(di.max())
 
 
-def _energy_difference(mujoco_side: object, engine_side: object, states: tuple[np.ndarray, np.ndarray]) -> float:
+def _energy_difference(mujoco_side: Engine, engine_side: Engine, states: tuple[np.ndarray, np.ndarray]) -> float:
     """Max over the states of ``|T_engine - T_mujoco| / |T_mujoco|``, the rigid energies of one file's two readings.
 
     The measure ``koenig-check compare`` gives the engines' gap (relative to MuJoCo's energy), so the two
     commands give one number for one gap at the same states.
     """
-    t_a = np.asarray(mujoco_side.kinetic_energy(*states).rigid)  # type: ignore[attr-defined]
-    t_b = np.asarray(engine_side.kinetic_energy(*states).rigid)  # type: ignore[attr-defined]
+    t_a = np.asarray(mujoco_side.kinetic_energy(*states).rigid)
+    t_b = np.asarray(engine_side.kinetic_energy(*states).rigid)
     return float((np.abs(t_b - t_a) / np.where(np.abs(t_a) > 0, np.abs(t_a), 1.0)).max())
 
 
@@ -125,16 +126,16 @@ def compare_engine(
 
 def _segments(
     engine: str,
-    a: object,
-    b: object,
+    a: Engine,
+    b: Engine,
     export: EngineSide,
     state_a: tuple[np.ndarray, np.ndarray],
     state_b: tuple[np.ndarray, np.ndarray],
     original: EngineSide,
     rtol: float,
 ) -> list[SegmentDifference]:
-    sa = a.segment_states(*state_a)  # type: ignore[attr-defined]
-    sb = b.segment_states(*state_b)  # type: ignore[attr-defined]
+    sa = a.segment_states(*state_a)
+    sb = b.segment_states(*state_b)
     ib = {n: i for i, n in enumerate(sb.names)}
     root_a, root_b = root_free_joint(original.mj_model), root_free_joint(export.mj_model)
     names_x = mujoco_joint_names(export.mj_model)
