@@ -1,9 +1,11 @@
 """``--balance-inertia`` and ``--repair-inertia`` together: each link changed by one of them, named once, by its own.
 
-rod_and_plate.urdf welds two refused links to a moving arm (fusestatic fuses them away, so the balance findings
+rod_and_plate.urdf welds three refused links to a moving arm (fusestatic fuses them away, so the balance findings
 are read from the file compiled again without fusing).  The rod's zero principal moment is MuJoCo's refusal
 whatever ``balanceinertia`` does: only the repair loads it.  The plate's moments (0.1, 0.1, 0.25) break
 ``A + B >= C``; MuJoCo's ``balanceinertia`` makes them all their mean, (0.1 + 0.1 + 0.25) / 3 = 0.15 (by hand).
+The shell's full inertia has a negative eigenvalue: only the repair loads it (and balances it on the way), so it
+is the repair's finding alone, never also a balance finding.
 Both options together failed to load the file (the balance findings' second compilation lacked the repair).
 """
 
@@ -33,8 +35,10 @@ def _repairs(options: dict[str, bool]) -> dict[str, list[str]]:
 def test_both_options_load_the_file_each_link_named_once_by_what_changed_it() -> None:
     pair = load_model(MODEL, balance_inertia=True, repair_inertia=True)
     found = {f.element: f for f in pair.findings if f.kind is Kind.REPAIR}
-    assert sorted(found) == ["link plate", "link rod"]
-    assert sum(f.element == "link rod" for f in pair.findings if f.kind is Kind.REPAIR) == 1
+    assert sorted(found) == ["link plate", "link rod", "link shell"]
+    for link in ("link rod", "link shell"):  # one finding each, the repair's
+        assert sum(f.element == link for f in pair.findings if f.kind is Kind.REPAIR) == 1
+        assert "so that MuJoCo accepts" in found[link].summary
     rod, plate = found["link rod"], found["link plate"]
     assert "so that MuJoCo accepts" in rod.summary and "balanceinertia" not in rod.summary
     assert rod.values["moments before"] == [0.0, 0.002, 0.002]
@@ -48,8 +52,11 @@ def test_both_options_load_the_file_each_link_named_once_by_what_changed_it() ->
 @pytest.mark.parametrize(
     ("options", "expected"),
     [
-        ({"repair_inertia": True}, {"link plate": "accepts", "link rod": "accepts"}),
-        ({"balance_inertia": True, "repair_inertia": True}, {"link plate": "balanceinertia", "link rod": "accepts"}),
+        ({"repair_inertia": True}, {"link plate": "accepts", "link rod": "accepts", "link shell": "accepts"}),
+        (
+            {"balance_inertia": True, "repair_inertia": True},
+            {"link plate": "balanceinertia", "link rod": "accepts", "link shell": "accepts"},
+        ),
     ],
 )
 def test_the_arm_carries_the_welded_links_as_changed(options: dict[str, bool], expected: dict[str, str]) -> None:
@@ -61,7 +68,7 @@ def test_the_arm_carries_the_welded_links_as_changed(options: dict[str, bool], e
     pair = load_model(MODEL, **options)
     q0 = np.asarray(pair.mujoco.model.qpos0, dtype=float)[None]
     mass = pair.mujoco.segment_states(q0, np.zeros((1, pair.mujoco.nv))).mass
-    assert mass == pytest.approx([2.0 + 0.5 + 1.0])  # arm, rod and plate, as the file writes them
+    assert mass == pytest.approx([2.0 + 0.5 + 1.0 + 0.2])  # arm, rod, plate and shell, as the file writes them
 
 
 def test_a_body_balanceinertia_leaves_as_written_is_no_finding() -> None:
