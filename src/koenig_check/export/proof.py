@@ -217,12 +217,14 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine (:func:`koenig_check.engines.registry.names`).
+        Default: every engine (:func:`koenig_check.engines.registry.names`), each compared where it loads both
+        files.  Engines named here are asked for: one that cannot compare the files fails the proof.
 
     Returns
     -------
     Proof
     """
+    asked = () if engines is None else tuple(engines)
     engines = registry.names() if engines is None else tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
@@ -234,14 +236,14 @@ def prove(
             "(--floating gives the root body a free joint)"
         )
         skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "nothing moves") for e in engines)
-        return Proof(skipped, (), poses, seed, rtol, (problem,))
+        return Proof(skipped, (), poses, seed, rtol, (problem,), asked)
     if pairing.problems:
         skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "joints do not pair") for e in engines)
-        return Proof(skipped, (), poses, seed, rtol, pairing.problems)
+        return Proof(skipped, (), poses, seed, rtol, pairing.problems, asked)
     states = random_states(side_a.mj_model, poses, seed)
     results, segments = [], []
     for engine in engines:
         proof, diffs = compare_engine(engine, side_a, side_b, pairing, states, rtol)
         results.append(proof)
         segments += diffs
-    return Proof(tuple(results), tuple(segments), poses, seed, rtol)
+    return Proof(tuple(results), tuple(segments), poses, seed, rtol, asked=asked)

@@ -108,6 +108,9 @@ class Proof:
     rtol : float
     problems : tuple of str
         Why the files cannot be compared at all (joints missing), or empty.
+    asked : tuple of str
+        The engines the user named (``--engines``): each must be compared, or the proof fails (empty: the
+        default, every engine that loads both files).
     """
 
     engines: tuple[EngineProof, ...]
@@ -116,12 +119,34 @@ class Proof:
     seed: int
     rtol: float
     problems: tuple[str, ...] = ()
+    asked: tuple[str, ...] = ()
 
     @property
     def equivalent(self) -> bool:
-        """At least one engine compared, every compared engine within tolerance, nothing else wrong."""
+        """At least one engine compared, every compared engine within tolerance, every named engine compared."""
         compared = [e for e in self.engines if e.compared]
-        return bool(compared) and all(e.equivalent for e in compared) and not self.problems and not self.segments
+        return (
+            bool(compared)
+            and all(e.equivalent for e in compared)
+            and not self.problems
+            and not self.segments
+            and not self.unmade()
+        )
+
+    def unmade(self) -> list[str]:
+        """The engines the user named that were not compared, each with its reason.
+
+        Returns
+        -------
+        list of str
+        """
+        from koenig_check.engines.registry import label
+
+        return [
+            f"{label(e.engine)} asked for (--engines) but not compared: {e.reason}"
+            for e in self.engines
+            if e.engine in self.asked and not e.compared
+        ]
 
     @property
     def max_relative_difference(self) -> float:
@@ -151,7 +176,7 @@ class Proof:
         -------
         list of str
         """
-        out = list(self.problems) + [s.message() for s in self.segments]
+        out = self.unmade() + list(self.problems) + [s.message() for s in self.segments]
         for e in self.engines:
             if e.compared and not e.equivalent:
                 out.append(

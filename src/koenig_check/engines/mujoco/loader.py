@@ -209,8 +209,12 @@ def _load(
         )
     changed: list[str] = [n for n, _ in repaired]
     diffs += [(survivor(n), f) for n, f in repaired]
-    if spec_before is not None:
-        balanced = balance_findings(spec_before, refused, model, source, file_inertia)
+    if spec_before is not None:  # bodies repaired are the repair's findings, and carry its values here too
+        for name in changed:
+            if spec_before.body(name) is not None:
+                _copy_inertial(spec.body(name), spec_before.body(name))
+        unrepaired = {n: v for n, v in file_inertia.items() if n not in changed}
+        balanced = balance_findings(spec_before, refused, model, source, unrepaired)
         changed += [n for n, _ in balanced]
         diffs += [(survivor(n), f) for n, f in balanced]
     hosts = {survivor(parent_of.get(n, "")) for n in fused}
@@ -235,6 +239,15 @@ def _load(
             )
         )
     return model, notes, diffs
+
+
+def _copy_inertial(source: mujoco.MjsBody, target: mujoco.MjsBody) -> None:
+    """Give ``target`` the inertial of ``source`` (what :func:`repair_body` changes)."""
+    target.explicitinertial = source.explicitinertial
+    target.ipos = list(source.ipos)
+    target.mass = float(source.mass)
+    target.inertia = list(source.inertia)
+    target.fullinertia = list(source.fullinertia)
 
 
 def _not_floatable(tops: list[mujoco.MjsBody], what: str) -> str:

@@ -18,6 +18,9 @@ from koenig_check.sources.catalogue import ModelSource
 #: A body's mass-property change with the body it concerns (mapped to its segment by the engine adapter).
 BodyFinding = tuple[str, Finding]
 
+#: Relative change of the principal moments under which the compiler is taken to have left a body as written.
+UNCHANGED_RTOL = 1e-9
+
 
 def balance_findings(
     spec_before: mujoco.MjSpec,
@@ -64,6 +67,8 @@ def balance_findings(
         bid = mujoco.mj_name2id(compiled, mujoco.mjtObj.mjOBJ_BODY, name)
         new = np.sort(compiled.body_inertia[bid])
         change = np.abs(new - lam).max() / max(np.abs(lam).max(), 1e-300)
+        if change <= UNCHANGED_RTOL:  # balanceinertia left it as written (a zero moment is no A + B < C)
+            continue
         finding = Finding(
             Kind.REPAIR,
             "mujoco",
@@ -104,7 +109,7 @@ def altered_by_compiler(model: mujoco.MjModel, file_inertia: dict[str, tuple[flo
         compiled = np.sort(model.body_inertia[bid])
         scale = max(np.abs(moments).max(), 1e-300)
         if abs(model.body_mass[bid] - mass) > 1e-12 * max(mass, 1e-300) or np.abs(compiled - moments).max() > (
-            1e-9 * scale
+            UNCHANGED_RTOL * scale
         ):
             out.append(name)
     return out
