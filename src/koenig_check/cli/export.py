@@ -132,7 +132,7 @@ def print_proof(proof: Proof, shown: Callable[[str], str] = str) -> None:
         return
     print("not equivalent:")  # each reason on its own line (the summary joins them in one)
     for line in proof.reasons():
-        print(fold_text(f"  - {line}"))
+        print(fold_text(shown(f"  - {line}")))
 
 
 def refused_lines(err: ExportRefusedError, target: str, limit: int = 3) -> list[str]:

@@ -211,13 +211,13 @@ class Proof:
         ]
 
     def skipped(self) -> list[str]:
-        """Engines not compared, with the reason.
+        """Engines not compared that the user did not name, with the reason (a named one is in :meth:`unmade`).
 
         Returns
         -------
         list of str
         """
-        return [f"{e.engine}: {e.reason}" for e in self.engines if not e.compared]
+        return [f"{e.engine}: {e.reason}" for e in self.engines if not e.compared and e.engine not in self.asked]
 
 
 @dataclass(frozen=True)
