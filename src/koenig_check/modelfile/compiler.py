@@ -16,8 +16,8 @@ MASS_OPTIONS = {
         "MuJoCo rescales every mass and inertia to this total",
         "check whether Pinocchio's MJCF parser does the same (total masses below)",
     ),
-    "boundmass": ("MuJoCo raises smaller masses/inertias to this bound", ""),
-    "boundinertia": ("MuJoCo raises smaller masses/inertias to this bound", ""),
+    "boundmass": ("MuJoCo raises smaller body masses to this bound", "Pinocchio's MJCF parser applies it too"),
+    "boundinertia": ("MuJoCo raises smaller principal moments to this bound", "Pinocchio's MJCF parser applies it too"),
     "balanceinertia": ("MuJoCo alters inertias that violate A + B >= C", ""),
     "inertiafromgeom": ("MuJoCo computes every body's inertia from its geoms", ""),
 }

@@ -222,8 +222,18 @@ def _load(
         n for n in altered_by_compiler(model, file_inertia) if n not in changed and n not in hosts and n != "world"
     ]
     options = {k: getattr(spec.compiler, k) for k in ("settotalmass", "boundmass", "boundinertia")}
+    # settotalmass rescales every body: Pinocchio's MJCF parser keeps the file's values.  Without it, what
+    # altered an explicit inertial is boundmass / boundinertia, which Pinocchio 4's parser applies as well
+    # (the same masses and moments as MuJoCo's): a change from the file, not a difference between engines.
+    rescaled = options["settotalmass"] > 0
     for n in altered:
         bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n)
+        summary = (
+            "MuJoCo's compiler altered the mass or inertia; Pinocchio keeps the file's values"
+            if rescaled
+            else "MuJoCo's compiler raised the mass or inertia to its bound (boundmass, boundinertia); "
+            "Pinocchio's MJCF parser applies the same bounds"
+        )
         diffs.append(
             (
                 n,
@@ -231,10 +241,10 @@ def _load(
                     Kind.COMPILER,
                     "mujoco",
                     f"{what} {n}",
-                    "MuJoCo's compiler altered the mass or inertia; Pinocchio keeps the file's values",
+                    summary,
                     {"mass in the file": file_inertia[n][0], "mass compiled": float(model.body_mass[bid]), **options},
-                    affects_energy=True,
-                    root_cause=True,
+                    affects_energy=rescaled,
+                    root_cause=rescaled,
                 ),
             )
         )
