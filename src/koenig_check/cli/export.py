@@ -57,7 +57,12 @@ def add_export_arguments(p: argparse.ArgumentParser) -> None:
     from koenig_check.export.proof import PROOF_POSES, PROOF_RTOL
 
     p.add_argument("model", nargs="?", metavar="MODEL", help="model file or name to export")
-    p.add_argument("--to", choices=("urdf", "mjcf"), help="target format (mjcf of an MJCF: the portable form)")
+    p.add_argument(
+        "--to",
+        choices=("urdf", "mjcf"),
+        help="target format (mjcf of an MJCF: the portable form; its mesh geoms .obj only, as Drake reads, "
+        "every mesh with --engines mujoco,pinocchio)",
+    )
     p.add_argument("--out", metavar="FILE", help="file to write")
     p.add_argument(
         "--check-only",
