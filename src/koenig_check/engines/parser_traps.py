@@ -20,6 +20,7 @@ import mujoco
 
 from koenig_check.engines.canonical import segment_of_body
 from koenig_check.engines.registry import label
+from koenig_check.engines.replicates import replicate_causes
 from koenig_check.engines.unit_axes import axisangle_causes
 from koenig_check.exceptions import (
     CoupledJointsError,
@@ -140,6 +141,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
         )
     out += frame_causes(root, seg_of)
     out += axisangle_causes(root, seg_of)
+    out += replicate_causes(root, seg_of)
     for body in world_bodies[1:]:
         joints = tuple(joint_names(body))
         out.append(
