@@ -13,7 +13,7 @@ import pinocchio as pin
 import pytest
 
 import koenig_check
-from koenig_check.modelfile.urdf_links import undeclared_links
+from koenig_check.modelfile.urdf_links import planar_joints, undeclared_links
 
 LINK = '<link name="{0}"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>' + (
     "</inertial></link>"
@@ -60,3 +60,16 @@ def test_the_refusal_line_names_the_joint_and_what_to_add(tmp_path: Path) -> Non
     assert 'add <link name="world"/>' in line and "URDF joint parent or child missing" in check.failures[0][1]
     declared = _urdf(tmp_path, ["world", *links], joints)
     assert koenig_check.compare(declared, n_poses=2, formulas=["exact"]).ok
+
+
+def test_a_planar_joint_is_named_with_the_three_joints_mujoco_makes(tmp_path: Path) -> None:
+    joints = [("slider", "planar", "base", "upper"), ("elbow", "continuous", "upper", "lower")]
+    path = _urdf(tmp_path, ["base", "upper", "lower"], joints)
+    assert planar_joints(path) == ["slider"]
+    mj = mujoco.MjModel.from_xml_path(str(path))  # each engine's own reading
+    assert [mj.joint(k).name for k in range(mj.njnt)] == ["slider_TX", "slider_TY", "slider_RZ", "elbow"]
+    assert pin.buildModelFromUrdf(str(path)).joints[1].shortname() == "JointModelPlanar"
+    check = koenig_check.compare(path, n_poses=2, formulas=["exact"])
+    line = check.failure_lines["robot.urdf"]
+    assert "root cause: joint slider: URDF planar joint" in line
+    assert "MuJoCo's import makes it three joints (slider_TX, slider_TY, slider_RZ)" in check.failures[0][1]

@@ -47,3 +47,23 @@ def undeclared_links(path: str | Path) -> str:
     if "world" in links:
         text += '; only Drake implies the world link: add <link name="world"/>'
     return text
+
+
+def planar_joints(path: str | Path) -> list[str]:
+    """The names of the URDF's ``planar`` joints (MuJoCo's import makes each three joints, Pinocchio one).
+
+    Parameters
+    ----------
+    path : str or Path
+        A URDF file.
+
+    Returns
+    -------
+    list of str
+        Empty when there is none or the file cannot be read.
+    """
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError):
+        return []
+    return [j.get("name", "?") for j in root.iter("joint") if j.get("type") == "planar"]
