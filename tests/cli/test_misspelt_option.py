@@ -14,6 +14,8 @@ from koenig_check.cli.main import main
         (["parity", "x.xml", "--rtl", "1e-6"], "--rtol"),
         (["dynamics", "x.xml", "--repair-inertias"], "--repair-inertia"),
         (["export", "x.xml", "--to", "urdf", "--out", "y.urdf", "--sede", "3"], "--seed"),
+        (["compare", "x.xml", "--report", "rep"], "--out"),  # by spelling --records, which means something else
+        (["compare", "x.xml", "--report-dir", "rep"], "--out"),
     ],
 )
 def test_closest_option(argv, closest, capsys):

@@ -8,7 +8,7 @@ import pytest
 
 from koenig_check import cli
 from koenig_check.sources.catalogue import accepted_names
-from koenig_check.sources.known_names import looks_like_path, unknown_name
+from koenig_check.sources.known_names import ambiguous_name, looks_like_path, unknown_name
 
 COMMANDS = {
     "compare": ["compare", "gimbal.xml", "ur5_robt"],
@@ -64,3 +64,20 @@ def test_a_missing_file_in_a_batch_fails_alone(tmp_path: Path, capsys: pytest.Ca
     assert any(line.startswith("gimbal.xml") and "agree" in line for line in out.splitlines())
     (line,) = err.strip().splitlines()
     assert str(missing) in line and ("no such file" in line or "file not found" in line)
+
+
+@pytest.mark.parametrize("argv", [["compare", "gimbal.xml", "anymal"], ["parity", "anymal"], ["dynamics", "anymal"]])
+def test_an_ambiguous_name_exits_2_naming_the_models_before_any_work(
+    argv: list[str], no_model_loaded: list[str], capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as exc:
+        cli.main(argv)
+    assert exc.value.code == 2 and not no_model_loaded
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "anymal: ambiguous model name" in line
+    assert "anymal_b_simple/anymal" in line and "anymal_c_simple/anymal" in line
+
+
+@pytest.mark.parametrize("name", ["anymal_b_simple/anymal", "anymal_c_simple/anymal", "romeo", "double_pendulum"])
+def test_a_name_that_names_one_model_is_not_ambiguous(name: str) -> None:
+    assert ambiguous_name(name) is None and unknown_name(name) is None

@@ -14,6 +14,7 @@ from koenig_check.engines import load_model
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.engines.load_options import LoadOptions, parse_xacro_args
 from koenig_check.sources.catalogue import resolve_model
+from koenig_check.sources.xacro import cache_dir
 
 #: (xacro arguments, the length the hand-expanded file was written for)
 CASES = {"default": ({}, "0.5"), "length=0.8": ({"length": "0.8"}, "0.8")}
@@ -111,3 +112,43 @@ def test_xacro_args_spellings_are_one_option(given):
 def test_malformed_xacro_args_are_refused(bad):
     with pytest.raises((TypeError, ValueError)):
         LoadOptions(xacro_args=bad)
+
+
+MACROS_ONLY = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="wheel" params="side">
+    <link name="${side}_wheel"><inertial><mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  </xacro:macro>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("floating", [False, True])
+def test_a_file_of_macros_only_fails_alone_naming_its_macros(arm_xacro, tmp_path, floating):
+    parts = tmp_path / "parts.urdf.xacro"  # like hector's quadrotor_base.urdf.xacro: included, never called
+    parts.write_text(MACROS_ONLY)
+    check = compare([parts, arm_xacro], n_poses=3, floating=floating)
+    reasons = dict(check.failures)  # the arm is still compared (floating, it fails for its own massless base)
+    assert [c.model for c in check.comparisons] == ([] if floating else ["arm.urdf.xacro"])
+    assert "link 'base'" in reasons.get("arm.urdf.xacro (floating)", "link 'base'")
+    [label] = [name for name in reasons if name.startswith("parts.urdf.xacro")]
+    reason = reasons[label]
+    assert "without any <link>" in reason and "macros (wheel)" in reason
+    assert str(tmp_path) not in check.failure_lines[label]  # the line is short and whole
+    assert check.failure_lines[label].endswith("expand the file that uses it")
+
+
+def test_failures_name_the_xacro_file_not_its_expansion(tmp_path):
+    bad = tmp_path / "bad.urdf.xacro"  # expands, then MuJoCo refuses the inertia (A + B < C)
+    bad.write_text(
+        '<robot name="b"><link name="base"/><link name="l1"><inertial><mass value="1"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="5"/></inertial></link>'
+        '<joint name="j" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>'
+    )
+    check = compare(bad, n_poses=2)
+    [(label, reason)] = check.failures
+    expanded = str(cache_dir())
+    assert expanded in reason  # the engine read the expansion...
+    line = check.failure_lines[label]
+    assert expanded not in line and "link 'l1'" in line  # ...the user is told about the file they gave

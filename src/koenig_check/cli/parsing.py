@@ -97,10 +97,17 @@ def unrecognized(parser: argparse.ArgumentParser, extras: list[str]) -> str:
     options = [o for o in parser._option_string_actions if o.startswith("--")]
     for word in extras:
         if word.startswith("-"):
-            close = difflib.get_close_matches(word.split("=", 1)[0], options, n=1, cutoff=0.6)
+            typed = word.split("=", 1)[0]
+            meant = SYNONYMS.get(typed)
+            close = [meant] if meant in options else difflib.get_close_matches(typed, options, n=1, cutoff=0.6)
             if close:
                 return f"{message}; did you mean {close[0]}?"
     return message
+
+
+#: Options other tools spell another way, and the option meant (the closest by spelling would mislead:
+#: ``--report`` is nearest ``--records``, which chooses what the records hold).
+SYNONYMS = {"--report": "--out", "--report-dir": "--out", "--output": "--out", "--output-dir": "--out"}
 
 
 def usage_error(args: argparse.Namespace, message: str) -> NoReturn:

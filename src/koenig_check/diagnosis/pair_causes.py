@@ -23,6 +23,7 @@ import mujoco
 import numpy as np
 
 from koenig_check.diagnosis.cause_effect import by_effect
+from koenig_check.diagnosis.inertia_groups import inertia_group_causes
 from koenig_check.diagnosis.root_frame import FrameOffset, _vec, root_frame_offset
 from koenig_check.engines.canonical import segment_by_body_id, segment_of_body
 from koenig_check.engines.parser_traps import file_causes
@@ -357,6 +358,7 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     causes = file_causes(mj_path, pair.mujoco.model)
     offset, frame = root_frame_offset(pair)
     causes += compiler_causes(pair)
+    causes += inertia_group_causes(pair)
     causes += class_value_causes(pair, offset)
     causes += mesh_causes(pair)
     causes += massless_causes(pair)

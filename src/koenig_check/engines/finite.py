@@ -128,9 +128,9 @@ def check_segments(
         try:
             states = engine.segment_states(np.asarray(qpos0)[None], np.zeros((1, engine.nv)))
         except ValueError as err:
-            raise ModelLoadError(
-                f"{path}: {engine.engine} gives an invalid state at the reference pose: {err}"
-            ) from None
+            error = ModelLoadError(f"{path}: {engine.engine} gives an invalid state at the reference pose: {err}")
+            error.brief = f"{path}: {engine.engine} gives an invalid state at the reference pose ({err})"  # cut first
+            raise error from None
         for name, mass, inertia in zip(states.names, states.mass, states.inertia_body, strict=True):
             reason = check_physical_inertia(float(mass), inertia)
             if reason is None:

@@ -20,6 +20,8 @@ import mujoco
 
 from koenig_check.engines.canonical import segment_of_body
 from koenig_check.engines.registry import label
+from koenig_check.engines.replicates import replicate_causes
+from koenig_check.engines.unit_axes import axisangle_causes
 from koenig_check.exceptions import (
     CoupledJointsError,
     InertiaError,
@@ -29,6 +31,7 @@ from koenig_check.exceptions import (
 )
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.mjcf import body_label, frames, includes, joint_names, read_mjcf
+from koenig_check.modelfile.urdf_links import planar_joints
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -138,6 +141,8 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
             )
         )
     out += frame_causes(root, seg_of)
+    out += axisangle_causes(root, seg_of)
+    out += replicate_causes(root, seg_of)
     for body in world_bodies[1:]:
         joints = tuple(joint_names(body))
         out.append(
@@ -242,6 +247,32 @@ def explain_load_failures(load: F) -> F:
     return cast("F", wrapper)
 
 
+def planar_cause(joint: str) -> Finding:
+    """A URDF ``planar`` joint: MuJoCo's import makes it three joints, Pinocchio one ``JointModelPlanar``.
+
+    Parameters
+    ----------
+    joint : str
+
+    Returns
+    -------
+    Finding
+        A ``SEGMENTS`` root cause naming MuJoCo's three joints; the two readings are not paired here.
+    """
+    parts = tuple(f"{joint}_{axis}" for axis in ("TX", "TY", "RZ"))
+    return Finding(
+        Kind.SEGMENTS,
+        "mujoco",
+        f"joint {joint}",
+        f"URDF planar joint: MuJoCo's import makes it three joints ({', '.join(parts)}), Pinocchio one planar "
+        "joint; koenig-check does not pair them",
+        values={"mujoco": parts, "pinocchio": (joint,), "joints": parts},
+        affects_energy=True,
+        root_cause=True,
+        segments=parts,
+    )
+
+
 def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
     from koenig_check.sources.catalogue import resolve_model
 
@@ -249,6 +280,8 @@ def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
         source = resolve_model(path_or_name, fmt)
     except Exception:  # the original error says what is wrong with the name
         return []
+    if source.format == "urdf":
+        return [planar_cause(name) for name in planar_joints(source.path)]
     if source.format != "mjcf":
         return []
     try:

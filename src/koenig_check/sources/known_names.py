@@ -8,7 +8,8 @@ A command-line model argument is one of
 * a path that does not exist (it has a ``/`` or a ``.xml``/``.urdf``/``.mjcf`` suffix): a *missing file*, which
   fails that model alone with a one-line error naming it (a batch keeps its other results);
 * a name from ``koenig-check models`` (with its aliases and ``name.xml`` / ``name.urdf``);
-* anything else: an unknown name, refused here as a usage error (exit status 2) with the closest known names.
+* anything else: an unknown name, refused here as a usage error (exit status 2) with the closest known names;
+  so is a name that names several models (``anymal``), with the names to type instead.
 """
 
 from __future__ import annotations
@@ -64,8 +65,37 @@ def unknown_name(model: Any) -> str | None:
     return f"{model}: no model of that name and no such file{hint} (`koenig-check models` lists them)"
 
 
+def ambiguous_name(model: Any) -> str | None:
+    """The one-line reason a plain model name names several models, or ``None`` when it names at most one.
+
+    A stem found in two packages (``anymal``: ``anymal_b_simple/anymal`` and ``anymal_c_simple/anymal``) cannot be
+    loaded whatever the run does: the user types one of the qualified names.
+
+    Parameters
+    ----------
+    model : str or path
+
+    Returns
+    -------
+    str or None
+        ``"NAME: ambiguous model name, it names 2 models: a, b (type one of them)"``.
+    """
+    from koenig_check.sources.catalogue import accepted_names
+    from koenig_check.sources.external import is_external
+
+    if not isinstance(model, str) or is_external(model) or looks_like_path(model) or Path(model).expanduser().exists():
+        return None
+    known = accepted_names()
+    if model in known:
+        return None
+    hits = sorted(name for name in known if "/" in name and name.split("/")[-1] == model)
+    if len(hits) < 2:
+        return None
+    return f"{model}: ambiguous model name, it names {len(hits)} models: {', '.join(hits)} (type one of them)"
+
+
 def check_model_names(models: Iterable[Any]) -> None:
-    """Refuse the first unknown model name of a batch before any model is loaded.
+    """Refuse the first unknown or ambiguous model name of a batch before any model is loaded.
 
     Parameters
     ----------
@@ -74,9 +104,10 @@ def check_model_names(models: Iterable[Any]) -> None:
     Raises
     ------
     ModelSourceError
-        The name and its closest known names, in one line (a usage error: exit status 2).
+        The name and its closest known names, or the models an ambiguous name names, in one line (a usage error:
+        exit status 2).
     """
     for model in models:
-        reason = unknown_name(model)
+        reason = unknown_name(model) or ambiguous_name(model)
         if reason is not None:
             raise ModelSourceError(reason)

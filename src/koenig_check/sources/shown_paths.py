@@ -8,6 +8,7 @@ site-packages path for a catalogue name); a one-line error names it the way the 
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -63,4 +64,19 @@ def as_given(text: str, models: Iterable[str | os.PathLike[str]], short: bool = 
             pairs.append((os.fspath(given), shown))
     for form, shown in sorted(pairs, key=lambda p: len(p[0]), reverse=True):
         text = text.replace(form, shown)
+    for given in models:
+        text = _expansion_as_given(text, given, short)
     return text
+
+
+def _expansion_as_given(text: str, given: str | os.PathLike[str], short: bool) -> str:
+    """``text`` with the URDF a ``.xacro`` file expanded to (in the xacro cache) written as that file."""
+    name = Path(os.fspath(given)).name
+    if not name.endswith(".xacro"):
+        return text
+    from koenig_check.sources.xacro import cache_dir, expansion_stem
+
+    shown = name if short else os.fspath(given)
+    folder = re.escape(str(cache_dir()) + os.sep)
+    expanded = folder + re.escape(expansion_stem(name)) + r"-[0-9a-f]{16}\.urdf"
+    return re.sub(expanded, lambda _: shown, text)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 import tempfile
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
@@ -105,15 +106,48 @@ def expand_xacro(
     except Exception as err:  # xacro's own reason (undefined arg, unknown package, bad XML), one line
         reason = one_line(err)
         raise ModelLoadError(f"{name}: xacro cannot expand {path.name}: {reason}") from None
+    empty = _no_link(path, text)
+    if empty:
+        raise ModelLoadError(f"{name}: {empty}")
     return _write(path, values, text)
+
+
+def _no_link(path: Path, text: str) -> str:
+    """Why the expansion holds no robot (a file of macros that only another xacro file calls), or ``""``."""
+    import xml.etree.ElementTree as ET
+
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError:
+        return ""  # the loaders name the XML error
+    if root.tag != "robot" or root.find("link") is not None:
+        return ""
+    macros = re.findall(r"<xacro:macro\s[^>]*\bname\s*=\s*[\"']([^\"']+)", path.read_text(errors="replace"))
+    called = f"it defines macros ({', '.join(macros)}) and calls none" if macros else "it writes no <link>"
+    return f"xacro expands it to a <robot> without any <link>: {called}; expand the file that uses it"
+
+
+def expansion_stem(name: str) -> str:
+    """The stem of the file a xacro file named ``name`` expands to (``arm`` for ``arm.urdf.xacro``).
+
+    Parameters
+    ----------
+    name : str
+        The xacro file's name.
+
+    Returns
+    -------
+    str
+    """
+    stem = name[: -len(".xacro")] if name.endswith(".xacro") else Path(name).stem
+    return stem[: -len(".urdf")] if stem.endswith(".urdf") else stem
 
 
 def _write(source: Path, values: Mapping[str, str], text: str) -> Path:
     """Write the expansion under a name unique to the file and its arguments (atomic replace)."""
     key = repr((str(source), sorted(values.items()), text)).encode()
     digest = hashlib.sha256(key).hexdigest()[:16]
-    stem = source.name[: -len(".xacro")] if source.name.endswith(".xacro") else source.stem
-    stem = stem[: -len(".urdf")] if stem.endswith(".urdf") else stem
+    stem = expansion_stem(source.name)
     out_dir = cache_dir()
     out_dir.mkdir(parents=True, exist_ok=True)
     target = out_dir / f"{stem}-{digest}.urdf"

@@ -42,6 +42,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+from koenig_check.engines.drake.ignored_geoms import ignored_geom, ignored_geom_finding
 from koenig_check.exceptions import DrakeLoadError, without_build_location
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.edited_copy import edited_copy
@@ -164,7 +165,9 @@ def warning_findings(messages: list[str], path: Path) -> list[Finding]:
         element = _element_at(path, line) if line and "inertia" in body else ""
         grouped.setdefault((element or "model", body), []).append(line)
     return [
-        Finding(
+        ignored_geom_finding(path, geom, body, sorted(set(lines)) if any(lines) else [])
+        if (geom := ignored_geom(body)) and path.suffix.lower() != ".urdf"
+        else Finding(
             Kind.LOAD,
             "drake",
             element,

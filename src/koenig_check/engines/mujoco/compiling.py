@@ -183,6 +183,65 @@ def refused_geom(spec: mujoco.MjSpec, exc: BaseException, what: str = "body") ->
     return f"{what} {body.name!r}, {label}"
 
 
+def _fusions(spec: mujoco.MjSpec) -> list[tuple[str, str]]:
+    """(static body, the moving body it is fused into) for every static body under a moving one."""
+    out = []
+    for body in spec.bodies:
+        carrier = body
+        while carrier is not None and carrier.name != "world" and not list(carrier.joints):
+            carrier = carrier.parent
+        if body != carrier and carrier is not None and carrier.name != "world":
+            out.append((body.name, carrier.name))
+    return out
+
+
+def fusion_refusal(pairs: list[tuple[str, str]], what: str, message: str) -> str:
+    """MuJoCo's refusal of a fused inertia, naming the static bodies and the bodies they fuse into.
+
+    Parameters
+    ----------
+    pairs : list of (str, str)
+        Each static body and the moving body it is fused into (read before compiling: a failed compilation
+        leaves the spec unreadable).
+    what : str
+        ``"link"`` or ``"body"``.
+    message : str
+        MuJoCo's reason (it names no body).
+
+    Returns
+    -------
+    str
+    """
+    named = ", ".join(f"{child!r} into {parent!r}" for child, parent in pairs[:4]) + (" …" if len(pairs) > 4 else "")
+    where = f": {named}" if pairs else ""
+    return f"MuJoCo rejects the inertia of static {what}s fused into their parent ({_refusal(message)}){where}"
+
+
+def unfused_finding(pairs: list[tuple[str, str]], what: str, message: str) -> Finding:
+    """The ``LOAD`` finding of a model compiled without ``fusestatic`` because a fused inertia was refused.
+
+    Parameters
+    ----------
+    pairs : list of (str, str)
+        Each static body and the moving body it would have been fused into.
+    what : str
+    message : str
+        MuJoCo's refusal.
+
+    Returns
+    -------
+    Finding
+    """
+    return Finding(
+        Kind.LOAD,
+        "mujoco",
+        "compiler fusestatic",
+        f"static {what}s kept apart (fusestatic off): MuJoCo refused the inertia of the fused {what}s, "
+        f"{_refusal(message)}; the mass and inertia of each segment are the same",
+        {"fusions": [f"{child} into {parent}" for child, parent in pairs]},
+    )
+
+
 def compile_spec(
     spec: mujoco.MjSpec,
     source: ModelSource,
@@ -226,6 +285,7 @@ def compile_spec(
     repairs: dict[str, tuple[Repair, str]] = {}
     tries: dict[str, int] = {}
     what = "link" if source.format == "urdf" else "body"
+    fusions = _fusions(spec)
     while True:
         try:
             with warnings.catch_warnings(record=True) as caught:
@@ -252,6 +312,14 @@ def compile_spec(
             geom = refused_geom(spec, exc, what)
             if geom is not None:  # a geom's own value (a negative mass or density): no body repair changes it
                 raise ModelLoadError(f"{source.path}: {geom}: MuJoCo rejects it ({_refusal(message)})") from exc
+            if "fusing static body inertias" in message and spec.compiler.fusestatic:
+                if not repair:  # MuJoCo names no body: the static links and the links they would fuse into
+                    raise InertiaError(
+                        f"{source.path}: {fusion_refusal(fusions, what, message)}; {REPAIR_HINT}"
+                    ) from exc
+                spec.compiler.fusestatic = False  # each body then stands alone: the one refused is named, repaired
+                notes.append(unfused_finding(fusions, what, message))
+                continue
             if "inertia" in message or "mass" in message:
                 body = spec.body(element) if element else None
                 if repair and body is not None and tries.get(element, 0) < MAX_REPAIR_TRIES:

@@ -36,6 +36,7 @@ from koenig_check.engines.mujoco.compiling import (
 from koenig_check.engines.mujoco.mass_changes import BodyFinding, altered_by_compiler, balance_findings
 from koenig_check.engines.mujoco.meshes import fix_meshes
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.urdf_links import undeclared_links
 from koenig_check.segments import principal_moments
 from koenig_check.sources.catalogue import ModelSource
 
@@ -113,7 +114,14 @@ def _load(
     try:
         spec = mujoco.MjSpec.from_file(str(path))
     except ValueError as exc:
-        raise ModelLoadError(f"{path}: MuJoCo cannot parse the file: {mujoco_reason(exc)}") from exc
+        reason = mujoco_reason(exc)
+        missing = undeclared_links(path) if source.format == "urdf" else ""
+        error = ModelLoadError(
+            f"{path}: MuJoCo cannot parse the file: {reason}" + (f"; root cause: {missing}" * bool(missing))
+        )
+        if missing:  # the one-line form keeps the cause whole, MuJoCo's words first to go
+            error.brief = f"{path}: MuJoCo cannot parse the file ({reason}); root cause: {missing}"
+        raise error from exc
     what = "link" if source.format == "urdf" else "body"
     if source.format == "urdf":
         spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE

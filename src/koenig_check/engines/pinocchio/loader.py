@@ -191,6 +191,8 @@ def _build(
 ) -> pin.Model:
     """Call the Pinocchio parser that fits the format and the root joint."""
     if source.format == "urdf":
+        if root_joint and _is_floating_joint(source, root_joint):  # the file's own free joint: none is added
+            root_joint = None
         stripped = _strip_world_link(source) if root_joint else None
         if stripped is not None:
             model = pin.buildModelFromXML(stripped, flyer, root_joint)
@@ -213,6 +215,15 @@ def _build(
         if root_joint and not has_free:
             model = pin.buildModelFromMJCFAndRootJoint(path, flyer, root_joint)
     return model
+
+
+def _is_floating_joint(source: ModelSource, name: str) -> bool:
+    """Whether the URDF has a ``floating`` joint of this name (MuJoCo's import makes it the free joint)."""
+    try:
+        robot = parse_xml(source.path).getroot()
+    except ET.ParseError:
+        return False
+    return any(j.get("name") == name and j.get("type") == "floating" for j in robot.findall("joint"))
 
 
 def _link_of(joint: ET.Element, end: str) -> str | None:

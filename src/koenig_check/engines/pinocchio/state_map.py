@@ -61,6 +61,11 @@ class StateMap(VelocityMapped):
         Pinocchio joint index -> canonical segment name (the last MuJoCo joint it carries).
     findings : list of Finding
         What the map compensates for.
+    free_placements : dict of int to (ndarray, ndarray), optional
+        Pinocchio joint index of a free joint -> its placement in the world ``(R, p)`` (``jointPlacements``):
+        MuJoCo's free ``qpos`` is the body's world pose ``T``, Pinocchio's ``q`` is ``placement⁻¹ T`` (its MJCF
+        parser places a root ``<freejoint>`` of a body with both ``pos`` and an orientation at ``pos − R pos``;
+        a URDF ``floating`` joint sits at its ``<origin>``).  Missing: the identity.
     """
 
     def __init__(
@@ -72,6 +77,7 @@ class StateMap(VelocityMapped):
         pin_nv: int,
         segment_names: dict[int, str],
         findings: list[Finding] | None = None,
+        free_placements: dict[int, tuple[np.ndarray, np.ndarray]] | None = None,
     ) -> None:
         if nv != pin_nv:
             raise ValueError(f"state map: canonical nv={nv} but Pinocchio nv={pin_nv}")
@@ -103,6 +109,10 @@ class StateMap(VelocityMapped):
         self._free_quat_can = np.array([p.qadr + 3 + ar(4) for p in frees], dtype=int).reshape(-1, 4)
         self._lin_can = np.array([p.vadr + ar(3) for p in frees], dtype=int).reshape(-1, 3)
         self._lin_pin = np.array([p.pin_vadr + ar(3) for p in frees], dtype=int).reshape(-1, 3)
+        placed = [(free_placements or {}).get(p.pin_joint, (np.eye(3), np.zeros(3))) for p in frees]
+        self._place_R = np.array([np.asarray(R, dtype=float) for R, _ in placed]).reshape(-1, 3, 3)
+        self._place_p = np.array([np.asarray(t, dtype=float) for _, t in placed]).reshape(-1, 3)
+        self._placed = bool(np.any(self._place_p)) or not np.allclose(self._place_R, np.eye(3), rtol=0.0, atol=0.0)
         width = {"free": 3, "ball": 3, "hinge": 1, "slide": 1}  # dofs copied as they are
         copy_can, copy_pin = [], []
         for p in pairs:
@@ -146,6 +156,26 @@ class StateMap(VelocityMapped):
         mats = Rotation.from_quat(quat.reshape(-1, 4), scalar_first=True).as_matrix()
         return mats.reshape(P, F, 3, 3)
 
+    def _unplace(self, q: np.ndarray) -> None:
+        """Free joints' world poses in ``q`` (Pinocchio's layout) made relative to their placements, in place."""
+        if not self._placed:
+            return
+        quats = self._pos_pin[:, :1] + np.arange(3, 7)  # x y z w
+        for f, (Rj, pj) in enumerate(zip(self._place_R, self._place_p, strict=True)):
+            q[:, quats[f]] = (Rotation.from_matrix(Rj.T) * Rotation.from_quat(q[:, quats[f]])).as_quat()
+            q[:, self._pos_pin[f]] = (q[:, self._pos_pin[f]] - pj) @ Rj
+
+    def _place(self, q: np.ndarray) -> np.ndarray:
+        """Free joints' coordinates in ``q`` (relative to their placements) as world poses (a copy)."""
+        if not self._placed:
+            return q
+        q = q.copy()
+        quats = self._pos_pin[:, :1] + np.arange(3, 7)
+        for f, (Rj, pj) in enumerate(zip(self._place_R, self._place_p, strict=True)):
+            q[:, quats[f]] = (Rotation.from_matrix(Rj) * Rotation.from_quat(q[:, quats[f]])).as_quat()
+            q[:, self._pos_pin[f]] = q[:, self._pos_pin[f]] @ Rj.T + pj
+        return q
+
     # ------------------------------------------------------------- positions
     @overload
     def to_pinocchio(self, qpos: np.ndarray, qvel: None = None) -> np.ndarray: ...
@@ -176,6 +206,7 @@ class StateMap(VelocityMapped):
         quat = quat / np.linalg.norm(quat, axis=-1, keepdims=True)
         q[:, self._quat_pin] = quat[..., [1, 2, 3, 0]]
         q[:, self._pos_pin] = qpos[:, self._pos_can]
+        self._unplace(q)
         if qvel is None:
             return q[0] if single else q
         qvel, _ = self._batch(qvel, self.nv, "qvel")
@@ -205,6 +236,7 @@ class StateMap(VelocityMapped):
         qpos = np.zeros((P, self.nq))
         qpos[:, self._s_can] = q[:, self._s_pin] + self._s_off
         qpos[:, self._u_can] = np.arctan2(q[:, self._u_pin + 1], q[:, self._u_pin])
+        q = self._place(q)
         qpos[:, self._quat_can] = q[:, self._quat_pin][..., [3, 0, 1, 2]]
         qpos[:, self._pos_can] = q[:, self._pos_pin]
         if v is None:
@@ -310,8 +342,17 @@ def build_state_map(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = 
         seg_names[p.pin_joint] = p.name  # canonical order: the last joint of a body wins
     notes: list[Finding] = []
 
+    placements = {
+        p.pin_joint: (
+            np.array(pin_model.jointPlacements[p.pin_joint].rotation),
+            pin_model.jointPlacements[p.pin_joint].translation.copy(),
+        )
+        for p in pairs
+        if p.kind == "free" and pin_model.parents[p.pin_joint] == 0
+    }
+
     def make(ps: list[JointPair]) -> StateMap:
-        return StateMap(ps, mj_model.nq, mj_model.nv, pin_model.nq, pin_model.nv, seg_names, notes)
+        return StateMap(ps, mj_model.nq, mj_model.nv, pin_model.nq, pin_model.nv, seg_names, notes, placements)
 
     suspects: dict[int, list[int]] = {}
     for k, p in enumerate(pairs):

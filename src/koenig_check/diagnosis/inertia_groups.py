@@ -1,0 +1,109 @@
+"""``compiler inertiagrouprange``: geoms MuJoCo leaves out of the inertia and Pinocchio's MJCF parser counts.
+
+MuJoCo computes a body's mass and inertia from its geoms of the groups in ``inertiagrouprange`` only (default
+``0 5``, every group); Pinocchio 4.1's and Drake 1.51's MJCF parsers ignore the option and count every geom
+(verified on a small file: a sphere of group 3 under ``inertiagrouprange="0 2"`` weighs in both, not in
+MuJoCo).  The cause is reported when the engines' masses of a segment differ and MuJoCo, compiling the same
+file with every group counted, gets Pinocchio's mass there.
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from koenig_check.engines.canonical import segment_of_body
+from koenig_check.findings import Finding, Kind, shown_names
+
+#: Relative mass difference under which two masses are the same.
+RTOL = 1e-9
+
+
+def _compiled(spec: mujoco.MjSpec) -> mujoco.MjModel | None:
+    try:
+        with warnings.catch_warnings():  # the compiler's warnings are the loader's findings already
+            warnings.simplefilter("ignore")
+            return spec.compile()
+    except Exception:  # a file MuJoCo compiles only after the loader's repairs: no verdict here
+        return None
+
+
+def _segment_masses(model: mujoco.MjModel) -> dict[str, float]:
+    """MuJoCo's mass of every segment (the bodies each joint moves)."""
+    out: dict[str, float] = {}
+    for body, segment in segment_of_body(model).items():
+        if segment:
+            out[segment] = out.get(segment, 0.0) + float(model.body(body).mass[0])
+    return out
+
+
+def _same(a: float, b: float) -> bool:
+    return abs(a - b) <= RTOL * max(abs(a), abs(b), 1e-300)
+
+
+def inertia_group_causes(pair: Any) -> list[Finding]:
+    """The ``compiler inertiagrouprange`` cause of a mass difference, when the file narrows the range.
+
+    Parameters
+    ----------
+    pair : ModelPair
+        MuJoCo and Pinocchio loaded from the same MJCF file.
+
+    Returns
+    -------
+    list of Finding
+        At most one ``COMPILER`` finding (engine ``pinocchio``, element ``compiler inertiagrouprange``): the geoms
+        left out, the segments they weigh on, and their mass in MuJoCo, in Pinocchio and in MuJoCo with every
+        group counted; empty when the option keeps every group or explains no difference.
+    """
+    try:
+        spec = mujoco.MjSpec.from_file(str(pair.mujoco.path))
+    except Exception:
+        return []
+    low, high = (int(x) for x in spec.compiler.inertiagrouprange)
+    if low <= 0 and high >= mujoco.mjNGROUP - 1:
+        return []
+    narrow = _compiled(spec)
+    spec.compiler.inertiagrouprange = [0, mujoco.mjNGROUP - 1]
+    every = _compiled(spec)
+    if narrow is None or every is None:
+        return []
+    as_file, all_groups = _segment_masses(narrow), _segment_masses(every)
+    names = pair.state_map.segment_names
+    inertias = pair.pinocchio.model.inertias
+    pinocchio = {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
+    segments = [
+        s
+        for s, m in as_file.items()
+        if s in pinocchio and not _same(m, pinocchio[s]) and _same(all_groups.get(s, m), pinocchio[s])
+    ]
+    if not segments:
+        return []
+    seg_of = segment_of_body(narrow)
+    groups = np.asarray(narrow.geom_group)
+    left_out = [
+        narrow.geom(g).name or f"{narrow.body(int(narrow.geom_bodyid[g])).name}/geom{g}"
+        for g in range(narrow.ngeom)
+        if not low <= int(groups[g]) <= high and seg_of.get(narrow.body(int(narrow.geom_bodyid[g])).name) in segments
+    ]
+    return [
+        Finding(
+            Kind.COMPILER,
+            "pinocchio",
+            "compiler inertiagrouprange",
+            f"MuJoCo counts only geoms of groups {low} to {high} (geoms {shown_names(left_out)} left out), "
+            "Pinocchio counts every geom",
+            values={
+                "geoms": tuple(left_out),
+                "mujoco": float(sum(as_file[s] for s in segments)),
+                "pinocchio": float(sum(pinocchio[s] for s in segments)),
+                "mujoco, every group": float(sum(all_groups[s] for s in segments)),
+            },
+            affects_energy=True,
+            root_cause=True,
+            segments=tuple(segments),
+        )
+    ]

@@ -1,0 +1,69 @@
+"""Links a URDF's joints name but the file never declares (Drake's implicit ``world`` link among them).
+
+Drake's URDF parser reads a joint whose parent is ``world`` as welded to its world without a ``<link
+name="world"/>``; MuJoCo ("URDF joint parent or child missing") and Pinocchio (urdfdom: "parent link [world] of
+joint [...] not found") refuse such a file.  :func:`undeclared_links` says which joint names which link, so
+that a refusal can name the element and what to add.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+
+def undeclared_links(path: str | Path) -> str:
+    """Which joints name a link the URDF does not declare, in one clause, or ``""``.
+
+    Parameters
+    ----------
+    path : str or Path
+        A URDF file.
+
+    Returns
+    -------
+    str
+        ``"joint 'base_weld': parent link 'world' not declared; only Drake implies the world link: add <link
+        name='world'/>"``; empty when every link named is declared or the file cannot be read.
+    """
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError):
+        return ""
+    declared = {link.get("name") for link in root.iter("link")}
+    missing = []
+    for joint in root.iter("joint"):
+        for side in ("parent", "child"):
+            element = joint.find(side)
+            link = element.get("link") if element is not None else None
+            if link is not None and link not in declared:
+                missing.append((joint.get("name", "?"), side, link))
+    if not missing:
+        return ""
+    named = ", ".join(f"joint {joint!r}: {side} link {link!r}" for joint, side, link in missing[:3])
+    more = f" (and {len(missing) - 3} more)" if len(missing) > 3 else ""
+    links = sorted({link for _, _, link in missing})
+    text = f"{named}{more} not declared"
+    if "world" in links:
+        text += '; only Drake implies the world link: add <link name="world"/>'
+    return text
+
+
+def planar_joints(path: str | Path) -> list[str]:
+    """The names of the URDF's ``planar`` joints (MuJoCo's import makes each three joints, Pinocchio one).
+
+    Parameters
+    ----------
+    path : str or Path
+        A URDF file.
+
+    Returns
+    -------
+    list of str
+        Empty when there is none or the file cannot be read.
+    """
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError):
+        return []
+    return [j.get("name", "?") for j in root.iter("joint") if j.get("type") == "planar"]
