@@ -110,3 +110,20 @@ def test_check_physical_inertia(inertia: np.ndarray, reason: str | None) -> None
         assert result is None
     else:
         assert reason in result
+
+
+def test_inertia_about_anchor_by_hand(random_batch: SegmentStates) -> None:
+    """Largest central moment in world axes plus m |com - pole|², at the first pose, for each segment."""
+    states = random_batch
+    expected = []
+    for b in range(states.n_segments):
+        R = states.rotation[0, b]
+        central = R @ states.inertia_body[b] @ R.T
+        lever = states.com[0, b] - states.pole[0, b]
+        expected.append(max(np.linalg.eigvalsh(central)) + states.mass[b] * float(lever @ lever))
+    np.testing.assert_allclose(states.inertia_about_anchor(), expected, rtol=1e-12)
+    # a point mass of 2 kg on a 0.5 m lever: 0.5 kg m² whatever its (zero) central moments
+    point = dict(_fields(states.select(segments=[states.names[0]])))
+    point.update(mass=np.array([2.0]), inertia_body=np.zeros((1, 3, 3)))
+    point.update(pole=np.zeros_like(point["pole"]), com=np.tile([0.0, 0.3, 0.4], (*point["com"].shape[:2], 1)))
+    np.testing.assert_allclose(SegmentStates(**point).inertia_about_anchor(), [0.5], rtol=1e-12)

@@ -76,7 +76,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
         From :func:`koenig_check.engines.load_model`.
     rtol : float
         Relative tolerance; lengths are compared with ``rtol`` × the model's size,
-        inertias with ``rtol`` × the largest principal moment.
+        inertias with ``rtol`` × the inertia about the anchor (largest central moment + m d²).
     extra_poses : int
         Random poses (besides ``qpos0``) at which the mass matrices are compared.
     seed : int
@@ -109,13 +109,14 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     A, B = sa.select(segments=common), sb.select(segments=common)
     size = max(float(np.abs(A.com[0]).max(initial=0.0)), float(np.abs(A.pole[0]).max(initial=0.0)), 1.0)
     Ia, Ib = A.inertia_world()[0], B.inertia_world()[0]
+    about_a, about_b = A.inertia_about_anchor(), B.inertia_about_anchor()
     for k, name in enumerate(common):
         ma, mb = float(A.mass[k]), float(B.mass[k])
         com_d = float(np.linalg.norm(A.com[0, k] - B.com[0, k]))
         pole_d = float(np.linalg.norm(A.pole[0, k] - B.pole[0, k]))
         fro = float(np.linalg.norm(Ia[k] - Ib[k]))
         moments = (np.linalg.eigvalsh(Ia[k]), np.linalg.eigvalsh(Ib[k]))
-        scale_I = max(float(np.abs(moments[0]).max()), float(np.abs(moments[1]).max()), 1e-300)
+        scale_I = max(float(about_a[k]), float(about_b[k]), 1e-300)  # the inertia about the anchor
         relative = {
             "mass": abs(ma - mb) / max(ma, mb, 1e-300),
             "com": com_d / size,

@@ -56,7 +56,8 @@ class SegmentParity:
         Which quantities differ beyond tolerance (``mass``, ``com``, ``inertia``, ``anchor``).
     relative : dict of str to float
         Per quantity, its difference relative to its scale (what the tolerance is compared with): the mass
-        to the larger mass, lengths to the model's size, inertias to the largest principal moment.
+        to the larger mass, lengths to the model's size, inertias to the inertia about the anchor
+        (largest central principal moment + m |com - pole|², :meth:`SegmentStates.inertia_about_anchor`).
     """
 
     name: str

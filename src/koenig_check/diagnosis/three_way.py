@@ -253,13 +253,14 @@ def import_verdicts(
         "inertia": (world_inertia, "inertia"),
     }
     size = max(float(np.abs(sel["mujoco"].com[0]).max()), 1.0)
+    about = {e: s.inertia_about_anchor() for e, s in sel.items()}
     grouped: dict[tuple[str, tuple[str, ...]], list[tuple[str, dict[str, Any]]]] = {}
     for quantity, (vals, kind) in quantities.items():
         for b, name in enumerate(common):
             per = {e: np.asarray(v[b], dtype=float) for e, v in vals.items()}
             scale = size if kind == "length" else None
-            if kind == "inertia":
-                scale = max(float(np.abs(per["mujoco"]).max()), float(np.abs(per["pinocchio"]).max()))
+            if kind == "inertia":  # against the inertia about the anchor (what the segment's rotation weighs)
+                scale = max(float(about[e][b]) for e in engines)
             departing = _departing(per, rtol, scale)
             if departing is not None:
                 shown = {e: _shown(v) for e, v in per.items()}
