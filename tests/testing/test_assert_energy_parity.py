@@ -88,3 +88,15 @@ def test_total_energy_line_gives_each_engines_own_energy_at_the_worst_pose(tmp_p
     assert pin_energy == pytest.approx(heavier[k], rel=1e-8)
     assert rel == pytest.approx(abs(heavier[k] - original[k]) / original[k], rel=1e-2)
     assert 1e-8 < rel < 2.5e-7
+
+
+def test_the_root_cause_comes_first_then_the_verdicts_of_three_engines() -> None:
+    """As the plugin's failure: the root cause, then "three engines: ..." lines, then the symptoms."""
+    pytest.importorskip("pydrake")
+    causes = Path(__file__).resolve().parents[1] / "models" / "causes"
+    with pytest.raises(AssertionError) as info:
+        assert_energy_parity(causes / "class_mass.xml", engines=("mujoco", "pinocchio", "drake"))
+    text = str(info.value)
+    root = text.index("root cause: pinocchio: geom pole: geom mass from default class 'pole'")
+    verdict = text.index("three engines: pinocchio: rigid-body energy: Pinocchio departs (MuJoCo and Drake agree)")
+    assert root < verdict < text.index("body pole (joint hinge) at pose")

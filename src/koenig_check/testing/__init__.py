@@ -71,9 +71,10 @@ def assert_energy_parity(
     """
     __tracebackhide__ = True
     from koenig_check.diagnosis.diagnose import diagnose
-    from koenig_check.diagnosis.reason import LEADING_KINDS, ROUNDING_LEVEL, cause_lines, rounding_hint
+    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, cause_lines, rounding_hint
     from koenig_check.engines import load_model
     from koenig_check.engines.registry import check_engines
+    from koenig_check.findings import Kind
     from koenig_check.run.poses import random_poses
 
     given = locals()
@@ -139,10 +140,11 @@ def assert_energy_parity(
             + (f"; import parity: {', '.join(causes)} differ" if causes else ""),
         )
     hint = rounding_hint(float(rel.max()), rtol) if not armature_off else ""
-    leads = [f.message() for kind in LEADING_KINDS for f in diagnosis.findings if f.kind is kind]  # lead_line's
-    problems[:0] = leads
-    if problems:  # the root causes right after the three-engine verdicts, before the symptoms
-        problems[len(leads) : len(leads)] = [f"root cause: {cause}" for cause in cause_lines(diagnosis.findings)]
+    unable = [f.message() for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked, not made
+    verdicts = [as_note(f) for f in diagnosis.findings if f.kind is Kind.VERDICT]
+    problems[:0] = verdicts
+    if problems or unable:  # as the plugin: a check not made, the root causes, the verdicts, then the symptoms
+        problems[:0] = unable + [f"root cause: {cause}" for cause in cause_lines(diagnosis.findings)]
         if hint:
             problems.append(hint)
         raise AssertionError(_one_item_a_line(f"{model}: energy parity fails (rtol {rtol:g}): ", problems))
