@@ -13,17 +13,16 @@ from pathlib import Path
 import pytest
 from export_helpers import MODELS
 
+import koenig_check
 import koenig_check.export.api as export_api
 from koenig_check.cli import main
 
 
-@pytest.mark.parametrize("factor", [1.1, 1.0])
-def test_a_written_export_that_differs_exits_1(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], factor: float
-) -> None:
+def _write_b_scaled(monkeypatch: pytest.MonkeyPatch, factor: float) -> None:
+    """Make the URDF writer multiply link b's mass by ``factor`` (1.0: the export as written)."""
     original = export_api.write_urdf
 
-    def heavier_b(*args, **kwargs):  # type: ignore[no-untyped-def]
+    def scaled_b(*args, **kwargs):  # type: ignore[no-untyped-def]
         text, not_carried = original(*args, **kwargs)
         root = ET.fromstring(text)
         mass = root.find("link[@name='b']/inertial/mass")
@@ -31,7 +30,14 @@ def test_a_written_export_that_differs_exits_1(
         mass.set("value", repr(float(mass.get("value", "0")) * factor))
         return ET.tostring(root, encoding="unicode"), not_carried
 
-    monkeypatch.setattr(export_api, "write_urdf", heavier_b)
+    monkeypatch.setattr(export_api, "write_urdf", scaled_b)
+
+
+@pytest.mark.parametrize("factor", [1.1, 1.0])
+def test_a_written_export_that_differs_exits_1(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], factor: float
+) -> None:
+    _write_b_scaled(monkeypatch, factor)
     out = tmp_path / "hinge_ref.urdf"
     status = main(["export", str(MODELS / "hinge_ref.xml"), "--to", "urdf", "--out", str(out), "--poses", "3"])
     text = capsys.readouterr().out
@@ -40,3 +46,13 @@ def test_a_written_export_that_differs_exits_1(
         assert status == 0 and "equivalent: max relative difference" in text
     else:
         assert status == 1 and "not equivalent" in text and "link b (joint twist): mass" in text
+
+
+@pytest.mark.parametrize("factor", [1.1, 1.0])
+def test_the_api_result_is_ok_exactly_when_the_proof_holds(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, factor: float
+) -> None:
+    """``ExportResult.ok``, named as ``CrossCheck.ok``, is the proof's verdict both ways."""
+    _write_b_scaled(monkeypatch, factor)
+    result = koenig_check.export(MODELS / "hinge_ref.xml", to="urdf", out=tmp_path / "h.urdf", poses=3)
+    assert result.ok is result.equivalent is (factor == 1.0)

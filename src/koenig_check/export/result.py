@@ -248,3 +248,8 @@ class ExportResult:
     def equivalent(self) -> bool:
         """The proof's verdict."""
         return self.proof.equivalent
+
+    @property
+    def ok(self) -> bool:
+        """The proof's verdict, under the name :attr:`koenig_check.run.cross_check.CrossCheck.ok` has."""
+        return self.proof.equivalent
