@@ -77,11 +77,12 @@ def test_agreeing_models_do_not_load_drake_by_default() -> None:
 
 
 @needs_drake
-def test_assert_energy_parity_leads_with_the_departing_engine() -> None:
-    with pytest.raises(
-        AssertionError, match=r"energy parity fails \(rtol 1e-09\): mujoco: rigid-body energy: MuJoCo departs"
-    ):
+def test_assert_energy_parity_leads_with_the_root_cause_then_the_departing_engine() -> None:
+    with pytest.raises(AssertionError) as info:
         assert_energy_parity(TIEBREAK / "settotalmass.xml", n_poses=3)
+    text = " ".join(str(info.value).split())  # folded lines joined
+    assert "energy parity fails (rtol 1e-09): root cause: mujoco: compiler settotalmass" in text  # first
+    assert "three engines: mujoco: rigid-body energy: MuJoCo departs (Pinocchio and Drake agree)" in text
     with pytest.raises(AssertionError, match="Drake cannot check this model: its MJCF parser ignores armature"):
         assert_energy_parity(HERE / "engines" / "models" / "hinge_armature.xml", n_poses=3, engines=ALL)
     assert_energy_parity("gimbal.urdf", n_poses=3, engines=ALL)
