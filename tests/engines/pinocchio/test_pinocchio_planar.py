@@ -16,77 +16,12 @@ import mujoco
 import numpy as np
 import pinocchio as pin
 import pytest
+from planar_urdfs import MODELS, carried_mass, write_planar
 
 import koenig_check
 from koenig_check.engines import JointMismatch, load_model, random_states
 from koenig_check.findings import Kind
 from koenig_check.roundoff import ROUNDOFF
-
-INERTIA = '<inertia ixx="{0}" iyy="{1}" izz="{2}" ixy="{3}" ixz="{4}" iyz="{5}"/>'
-
-
-def _link(name: str, mass: float, com: str, inertia: tuple[float, ...]) -> str:
-    return (
-        f'<link name="{name}"><inertial><origin xyz="{com}"/><mass value="{mass}"/>'
-        + INERTIA.format(*inertia)
-        + "</inertial></link>"
-    )
-
-
-def _joint(name: str, kind: str, parent: str, child: str, origin: str, axis: str) -> str:
-    limit = '<limit lower="-2" upper="2" effort="1" velocity="1"/>' if kind in ("revolute", "prismatic") else ""
-    return (
-        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>{origin}'
-        f'<axis xyz="{axis}"/>{limit}</joint>'
-    )
-
-
-BASE = ("base", 2.0, "0.3 -0.2 0.1", (0.2, 0.25, 0.3, 0.01, 0.02, 0.03))  # off-centre COM, full inertia
-ARM = ("arm", 0.5, "0.2 0.05 0", (0.01, 0.02, 0.03, 0.0, 0.0, 0.0))
-POST = ("post", 1.5, "0 0 0.2", (0.05, 0.05, 0.02, 0.0, 0.0, 0.0))
-
-#: name -> (links, joints, the links the planar joint carries).
-MODELS = {
-    "planar base, revolute child": (
-        ["world", BASE, ARM],
-        [
-            ("slider", "planar", "world", "base", '<origin xyz="0.1 0.2 0.3"/>', "0 0 1"),
-            ("elbow", "revolute", "base", "arm", '<origin xyz="0.4 0 0"/>', "0 1 0"),
-        ],
-        ("base", "arm"),
-    ),
-    "turned planar base, tilted continuous child": (
-        ["world", BASE, ARM],
-        [
-            ("slider", "planar", "world", "base", '<origin xyz="0.1 0.2 0.3" rpy="0.3 0.2 0.1"/>', "0 0 1"),
-            ("elbow", "continuous", "base", "arm", '<origin xyz="0.4 0.1 0"/>', "0 0.6 0.8"),
-        ],
-        ("base", "arm"),
-    ),
-    "planar joint after a revolute": (
-        ["world", POST, BASE, ARM],
-        [
-            ("turn", "revolute", "world", "post", '<origin xyz="0 0 0.1"/>', "0 0 1"),
-            ("slider", "planar", "post", "base", '<origin xyz="0 0.3 0.4" rpy="0 0 0.5"/>', "0 0 1"),
-            ("elbow", "revolute", "base", "arm", '<origin xyz="0.4 0 0"/>', "1 0 0"),
-        ],
-        ("base", "arm"),
-    ),
-}
-
-
-def _write(tmp_path: Path, name: str, axis: str | None = None) -> Path:
-    links, joints, _ = MODELS[name]
-    body = "".join('<link name="world"/>' if link == "world" else _link(*link) for link in links)
-    body += "".join(_joint(*j[:5], axis if axis is not None and j[1] == "planar" else j[5]) for j in joints)
-    path = tmp_path / "robot.urdf"
-    path.write_text(f'<robot name="planar_robot">{body}</robot>')
-    return path
-
-
-def _carried_mass(name: str) -> float:
-    links, _, carried = MODELS[name]
-    return sum(link[1] for link in links if link != "world" and link[0] in carried)
 
 
 def _pin_state(mj: mujoco.MjModel, pm: pin.Model, qpos: np.ndarray, qvel: np.ndarray) -> tuple:
@@ -111,7 +46,7 @@ def _pin_state(mj: mujoco.MjModel, pm: pin.Model, qpos: np.ndarray, qvel: np.nda
 
 @pytest.fixture(scope="module", params=sorted(MODELS))
 def model(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> tuple[str, Path]:
-    return request.param, _write(tmp_path_factory.mktemp("planar"), request.param)
+    return request.param, write_planar(tmp_path_factory.mktemp("planar"), request.param)
 
 
 def test_mujoco_reads_a_planar_joint_as_two_slides_and_a_hinge_about_the_body_axes(model) -> None:
@@ -148,7 +83,7 @@ def test_each_engines_mass_matrix_agrees_through_the_velocity_map_and_by_hand(mo
         m_can = loaded.pinocchio.mass_matrix(qpos[k][None])[0]
         assert np.abs(m_can - m_mj).max() <= ROUNDOFF * np.abs(m_mj).max()
         if k == 0:  # θ = 0: the slides carry the whole mass the joint moves, uncoupled
-            mass = _carried_mass(name)
+            mass = carried_mass(name)
             assert np.allclose(m_mj[np.ix_(xy, xy)], mass * np.eye(2), rtol=0.0, atol=ROUNDOFF * mass)
             assert np.allclose(J.T @ m_pin @ J, m_mj, rtol=0.0, atol=ROUNDOFF * mass)
 
@@ -193,7 +128,7 @@ def test_compare_agrees_pose_by_pose_and_notes_how_the_engines_read_the_joint(mo
 @pytest.mark.parametrize("axis", ["0 1 0", "1 0 0", "0 0 -1"])
 def test_a_planar_joint_about_another_axis_is_not_paired_and_the_cause_says_why(tmp_path: Path, axis: str) -> None:
     """MuJoCo honours the URDF axis (the plane's normal), Pinocchio 4.1 reads every planar joint about z."""
-    path = _write(tmp_path, "planar base, revolute child", axis=axis)
+    path = write_planar(tmp_path, "planar base, revolute child", axis=axis)
     mj = mujoco.MjModel.from_xml_path(str(path))
     normal = np.array([float(a) for a in axis.split()])
     assert np.allclose(mj.joint("slider_RZ").axis, normal)  # MuJoCo's reading of the axis
