@@ -106,6 +106,8 @@ def test_the_state_map_round_trips_planar_coordinates(model) -> None:
     th = loaded.mujoco.model.joint("slider_RZ").qposadr[0]
     qpos[:, th] = np.angle(np.exp(1j * qpos[:, th]))  # the map returns θ in (−π, π]
     back, back_vel = loaded.state_map.from_pinocchio(*loaded.state_map.to_pinocchio(qpos, qvel))
+    pin_dofs, can_dofs = loaded.state_map.velocity_permutation  # every dof paired once (armature compared there)
+    assert sorted(pin_dofs) == sorted(can_dofs) == list(range(loaded.mujoco.model.nv))
     assert np.allclose(back, qpos, rtol=0.0, atol=1e-14) and np.allclose(back_vel, qvel, rtol=0.0, atol=1e-14)
 
 

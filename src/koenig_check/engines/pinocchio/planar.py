@@ -146,6 +146,18 @@ class PlanarBlocks:
             [xyt[0].pin_vadr for xyt in joints],
         )
 
+    def dofs(self) -> tuple[np.ndarray, np.ndarray]:
+        """Pinocchio's dofs and the canonical ones they pair with (x, y up to a rotation; θ as it is).
+
+        Returns
+        -------
+        pin_dofs, canonical_dofs : ndarray of int
+        """
+        return (
+            np.concatenate([self.lin_pin.ravel(), self.pin_v + 2]),
+            np.concatenate([self.lin_can.ravel(), self.can_v[:, 2]]),
+        )
+
     def rotations(self, qpos: np.ndarray) -> np.ndarray:
         """``Rz(θ)`` (2 × 2) of every planar joint, shape (P, K, 2, 2), from canonical ``qpos`` (P, nq)."""
         theta = qpos[:, self.can_q[:, 2]]

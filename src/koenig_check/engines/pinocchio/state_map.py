@@ -2,29 +2,27 @@
 
 Canonical convention (:mod:`koenig_check.engines.canonical`)
 --------------------
-The canonical state is MuJoCo's ``qpos``/``qvel`` layout of the MuJoCo model (``nq``/``nv`` of
-the ``MjModel``, joints in MuJoCo order):
+The canonical state is MuJoCo's ``qpos``/``qvel`` layout of the MuJoCo model (``nq``/``nv`` of the ``MjModel``,
+joints in MuJoCo order):
 
 * hinge, slide: one angle/displacement (``qpos0`` holds the joint's ``ref``), one rate;
-* ball: ``qpos`` quaternion ``(w, x, y, z)`` of the child relative to the parent, ``qvel`` angular
-  velocity in the child (local) frame;
-* free: ``qpos`` = world position of the body origin then quaternion ``(w, x, y, z)`` world <- body;
-  ``qvel`` = *linear velocity of the body origin in the world frame*, then *angular velocity in the
-  body (local) frame* (verified for MuJoCo 4.0 with ``mj_integratePos`` and ``cvel``).
+* ball: ``qpos`` quaternion ``(w, x, y, z)`` of the child relative to the parent, ``qvel`` angular velocity in the
+  child (local) frame;
+* free: ``qpos`` = world position of the body origin then quaternion ``(w, x, y, z)`` world <- body; ``qvel`` =
+  *linear velocity of the body origin in the world frame*, then *angular velocity in the body (local) frame*
+  (verified for MuJoCo 4.0 with ``mj_integratePos`` and ``cvel``).
 
-Pinocchio differs: quaternions are ``(x, y, z, w)``; a free flyer's ``v`` is ``(v, ω)`` both in the
-local frame (``v_pin = Rᵀ v_world``); URDF ``continuous`` joints (``JointModelRUB*``) store
-``(cos θ, sin θ)`` (nq=2, nv=1); a MuJoCo body with several joints is one
-``JointModelComposite`` named ``"Composite_<first joint>"`` whose sub-joints follow the body's
-joints in order; a URDF ``planar`` joint is MuJoCo's three joints and Pinocchio's one
-(:mod:`~koenig_check.engines.pinocchio.planar`); joint orders may differ.  Pinocchio 4.1's MJCF parser honours
-``ref`` for a single hinge or slide and for a slide inside a composite, but *ignores it for a hinge inside a
-composite* (the file's pose is at pin ``q = 0``, not at ``q = ref``); :func:`build_state_map` detects this from
-both engines' kinematics at ``qpos0`` and offsets those coordinates, recording a note.
+Pinocchio differs: quaternions are ``(x, y, z, w)``; a free flyer's ``v`` is ``(v, ω)`` both in the local frame
+(``v_pin = Rᵀ v_world``); URDF ``continuous`` joints (``JointModelRUB*``) store ``(cos θ, sin θ)`` (nq=2, nv=1); a
+MuJoCo body with several joints is one ``JointModelComposite`` named ``"Composite_<first joint>"`` whose sub-joints
+follow the body's joints in order; a URDF ``planar`` joint is MuJoCo's three joints and Pinocchio's one
+(:mod:`~koenig_check.engines.pinocchio.planar`); joint orders may differ. Pinocchio 4.1's MJCF parser honours ``ref``
+for a single hinge or slide and for a slide inside a composite, but *ignores it for a hinge inside a composite* (the
+file's pose is at pin ``q = 0``, not at ``q = ref``); :func:`build_state_map` detects this from both engines'
+kinematics at ``qpos0`` and offsets those coordinates, recording a note.
 
-Matching is by joint name, never by index.  Unnamed MuJoCo joints get the name Pinocchio's MJCF
-parser gives them (``"<body>Joint_<k>"``, ``"<body>_free"``); anything left unpaired raises
-:class:`~koenig_check.engines.errors.JointMismatch`.
+Matching is by joint name, never by index.  Unnamed MuJoCo joints get the name Pinocchio's MJCF parser gives them
+(``"<body>Joint_<k>"``, ``"<body>_free"``); anything left unpaired raises ``JointMismatch``.
 """
 
 from __future__ import annotations
@@ -90,8 +88,7 @@ class StateMap(VelocityMapped):
         for p in pairs:
             by_kind.setdefault(p.pin_kind if p.pin_kind in ("unbounded", "planar") else p.kind, []).append(p)
         scal = by_kind.get("hinge", []) + by_kind.get("slide", [])
-        unb = by_kind.get("unbounded", [])
-        balls, frees = by_kind.get("ball", []), by_kind.get("free", [])
+        unb, balls, frees = (by_kind.get(k, []) for k in ("unbounded", "ball", "free"))
         self._planar = PlanarBlocks.from_pairs(by_kind.get("planar", []))
         ar = np.arange
         self._s_can = np.array([p.qadr for p in scal], dtype=int)
@@ -101,10 +98,9 @@ class StateMap(VelocityMapped):
         self._u_pin = np.array([p.pin_qadr for p in unb], dtype=int)
         quats = balls + frees
         shift = [0 if p.kind == "ball" else 3 for p in quats]
-        self._quat_can = np.array([p.qadr + s + ar(4) for p, s in zip(quats, shift, strict=True)], dtype=int)
-        self._quat_pin = np.array([p.pin_qadr + s + ar(4) for p, s in zip(quats, shift, strict=True)], dtype=int)
-        self._quat_can = self._quat_can.reshape(-1, 4)
-        self._quat_pin = self._quat_pin.reshape(-1, 4)
+        pairs_s = list(zip(quats, shift, strict=True))
+        self._quat_can = np.array([p.qadr + s + ar(4) for p, s in pairs_s], dtype=int).reshape(-1, 4)
+        self._quat_pin = np.array([p.pin_qadr + s + ar(4) for p, s in pairs_s], dtype=int).reshape(-1, 4)
         self._pos_can = np.array([p.qadr + ar(3) for p in frees], dtype=int).reshape(-1, 3)
         self._pos_pin = np.array([p.pin_qadr + ar(3) for p in frees], dtype=int).reshape(-1, 3)
         self._free_quat_can = np.array([p.qadr + 3 + ar(4) for p in frees], dtype=int).reshape(-1, 4)
@@ -133,11 +129,9 @@ class StateMap(VelocityMapped):
         -------
         tuple of ndarray
         """
-        pl = self._planar
-        return (
-            np.concatenate([self._v_pin, self._lin_pin.ravel(), pl.lin_pin.ravel(), pl.pin_v + 2]).astype(int),
-            np.concatenate([self._v_can, self._lin_can.ravel(), pl.lin_can.ravel(), pl.can_v[:, 2]]).astype(int),
-        )
+        pin_dofs, can_dofs = self._planar.dofs()
+        pin_all = np.concatenate([self._v_pin, self._lin_pin.ravel(), pin_dofs]).astype(int)
+        return pin_all, np.concatenate([self._v_can, self._lin_can.ravel(), can_dofs]).astype(int)
 
     # ---------------------------------------------------------------- helpers
     @staticmethod
@@ -279,8 +273,7 @@ class StateMap(VelocityMapped):
     def acceleration_to_pinocchio(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Convert canonical accelerations to Pinocchio's ``a = dv/dt``.
 
-        For a free joint ``v_pin = Rᵀ v_world`` so ``a_pin = Rᵀ a_world - ω_local × (Rᵀ v_world)``; a planar
-        joint likewise with ``ω = θ̇ ẑ``.
+        For a free joint ``v_pin = Rᵀ v_world`` so ``a_pin = Rᵀ a_world - ω_local × (Rᵀ v_world)`` (planar: ω = θ̇ ẑ).
 
         Parameters
         ----------
