@@ -31,7 +31,7 @@ from koenig_check.exceptions import (
 )
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.mjcf import body_label, frames, includes, joint_names, read_mjcf
-from koenig_check.modelfile.urdf_links import planar_joints
+from koenig_check.modelfile.urdf_links import planar_axes
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -247,30 +247,44 @@ def explain_load_failures(load: F) -> F:
     return cast("F", wrapper)
 
 
-def planar_cause(joint: str) -> Finding:
-    """A URDF ``planar`` joint: MuJoCo's import makes it three joints, Pinocchio one ``JointModelPlanar``.
+def planar_cause(joint: str, axis: tuple[float, ...] = (1.0, 0.0, 0.0)) -> Finding:
+    """A URDF ``planar`` joint about another axis than z: the engines read it in different planes or coordinates.
+
+    MuJoCo's import makes it three joints (slides ``_TX``, ``_TY``, hinge ``_RZ``) with the URDF axis as the
+    plane's normal; Pinocchio 4.1 makes it one ``JointModelPlanar`` about the joint frame's z, whatever the
+    axis.  A planar joint about z is paired (:mod:`koenig_check.engines.pinocchio.planar`); this one is not.
 
     Parameters
     ----------
     joint : str
+    axis : tuple of float
+        The URDF ``<axis>`` (``1 0 0`` when the file writes none).
 
     Returns
     -------
     Finding
-        A ``SEGMENTS`` root cause naming MuJoCo's three joints; the two readings are not paired here.
+        An ``AXIS`` root cause naming MuJoCo's three joints.
     """
     parts = tuple(f"{joint}_{axis}" for axis in ("TX", "TY", "RZ"))
+    written = " ".join(f"{a:g}" for a in axis)
     return Finding(
-        Kind.SEGMENTS,
-        "mujoco",
+        Kind.AXIS,
+        "both",
         f"joint {joint}",
-        f"URDF planar joint: MuJoCo's import makes it three joints ({', '.join(parts)}), Pinocchio one planar "
-        "joint; koenig-check does not pair them",
-        values={"mujoco": parts, "pinocchio": (joint,), "joints": parts},
+        f"URDF planar joint about axis {written}, which Pinocchio reads about z: MuJoCo's import makes it three "
+        f"joints ({', '.join(parts)}) in the plane normal to the axis, Pinocchio one planar joint about z (it "
+        "ignores the axis); koenig-check pairs a planar joint only about z, where both read the same coordinates",
+        values={"mujoco": parts, "pinocchio": (joint,), "axis": axis},
         affects_energy=True,
         root_cause=True,
         segments=parts,
+        hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
     )
+
+
+def _about_z(axis: tuple[float, ...]) -> bool:
+    """Whether a URDF axis is z (scaled), the one planar joint both engines read alike."""
+    return len(axis) == 3 and axis[0] == axis[1] == 0.0 and axis[2] > 0.0
 
 
 def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
@@ -281,7 +295,7 @@ def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
     except Exception:  # the original error says what is wrong with the name
         return []
     if source.format == "urdf":
-        return [planar_cause(name) for name in planar_joints(source.path)]
+        return [planar_cause(name, axis) for name, axis in planar_axes(source.path).items() if not _about_z(axis)]
     if source.format != "mjcf":
         return []
     try:

@@ -67,3 +67,32 @@ def planar_joints(path: str | Path) -> list[str]:
     except (OSError, ET.ParseError):
         return []
     return [j.get("name", "?") for j in root.iter("joint") if j.get("type") == "planar"]
+
+
+def planar_axes(path: str | Path) -> dict[str, tuple[float, ...]]:
+    """The URDF's ``planar`` joints with their ``<axis>`` (the plane's normal; ``1 0 0`` when not written).
+
+    Parameters
+    ----------
+    path : str or Path
+        A URDF file.
+
+    Returns
+    -------
+    dict of str to tuple of float
+        Joint name -> axis as written; empty when there is none or the file cannot be read.
+    """
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError):
+        return {}
+    out = {}
+    for joint in root.iter("joint"):
+        if joint.get("type") == "planar":
+            axis = joint.find("axis")
+            text = axis.get("xyz", "1 0 0") if axis is not None else "1 0 0"
+            try:
+                out[joint.get("name", "?")] = tuple(float(x) for x in text.split())
+            except ValueError:
+                out[joint.get("name", "?")] = ()
+    return out

@@ -19,7 +19,10 @@ accelerations are ``T(q) q̇`` and ``T(q) q̈`` with one orthogonal ``T``: a per
 blocks; mass matrices and forces convert with ``Tᵀ M T`` and ``Tᵀ τ``.
 
 Joints pair by name; a joint Drake names otherwise (a free joint takes its body's name in Drake)
-pairs through the body it moves when that body has one joint in MuJoCo.
+pairs through the body it moves when that body has one joint in MuJoCo.  A URDF ``planar`` joint is MuJoCo's
+slides ``<name>_TX``, ``<name>_TY`` and hinge ``<name>_RZ`` and Drake's one ``PlanarJoint`` with the same
+``q = (x, y, θ)`` and ``v = (ẋ, ẏ, θ̇)`` (rates in the parent frame; both honour the URDF axis: verified on
+poses and mass matrices), paired coordinate by coordinate.
 """
 
 from __future__ import annotations
@@ -42,6 +45,19 @@ _COMPATIBLE = {
     "hinge": {"revolute"},
     "slide": {"prismatic"},
 }
+
+
+#: MuJoCo's joints of a URDF planar joint ``name`` (``name + suffix``), with their MuJoCo kinds.
+_PLANAR_PARTS = (("_TX", "slide"), ("_TY", "slide"), ("_RZ", "hinge"))
+
+
+def _planar_part(name: str, by_name: dict[str, Any]) -> tuple[Any, int] | None:
+    """Drake's ``PlanarJoint`` and the coordinate (0 x, 1 y, 2 θ) a MuJoCo joint ``<planar>_TX|_TY|_RZ`` is."""
+    for k, (suffix, _) in enumerate(_PLANAR_PARTS):
+        joint = by_name.get(name[: -len(suffix)]) if name.endswith(suffix) else None
+        if joint is not None and joint.type_name() == "planar":
+            return joint, k
+    return None
 
 
 @dataclass(frozen=True)
@@ -108,6 +124,18 @@ def match_drake_joints(mj_model: mujoco.MjModel, plant: Any, path: str) -> list[
         body_id = int(mj_model.jnt_bodyid[k])
         body = mj_model.body(body_id).name
         joint = by_name.get(name)
+        part = _planar_part(name, by_name) if joint is None else None
+        if part is not None:  # one coordinate of a URDF planar joint: Drake's (x, y, θ) are MuJoCo's
+            joint, k_part = part
+            kind = _MJ_KIND[int(mj_model.jnt_type[k])]
+            if kind != _PLANAR_PARTS[k_part][1] or mj_model.body_jntnum[body_id] != 3:
+                mismatch.append(f"{name}: mujoco {kind} vs drake planar")
+                continue
+            used.add(joint.name())
+            qadr, vadr = int(mj_model.jnt_qposadr[k]), int(mj_model.jnt_dofadr[k])
+            dq, dv = int(joint.position_start()) + k_part, int(joint.velocity_start()) + k_part
+            pairs.append(DrakeJointPair(name, kind, joint.name(), body, qadr, vadr, dq, dv))
+            continue
         if joint is None and mj_model.body_jntnum[body_id] == 1:
             joint = by_body.get(body)
         if joint is None or joint.name() in used:

@@ -9,6 +9,7 @@ import pinocchio as pin
 
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.errors import JointMismatch
+from koenig_check.engines.pinocchio.planar import planar_targets
 
 _MJ_KIND = {
     mujoco.mjtJoint.mjJNT_FREE: "free",
@@ -31,6 +32,7 @@ _PIN_KIND = {
     "JointModelPY": "prismatic",
     "JointModelPZ": "prismatic",
     "JointModelPrismaticUnaligned": "prismatic",
+    "JointModelPlanar": "planar",
 }
 _COMPATIBLE = {"free": {"free"}, "ball": {"ball"}, "hinge": {"revolute", "unbounded"}, "slide": {"prismatic"}}
 _COMPOSITE_PREFIX = "Composite_"
@@ -47,7 +49,8 @@ class JointPair:
     kind : str
         MuJoCo type: ``"free"``, ``"ball"``, ``"hinge"`` or ``"slide"``.
     pin_kind : str
-        ``"free"``, ``"ball"``, ``"revolute"``, ``"unbounded"`` (cos, sin) or ``"prismatic"``.
+        ``"free"``, ``"ball"``, ``"revolute"``, ``"unbounded"`` (cos, sin), ``"prismatic"`` or ``"planar"``
+        (one of the three MuJoCo joints of a URDF planar joint: :mod:`~koenig_check.engines.pinocchio.planar`).
     body : str
         MuJoCo body carrying the joint.
     qadr, vadr : int
@@ -57,7 +60,7 @@ class JointPair:
     pin_sub : int
         Position inside a composite joint, ``-1`` for a plain joint.
     pin_qadr, pin_vadr : int
-        Pinocchio position/velocity addresses.
+        Pinocchio position/velocity addresses (of the planar joint for its three MuJoCo joints).
     q_offset : float
         ``q_pin = q_canonical - q_offset`` (hinge/slide only).
     """
@@ -130,6 +133,12 @@ def match_joints(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = "<m
                 only_pin.append(pname)
                 continue
             targets = list(range(start, start + count))
+        elif pname not in index and leaves[0][1].shortname() == "JointModelPlanar":
+            found = planar_targets(mj_model, index, pname)  # URDF planar: MuJoCo's <name>_TX, _TY, _RZ
+            if found is None:
+                only_pin.append(pname)
+                continue
+            targets, leaves = found, leaves * 3  # kinds and axes checked by planar_targets
         else:
             if pname not in index:
                 only_pin.append(pname)
@@ -139,7 +148,7 @@ def match_joints(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = "<m
             seen.add(j)
             kind = _MJ_KIND[mujoco.mjtJoint(mj_model.jnt_type[j])]
             pin_kind = _PIN_KIND.get(leaf.shortname(), leaf.shortname())
-            if pin_kind not in _COMPATIBLE[kind]:
+            if pin_kind not in _COMPATIBLE[kind] and not (pin_kind == "planar" and pname not in index):
                 kind_mismatch.append(f"{names[j]}: mujoco {kind} vs pinocchio {leaf.shortname()}")
                 continue
             pairs[j] = JointPair(

@@ -2,29 +2,27 @@
 
 Canonical convention (:mod:`koenig_check.engines.canonical`)
 --------------------
-The canonical state is MuJoCo's ``qpos``/``qvel`` layout of the MuJoCo model (``nq``/``nv`` of
-the ``MjModel``, joints in MuJoCo order):
+The canonical state is MuJoCo's ``qpos``/``qvel`` layout of the MuJoCo model (``nq``/``nv`` of the ``MjModel``,
+joints in MuJoCo order):
 
 * hinge, slide: one angle/displacement (``qpos0`` holds the joint's ``ref``), one rate;
-* ball: ``qpos`` quaternion ``(w, x, y, z)`` of the child relative to the parent, ``qvel`` angular
-  velocity in the child (local) frame;
-* free: ``qpos`` = world position of the body origin then quaternion ``(w, x, y, z)`` world <- body;
-  ``qvel`` = *linear velocity of the body origin in the world frame*, then *angular velocity in the
-  body (local) frame* (verified for MuJoCo 4.0 with ``mj_integratePos`` and ``cvel``).
+* ball: ``qpos`` quaternion ``(w, x, y, z)`` of the child relative to the parent, ``qvel`` angular velocity in the
+  child (local) frame;
+* free: ``qpos`` = world position of the body origin then quaternion ``(w, x, y, z)`` world <- body; ``qvel`` =
+  *linear velocity of the body origin in the world frame*, then *angular velocity in the body (local) frame*
+  (verified for MuJoCo 4.0 with ``mj_integratePos`` and ``cvel``).
 
-Pinocchio differs: quaternions are ``(x, y, z, w)``; a free flyer's ``v`` is ``(v, ω)`` both in the
-local frame (``v_pin = Rᵀ v_world``); URDF ``continuous`` joints (``JointModelRUB*``) store
-``(cos θ, sin θ)`` (nq=2, nv=1); a MuJoCo body with several joints is one
-``JointModelComposite`` named ``"Composite_<first joint>"`` whose sub-joints follow the body's
-joints in order; joint orders may differ.  Pinocchio 4.1's MJCF parser honours ``ref`` for a
-single hinge or slide and for a slide inside a composite, but *ignores it for a hinge inside a
-composite* (the file's pose is at pin ``q = 0``, not at ``q = ref``); :func:`build_state_map`
-detects this from both engines' kinematics at ``qpos0`` and offsets those coordinates,
-recording a note.
+Pinocchio differs: quaternions are ``(x, y, z, w)``; a free flyer's ``v`` is ``(v, ω)`` both in the local frame
+(``v_pin = Rᵀ v_world``); URDF ``continuous`` joints (``JointModelRUB*``) store ``(cos θ, sin θ)`` (nq=2, nv=1); a
+MuJoCo body with several joints is one ``JointModelComposite`` named ``"Composite_<first joint>"`` whose sub-joints
+follow the body's joints in order; a URDF ``planar`` joint is MuJoCo's three joints and Pinocchio's one
+(:mod:`~koenig_check.engines.pinocchio.planar`); joint orders may differ. Pinocchio 4.1's MJCF parser honours ``ref``
+for a single hinge or slide and for a slide inside a composite, but *ignores it for a hinge inside a composite* (the
+file's pose is at pin ``q = 0``, not at ``q = ref``); :func:`build_state_map` detects this from both engines'
+kinematics at ``qpos0`` and offsets those coordinates, recording a note.
 
-Matching is by joint name, never by index.  Unnamed MuJoCo joints get the name Pinocchio's MJCF
-parser gives them (``"<body>Joint_<k>"``, ``"<body>_free"``); anything left unpaired raises
-:class:`~koenig_check.engines.errors.JointMismatch`.
+Matching is by joint name, never by index.  Unnamed MuJoCo joints get the name Pinocchio's MJCF parser gives them
+(``"<body>Joint_<k>"``, ``"<body>_free"``); anything left unpaired raises ``JointMismatch``.
 """
 
 from __future__ import annotations
@@ -40,6 +38,7 @@ from scipy.spatial.transform import Rotation
 
 from koenig_check.engines.canonical import VelocityMapped
 from koenig_check.engines.pinocchio.joint_pairing import JointPair, match_joints
+from koenig_check.engines.pinocchio.planar import PlanarBlocks, planar_notes
 from koenig_check.findings import Finding, Kind
 
 #: Rotation mismatch (max abs entry) under which two engines' relative rotations are "equal".
@@ -87,11 +86,10 @@ class StateMap(VelocityMapped):
         self.findings = list(findings or [])
         by_kind: dict[str, list[JointPair]] = {}
         for p in pairs:
-            key = "unbounded" if p.pin_kind == "unbounded" else p.kind
-            by_kind.setdefault(key, []).append(p)
+            by_kind.setdefault(p.pin_kind if p.pin_kind in ("unbounded", "planar") else p.kind, []).append(p)
         scal = by_kind.get("hinge", []) + by_kind.get("slide", [])
-        unb = by_kind.get("unbounded", [])
-        balls, frees = by_kind.get("ball", []), by_kind.get("free", [])
+        unb, balls, frees = (by_kind.get(k, []) for k in ("unbounded", "ball", "free"))
+        self._planar = PlanarBlocks.from_pairs(by_kind.get("planar", []))
         ar = np.arange
         self._s_can = np.array([p.qadr for p in scal], dtype=int)
         self._s_pin = np.array([p.pin_qadr for p in scal], dtype=int)
@@ -100,10 +98,9 @@ class StateMap(VelocityMapped):
         self._u_pin = np.array([p.pin_qadr for p in unb], dtype=int)
         quats = balls + frees
         shift = [0 if p.kind == "ball" else 3 for p in quats]
-        self._quat_can = np.array([p.qadr + s + ar(4) for p, s in zip(quats, shift, strict=True)], dtype=int)
-        self._quat_pin = np.array([p.pin_qadr + s + ar(4) for p, s in zip(quats, shift, strict=True)], dtype=int)
-        self._quat_can = self._quat_can.reshape(-1, 4)
-        self._quat_pin = self._quat_pin.reshape(-1, 4)
+        pairs_s = list(zip(quats, shift, strict=True))
+        self._quat_can = np.array([p.qadr + s + ar(4) for p, s in pairs_s], dtype=int).reshape(-1, 4)
+        self._quat_pin = np.array([p.pin_qadr + s + ar(4) for p, s in pairs_s], dtype=int).reshape(-1, 4)
         self._pos_can = np.array([p.qadr + ar(3) for p in frees], dtype=int).reshape(-1, 3)
         self._pos_pin = np.array([p.pin_qadr + ar(3) for p in frees], dtype=int).reshape(-1, 3)
         self._free_quat_can = np.array([p.qadr + 3 + ar(4) for p in frees], dtype=int).reshape(-1, 4)
@@ -115,7 +112,7 @@ class StateMap(VelocityMapped):
         self._placed = bool(np.any(self._place_p)) or not np.allclose(self._place_R, np.eye(3), rtol=0.0, atol=0.0)
         width = {"free": 3, "ball": 3, "hinge": 1, "slide": 1}  # dofs copied as they are
         copy_can, copy_pin = [], []
-        for p in pairs:
+        for p in (p for p in pairs if p.pin_kind != "planar"):
             start = 3 if p.kind == "free" else 0
             copy_can += [p.vadr + start + k for k in range(width[p.kind])]
             copy_pin += [p.pin_vadr + start + k for k in range(width[p.kind])]
@@ -126,16 +123,15 @@ class StateMap(VelocityMapped):
     def velocity_permutation(self) -> tuple[np.ndarray, np.ndarray]:
         """Return ``(pin_dofs, canonical_dofs)``: dof ``pin_dofs[k]`` of Pinocchio is dof ``canonical_dofs[k]``.
 
-        A free joint's linear dofs pair up to a rotation (world vs local frame).
+        A free or planar joint's linear dofs pair up to a rotation (world vs local frame).
 
         Returns
         -------
         tuple of ndarray
         """
-        return (
-            np.concatenate([self._v_pin, self._lin_pin.ravel()]).astype(int),
-            np.concatenate([self._v_can, self._lin_can.ravel()]).astype(int),
-        )
+        pin_dofs, can_dofs = self._planar.dofs()
+        pin_all = np.concatenate([self._v_pin, self._lin_pin.ravel(), pin_dofs]).astype(int)
+        return pin_all, np.concatenate([self._v_can, self._lin_can.ravel(), can_dofs]).astype(int)
 
     # ---------------------------------------------------------------- helpers
     @staticmethod
@@ -206,6 +202,7 @@ class StateMap(VelocityMapped):
         quat = quat / np.linalg.norm(quat, axis=-1, keepdims=True)
         q[:, self._quat_pin] = quat[..., [1, 2, 3, 0]]
         q[:, self._pos_pin] = qpos[:, self._pos_can]
+        self._planar.positions_to_pinocchio(qpos, q)
         self._unplace(q)
         if qvel is None:
             return q[0] if single else q
@@ -216,6 +213,7 @@ class StateMap(VelocityMapped):
         v[:, self._v_pin] = qvel[:, self._v_can]
         R = self._free_rotations(qpos)
         v[:, self._lin_pin] = np.einsum("pfji,pfj->pfi", R, qvel[:, self._lin_can])
+        self._planar.velocities_to_pinocchio(qpos, qvel, v)
         return (q[0], v[0]) if single else (q, v)
 
     def from_pinocchio(self, q: np.ndarray, v: np.ndarray | None = None) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
@@ -236,6 +234,7 @@ class StateMap(VelocityMapped):
         qpos = np.zeros((P, self.nq))
         qpos[:, self._s_can] = q[:, self._s_pin] + self._s_off
         qpos[:, self._u_can] = np.arctan2(q[:, self._u_pin + 1], q[:, self._u_pin])
+        self._planar.positions_from_pinocchio(q, qpos)
         q = self._place(q)
         qpos[:, self._quat_can] = q[:, self._quat_pin][..., [3, 0, 1, 2]]
         qpos[:, self._pos_can] = q[:, self._pos_pin]
@@ -246,6 +245,7 @@ class StateMap(VelocityMapped):
         qvel[:, self._v_can] = v[:, self._v_pin]
         R = self._free_rotations(qpos)
         qvel[:, self._lin_can] = np.einsum("pfij,pfj->pfi", R, v[:, self._lin_pin])
+        self._planar.velocities_from_pinocchio(qpos, v, qvel)
         return (qpos[0], qvel[0]) if single else (qpos, qvel)
 
     # ------------------------------------------------------------ velocities
@@ -267,12 +267,13 @@ class StateMap(VelocityMapped):
         R = self._free_rotations(qpos)
         for f in range(self._lin_can.shape[0]):
             T[:, self._lin_pin[f][:, None], self._lin_can[f][None, :]] = np.swapaxes(R[:, f], -1, -2)
+        self._planar.fill_velocity_matrix(qpos, T)
         return T
 
     def acceleration_to_pinocchio(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Convert canonical accelerations to Pinocchio's ``a = dv/dt``.
 
-        For a free joint ``v_pin = Rᵀ v_world`` so ``a_pin = Rᵀ a_world - ω_local × (Rᵀ v_world)``.
+        For a free joint ``v_pin = Rᵀ v_world`` so ``a_pin = Rᵀ a_world - ω_local × (Rᵀ v_world)`` (planar: ω = θ̇ ẑ).
 
         Parameters
         ----------
@@ -290,6 +291,7 @@ class StateMap(VelocityMapped):
         _, v = self.to_pinocchio(qpos, qvel)
         omega_local = qvel[:, self._lin_can + 3]
         a[:, self._lin_pin] -= np.cross(omega_local, v[:, self._lin_pin])
+        self._planar.correct_acceleration(qvel, v, a)
         return a
 
 
@@ -340,7 +342,7 @@ def build_state_map(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = 
     seg_names: dict[int, str] = {}
     for p in pairs:
         seg_names[p.pin_joint] = p.name  # canonical order: the last joint of a body wins
-    notes: list[Finding] = []
+    notes: list[Finding] = planar_notes(pairs, pin_model.names)
 
     placements = {
         p.pin_joint: (
