@@ -4,6 +4,7 @@
   applied by Pinocchio 4.1: density × volume is used instead; the same holds for a geom ``pos`` and a joint
   ``pos`` from a default class (the geom or joint sits at the body origin);
 * ``compiler settotalmass`` is not applied;
+* geoms with ``contype="0" conaffinity="0"`` weigh nothing (:mod:`koenig_check.diagnosis.visual_geoms`);
 * mass and inertia are not computed from a mesh;
 * segments whose mass one engine sees as zero are "massless in Pinocchio" (or MuJoCo), not missing.
 
@@ -25,6 +26,7 @@ import numpy as np
 from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.diagnosis.inertia_groups import inertia_group_causes
 from koenig_check.diagnosis.root_frame import FrameOffset, _vec, root_frame_offset
+from koenig_check.diagnosis.visual_geoms import visual_geom_causes
 from koenig_check.engines.canonical import segment_by_body_id, segment_of_body
 from koenig_check.engines.parser_traps import file_causes
 from koenig_check.findings import Finding, Kind, shown_names
@@ -72,12 +74,14 @@ def _pinocchio_segment_masses(pair: Any) -> dict[str, float]:
     return {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
 
 
-def massless_causes(pair: Any) -> list[Finding]:
+def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Finding]:
     """Segments with mass in one engine and none in the other ("massless in Pinocchio").
 
     Parameters
     ----------
     pair : ModelPair
+    explained : set of str
+        Segments whose missing mass another cause already explains (not repeated here).
 
     Returns
     -------
@@ -97,7 +101,7 @@ def massless_causes(pair: Any) -> list[Finding]:
     for engine, have, lack in (("pinocchio", mj_mass, pin_mass), ("mujoco", pin_mass, mj_mass)):
         if engine == "mujoco":
             lack = {n: 0.0 for n in _mujoco_massless(pair)}
-        names = sorted(n for n, m in have.items() if m > 0 and n in lack and lack[n] <= 0)
+        names = sorted(n for n, m in have.items() if m > 0 and n in lack and lack[n] <= 0 and n not in explained)
         if not names:
             continue
         values: dict[str, Any] = {"segments": tuple(names)}
@@ -360,8 +364,10 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     causes += compiler_causes(pair)
     causes += inertia_group_causes(pair)
     causes += class_value_causes(pair, offset)
+    visual = visual_geom_causes(pair)
+    causes += visual
     causes += mesh_causes(pair)
-    causes += massless_causes(pair)
+    causes += massless_causes(pair, explained={s for c in visual for s in c.segments})
     if frame is not None:
         causes.append(frame)
     return by_effect(sorted(causes, key=lambda f: not f.affects_energy)), offset  # the largest effect first
