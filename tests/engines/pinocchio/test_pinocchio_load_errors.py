@@ -46,6 +46,40 @@ def test_parser_reason_keeps_every_line_of_reason_and_drops_source_locations() -
     )
 
 
+def test_parser_reason_puts_urdfdom_skipped_link_elements_last_and_folds_repeats() -> None:
+    output = [
+        "Error:   Could not parse collision element for Link [a]",
+        "Error:   Could not parse collision element for Link [b]",
+        "Error:   Could not parse visual element for Link [b]",
+        "Error:   Joint [j] has no known type [spherical]",
+        "Error:   joint xml is not initialized correctly",
+    ]
+    assert parser_reason(ValueError("not a valid URDF model."), output) == (
+        "not a valid URDF model.; Joint [j] has no known type [spherical]; joint xml is not initialized correctly; "
+        "Could not parse collision element for Link [a] (and 1 more); Could not parse visual element for Link [b]"
+    )
+
+
+def test_pinocchio_refusal_names_the_element_it_stopped_at_not_those_it_skipped() -> None:
+    """humanoid.urdf of pybullet_data: eight capsule collisions urdfdom skips, then a spherical joint it refuses."""
+    import mujoco
+
+    path = MODELS / "spherical_capsules.urdf"
+    model = mujoco.MjModel.from_xml_path(str(path))  # MuJoCo reads the file: the refusal is Pinocchio's alone
+    assert list(model.jnt_type) == [mujoco.mjtJoint.mjJNT_BALL, mujoco.mjtJoint.mjJNT_HINGE]
+    with pytest.raises(ModelLoadError) as info:
+        load_model(path)
+    msg = str(info.value)
+    stopped, skipped = (
+        "Joint [shoulder] has no known type [spherical]",
+        "collision element for Link [base] (and 2 more)",
+    )
+    assert "\n" not in msg and str(path) in msg and stopped in msg and skipped in msg
+    assert msg.index(stopped) < msg.index(skipped) and "Link [upper]" not in msg
+    check = compare(path, n_poses=2)  # the one-line reason of the batch keeps the element it stopped at
+    assert not check.ok and stopped in check.reason()
+
+
 def test_floating_keyframes_pinocchio_refuses_are_dropped_for_pinocchio_and_said(tmp_path: Path) -> None:
     path = MODELS / "keyframe_floating.xml"
     with pytest.raises(ModelLoadError, match="Keyframe size does not match model size"):

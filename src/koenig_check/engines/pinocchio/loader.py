@@ -14,6 +14,7 @@ link and its fixed joint are removed from the XML given to Pinocchio.
 from __future__ import annotations
 
 import os
+import re
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
@@ -33,6 +34,11 @@ from koenig_check.sources.catalogue import ModelSource
 _SOURCE_LOCATION = ("From file:", "in function:", "at line:", "message:")
 #: Pinocchio's MJCF parser refuses a keyframe whose size is that of the file's joints, not of the model it built.
 KEYFRAME_SIZE = "Keyframe size does not match model size"
+#: urdfdom's line for a link's ``<visual>``, ``<collision>`` or ``<inertial>`` it could not read: it leaves that element
+#: out and reads on (the result of its link parser is not checked), so the line is not why a file was refused.
+_SKIPPED_ELEMENT = re.compile(r"^Could not parse (visual|collision|inertial) element for Link \[")
+#: A name in brackets in urdfdom's lines (``Link [right_hip]``).
+_BRACKETED = re.compile(r"\[[^\]]*\]")
 
 
 def parser_reason(exc: BaseException, parser_output: list[str] | None = None) -> str:
@@ -48,12 +54,24 @@ def parser_reason(exc: BaseException, parser_output: list[str] | None = None) ->
     Returns
     -------
     str
-        Every line of the reason, joined with ``"; "``.
+        Every line of the reason, joined with ``"; "``: the exception's, then urdfdom's errors, those about link
+        elements it skipped and read on after last (they are not why the file was refused); one message said of
+        several names (``Link [a]``, ``Link [b]``) once, with the first name and how many more.
     """
     lines = [line.strip() for line in str(exc).splitlines()]
     reason = [line for line in lines if line and not line.startswith(_SOURCE_LOCATION)]
-    reason += [line[len("Error:") :].strip() for line in parser_output or [] if line.startswith("Error:")]
+    errors = [line[len("Error:") :].strip() for line in parser_output or [] if line.startswith("Error:")]
+    reason += _folded([e for e in errors if not _SKIPPED_ELEMENT.match(e)])
+    reason += _folded([e for e in errors if _SKIPPED_ELEMENT.match(e)])
     return "; ".join(dict.fromkeys(reason)) or type(exc).__name__
+
+
+def _folded(lines: list[str]) -> list[str]:
+    """Lines that differ only in the names in brackets, said once: the first, and how many more."""
+    groups: dict[str, list[str]] = {}
+    for line in dict.fromkeys(lines):
+        groups.setdefault(_BRACKETED.sub("[]", line), []).append(line)
+    return [same[0] + (f" (and {len(same) - 1} more)" if len(same) > 1 else "") for same in groups.values()]
 
 
 def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[pin.Model, list[Finding]]:
