@@ -129,11 +129,11 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
                 )
     except ModelLoadError:
         raise  # our own refusal, already one line naming the file (not Pinocchio's parser: no "cannot parse")
-    except (RuntimeError, ValueError) as exc:
+    except (RuntimeError, ValueError, IndexError) as exc:  # IndexError: a name its MJCF parser looks up in vain
         reason = parser_reason(exc, parser_output)
         hint = limitation_hint(source, reason)
         error = ModelLoadError(f"{path}: Pinocchio cannot parse the file: {reason}" + (f" ({hint})" if hint else ""))
-        if "hfields" in reason:  # one line: what to do stays, not in parentheses (where an engine's detail is)
+        if "hfields" in reason or _UNKNOWN_NAME in reason:  # one line: what to do stays, not in parentheses
             error.brief = f"{path}: Pinocchio cannot parse the file: {reason}; {hint}"
         raise error from exc
     notes += [
@@ -172,7 +172,33 @@ def limitation_hint(source: ModelSource, reason: str) -> str:
             )
     if KEYFRAME_SIZE in reason:
         return "the file's keyframes do not fit the model Pinocchio builds: remove <keyframe> from a copy"
+    if _UNKNOWN_NAME in reason and source.format == "mjcf":
+        unknown = _undefined_classes(Path(source.path))
+        if unknown:
+            classes = ", ".join(unknown)
+            return f"class {classes}: not in the file's own <default>; Pinocchio's MJCF parser ignores <include>"
     return ""
+
+
+#: What Pinocchio's MJCF parser raises (IndexError) for a name it cannot find, e.g. a default class.
+_UNKNOWN_NAME = "unordered_map::at"
+
+
+def _undefined_classes(path: Path) -> list[str]:
+    """The default classes an MJCF file uses and does not define itself (``'soft' of joint shoulder``)."""
+    try:
+        root = parse_xml(path).getroot()
+    except ET.ParseError:
+        return []
+    defined = {"main"} | {d.get("class", "main") for d in root.iter("default")}
+    out: dict[str, str] = {}
+    for element in root.iter():
+        for attr in ("class", "childclass"):
+            name = element.get(attr)
+            if name is not None and name not in defined and name not in out:
+                label = f" of {element.tag} {element.get('name')}" if element.get("name") else f" of a {element.tag}"
+                out[name] = f"'{name}'{label}"
+    return list(out.values())
 
 
 @contextmanager
