@@ -51,8 +51,13 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
     except Exception:
         return []
     visual = [g for g in spec.geoms if _visual(g) and g.parent.name != "world"]
-    if not visual:
-        return []
+    names = pair.state_map.segment_names
+    inertias = pair.pinocchio.model.inertias
+    pinocchio = {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
+    loaded = _segment_masses(pair.mujoco.model)
+    scale = RTOL * max(sum(loaded.values()), sum(pinocchio.values()), 1e-300)
+    if not visual or all(abs(m - pinocchio.get(s, m)) <= scale for s, m in loaded.items()):
+        return []  # no geom Pinocchio reads as visual, or no mass differs: nothing to explain (and no compiling)
     as_file = _compiled(spec)
     for geom in visual:
         geom.mass = 0.0  # an explicit mass overrides the density, for primitives and meshes alike
@@ -62,10 +67,6 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
     if as_file is None or without is None:
         return []
     mujoco_mass, without_mass = _segment_masses(as_file), _segment_masses(without)
-    names = pair.state_map.segment_names
-    inertias = pair.pinocchio.model.inertias
-    pinocchio = {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
-    scale = RTOL * max(sum(mujoco_mass.values()), sum(pinocchio.values()), 1e-300)
     segments = [
         s
         for s, m in mujoco_mass.items()
