@@ -48,9 +48,8 @@ def test_a_bare_body_weighs_nothing_in_pinocchio_and_is_the_named_cause(tmp_path
         return
     (cause,) = causes
     assert cause.element == "body without attributes in body a" and cause.engine == "pinocchio"
-    assert (
-        cause.affects_energy and cause.segments == ("j1", "j2") and cause.values["geoms"] == 1
-    )  # c hangs from the world
+    assert cause.affects_energy and cause.values["geoms"] == 1
+    assert cause.segments == ("j1", "j2") and cause.values["joints"] == ()  # c hangs from the world, j2 is not lost
     assert not check.ok and "root cause: body without attributes in body a" in check.reason()
 
 
@@ -81,3 +80,20 @@ def test_a_bare_leaf_body_with_a_geom_only_changes_the_energy(tmp_path: Path) ->
     assert cause.affects_energy and cause.segments == ("j1",) and cause.values["joints"] == ()
     check = koenig_check.compare(path, n_poses=3, formulas=["exact"])
     assert not check.ok and "root cause: body without attributes in body a" in check.reason()
+
+
+#: dm_control's model_with_ball_joints.xml: a bare top-level body without joints, welded to the world.
+STATIC = f"""<mujoco><worldbody>
+  <body><geom type="sphere" size="0.1" mass="5"/>
+    <body name="b" pos="0 0 1"><joint name="j" type="hinge" axis="1 0 0"/>{BALL}</body>
+  </body>
+</worldbody></mujoco>"""
+
+
+def test_a_bare_body_welded_to_the_world_changes_no_energy(tmp_path: Path) -> None:
+    path = tmp_path / "static.xml"
+    path.write_text(STATIC)
+    (cause,) = [c for c in file_causes(path) if "without any attribute" in c.summary]
+    assert not cause.affects_energy and cause.values["joints"] == ()  # b moves alike, its joint is there
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"])
+    assert check.ok, check.reason()

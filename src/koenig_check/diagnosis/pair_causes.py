@@ -81,7 +81,8 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
     ----------
     pair : ModelPair
     explained : set of str
-        Segments whose missing mass another cause already explains (not repeated here).
+        Segments whose missing mass another cause already explains: a finding only on such segments is not a root
+        cause (the segments stay massless, not missing).
 
     Returns
     -------
@@ -101,7 +102,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
     for engine, have, lack in (("pinocchio", mj_mass, pin_mass), ("mujoco", pin_mass, mj_mass)):
         if engine == "mujoco":
             lack = {n: 0.0 for n in _mujoco_massless(pair)}
-        names = sorted(n for n, m in have.items() if m > 0 and n in lack and lack[n] <= 0 and n not in explained)
+        names = sorted(n for n, m in have.items() if m > 0 and n in lack and lack[n] <= 0)
         if not names:
             continue
         values: dict[str, Any] = {"segments": tuple(names)}
@@ -115,7 +116,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
                 f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'} (mass only in the other engine)",
                 values=values,
                 affects_energy=True,
-                root_cause=True,
+                root_cause=not set(names) <= explained,
                 segments=tuple(names),
             )
         )

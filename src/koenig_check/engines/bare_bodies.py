@@ -27,8 +27,9 @@ def bare_body_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
     Returns
     -------
     list of Finding
-        One ``IGNORED_CONSTRUCT`` finding per such body (engine ``pinocchio``): where it is, its geoms and
-        joints, and the segments it changes (its own and those below it, which Pinocchio moves from the world).
+        One ``IGNORED_CONSTRUCT`` finding per such body (engine ``pinocchio``): where it is, its geoms and own
+        joints (those Pinocchio lacks), and the segments it changes (the enclosing one, its own and those below it,
+        which Pinocchio hangs from the world); it changes the energy when it has joints or sits in a moving body.
     """
     parents = {child: parent for parent in root.iter() for child in parent}
     out = []
@@ -43,9 +44,12 @@ def bare_body_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
             if parent is not None and parent.tag == "body":
                 where = f"body {parent.get('name')}"
             joints = tuple(joint_names(body))
+            own = [j for j in body if j.tag in ("joint", "freejoint")]
             enclosing = seg_of.get(parent.get("name", "")) if parent is not None and parent.tag == "body" else None
             segments = tuple(dict.fromkeys((*([enclosing] if enclosing else []), *joints)))
             geoms = len(body.findall("geom"))
+            # at its parent's origin, a bare body welded to a static parent changes nothing that moves
+            moves = bool(own) or (enclosing is not None and bool(geoms or body.find("body") is not None))
             out.append(
                 Finding(
                     Kind.IGNORED_CONSTRUCT,
@@ -53,8 +57,13 @@ def bare_body_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                     f"body without attributes in {where}",
                     "<body> without any attribute skipped by Pinocchio's MJCF parser: its geoms and joints are "
                     "missing, its child bodies hang from the world",
-                    values={"geoms": geoms, "joints": joints, "mujoco": "loaded", "pinocchio": "not read"},
-                    affects_energy=bool(geoms or joints or body.find("body") is not None),
+                    values={
+                        "geoms": geoms,
+                        "joints": tuple(j.get("name", "?") for j in own),
+                        "mujoco": "loaded",
+                        "pinocchio": "not read",
+                    },
+                    affects_energy=moves,
                     root_cause=True,
                     segments=segments,
                     hint=f"give it a name (or any attribute); joints below: {shown_names(joints)}"
