@@ -312,27 +312,36 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
     seg_of = segment_of_body(pair.mujoco.model)
     segs = _segments(pair, None)
     geoms: list[str] = []
+    visual: list[str] = []
     segments: list[str] = []
     for body in spec.bodies:
         segment = seg_of.get(body.name, "")
         if not segment or segment in explained or not _mass_differs(segs, segment):
             continue
         meshed = [g.name or f"{body.name}/geom{k}" for k, g in enumerate(body.geoms) if g.meshname]
+        visual += [
+            g.name or f"{body.name}/geom{k}"
+            for k, g in enumerate(body.geoms)
+            if g.meshname and int(g.contype) == 0 and int(g.conaffinity) == 0
+        ]
         if meshed:
             geoms += meshed
             segments.append(segment)
     if not geoms:
         return []
     segments = list(dict.fromkeys(segments))
+    geoms = [g for g in geoms if g not in visual] + visual  # those Pinocchio weighs (1 kg each) first
+    also = f"; {shown_names(visual)}: contype=0 and conaffinity=0, read as visual only, count as nothing" * bool(visual)
     return [
         Finding(
             Kind.MASS,
             "pinocchio",
             f"geom {shown_names(geoms)}",
             "geoms with a mesh: Pinocchio's MJCF parser does not compute mass and inertia from the mesh "
-            "(a mesh-typed geom counts as 1 kg with unit inertia, a primitive fitted to a mesh as nothing)",
+            f"(a mesh-typed geom counts as 1 kg with unit inertia, a primitive fitted to a mesh as nothing{also})",
             values={
                 "geoms": tuple(geoms),
+                "visual geoms": tuple(visual),
                 "mujoco": float(sum(segs.mass[s][0] for s in segments)),
                 "pinocchio": float(sum(segs.mass[s][1] for s in segments)),
             },
