@@ -192,6 +192,21 @@ def test_mesh_geoms_are_named_when_pinocchio_gets_another_mass() -> None:
     assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.parities[0].reason
 
 
+def test_a_visual_mesh_geom_is_said_to_count_as_nothing_not_1_kg(tmp_path) -> None:
+    """robosuite's inspire and fourier hands: a visual mesh (contype=0 conaffinity=0) beside each collision mesh."""
+    import pinocchio as pin
+
+    path = tmp_path / "mesh_visual.xml"
+    look = '<geom name="look" type="mesh" mesh="tet" mass="0.2" contype="0" conaffinity="0"/>'
+    path.write_text((CAUSES / "mesh_geom.xml").read_text().replace('<geom name="shell"', look + '<geom name="shell"'))
+    pmodel = pin.buildModelFromMJCF(str(path))
+    assert pmodel.inertias[pmodel.getJointId("jb")].mass == pytest.approx(1.0)  # shell 1 kg, look nothing
+    cause = _only(import_parity(load_model(path)).causes, Kind.MASS)
+    assert cause.values["geoms"] == ("shell", "look") and cause.values["visual geoms"] == ("look",)  # weighed first
+    assert cause.values["mujoco"] == pytest.approx(0.5) and cause.values["pinocchio"] == pytest.approx(1.0)
+    assert "look: contype=0 and conaffinity=0, read as visual only, count as nothing" in cause.summary
+
+
 def test_include_of_a_welded_part_is_named_and_changes_the_energy() -> None:
     pair = load_model(CAUSES / "include_welded_in_body.xml")  # the joints pair: only mass is missing
     assert engines_agree(pair) is False

@@ -40,3 +40,18 @@ def test_causes_beyond_the_limit_are_counted_as_root_causes() -> None:
     line = short_error(_error("arm.xml: joints do not match", causes), 130)
     assert line.endswith("; and 3 more root causes") or line.endswith("; and 4 more root causes"), line
     assert "root cause: body b0: construct 0 ignored by the parser" in line
+
+
+@pytest.mark.parametrize("n_includes", [2, 3, 5])
+def test_a_cause_on_long_elements_is_named_by_its_first_before_it_goes_uncounted(n_includes: int) -> None:
+    """Metaworld's sawyer_coffee.xml: three includes under ../objects/assets/ left "1 root cause not shown"."""
+    files = [f"../objects/assets/{name}.xml" for name in ("mug", "xyz_base", "coffeemachine", "extra", "more")]
+    causes = [
+        _root(f"include {f}", "<include> ignored by the parser: its bodies are missing") for f in files[:n_includes]
+    ]
+    line = short_error(_error("/some/folder/sawyer_coffee.xml: joints only in MuJoCo (a, b, c)", causes), 150)
+    more = n_includes - 1
+    assert line == (
+        "/some/folder/sawyer_coffee.xml: joints only in MuJoCo; root cause: includes ../objects/assets/mug.xml "
+        f"(+{more} more): <include> ignored by the parser"
+    )

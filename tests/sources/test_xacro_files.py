@@ -152,3 +152,20 @@ def test_failures_name_the_xacro_file_not_its_expansion(tmp_path):
     assert expanded in reason  # the engine read the expansion...
     line = check.failure_lines[label]
     assert expanded not in line and "link 'l1'" in line  # ...the user is told about the file they gave
+
+
+def test_a_missing_package_is_said_once_without_python_spelling(arm_xacro, tmp_path):
+    """rtb-data's kr6r700sixx.xacro: xacro printed "<class 'xacrodoc.packages.PackageNotFoundError'>: Package not
+    found: pkg Package not found: pkg"."""
+    bad = tmp_path / "needs_pkg.xacro"
+    bad.write_text(
+        '<robot name="b" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="$(find no_such_support)/urdf/macro.xacro"/></robot>'
+    )
+    check = compare([bad, arm_xacro], n_poses=2)
+    assert [c.model for c in check.comparisons] == ["arm.urdf.xacro"]  # the batch goes on
+    [(label, reason)] = check.failures
+    assert reason.endswith("xacro cannot expand needs_pkg.xacro: Package not found: no_such_support")
+    assert check.failure_lines[label] == "needs_pkg.xacro: xacro cannot expand needs_pkg.xacro: " + (
+        "Package not found: no_such_support"
+    )

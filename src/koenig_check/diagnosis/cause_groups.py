@@ -73,8 +73,18 @@ class CauseGroup:
         """Whether it is a root cause (a per-segment symptom is not)."""
         return self.findings[0].root_cause
 
-    def elements(self) -> str:
-        """The elements concerned: ``link base``, ``links link_3.0, link_7.0, link_11.0, link_15.0``."""
+    def elements(self, shown: int = SHOWN_ELEMENTS) -> str:
+        """The elements concerned: ``link base``, ``links link_3.0, link_7.0, link_11.0, link_15.0``.
+
+        Parameters
+        ----------
+        shown : int
+            How many are named before "(+N more)".
+
+        Returns
+        -------
+        str
+        """
         if len(self.findings) == 1:
             return element_words(self.findings[0])
         tags = {f.element.split(" ", 1)[0] for f in self.findings}
@@ -82,8 +92,8 @@ class CauseGroup:
         if len(tags) == 1 and simple:
             tag = tags.pop()
             names = [f.element.split(" ", 1)[1] for f in self.findings]
-            return f"{_PLURAL.get(tag, tag + 's')} {shown_names(names, SHOWN_ELEMENTS)}"
-        return shown_names([element_words(f) for f in self.findings], SHOWN_ELEMENTS)
+            return f"{_PLURAL.get(tag, tag + 's')} {shown_names(names, shown)}"
+        return shown_names([element_words(f) for f in self.findings], shown)
 
     def lost_joints(self) -> list[str]:
         """The joints the engine concerned does not read because of this cause (``joints`` and ``not read``)."""
@@ -94,7 +104,7 @@ class CauseGroup:
                 joints += [j for j in listed if isinstance(j, str) and j not in joints]
         return joints
 
-    def short(self, joints: bool = True, brief: bool = False) -> str:
+    def short(self, joints: bool = True, brief: bool = False, shown: int = SHOWN_ELEMENTS) -> str:
         """The cause in a few words: its elements, the first clause of its summary, and the joints it loses.
 
         Parameters
@@ -104,13 +114,15 @@ class CauseGroup:
         brief : bool
             Only what the summary says before its first colon (``<include> ignored by Pinocchio's MJCF parser``),
             without the joints it loses, for a line that cannot hold more.
+        shown : int
+            How many elements are named before "(+N more)".
 
         Returns
         -------
         str
         """
         said = clause(self.findings[0])
-        text = f"{self.elements()}: {said.split(': ')[0] if brief else said}"
+        text = f"{self.elements(shown)}: {said.split(': ')[0] if brief else said}"
         lost = self.lost_joints() if joints and not brief else []
         if lost:
             from koenig_check.engines.registry import label

@@ -29,7 +29,8 @@ def short_error(
     few words each, never one the message already says.  To fit, whole parts go, never half of one: a keyword's
     Python spelling in parentheses (``(repair_inertia=True)``), then the causes after the first ("; and N more
     root causes"), then each cause's explanation after its first clause, then the engine's own detail in
-    parentheses (its verbatim reason), the last first, then "and N more", then the causes (counted); only then is the
+    parentheses (its verbatim reason), the last first, then "and N more", then the first cause naming only its first
+    element ("includes a.xml (+2 more)"), then the causes (counted); only then is the
     line cut at a word (``…``), never inside a parenthesis.  The whole message stays ``str(err)`` (the report's
     failures, ``--debug``).
 
@@ -65,6 +66,8 @@ def short_error(
     tries += [(plain, k, True, briefs) for k in counts]  # then each cause's explanation after its first clause
     tries += [(h, 1, True, said) for h in heads[1:] for said in (shorts, briefs)]  # then the engine's detail
     tries += [(h, min(n, 1), False, briefs) for h in heads]  # then "and N more"
+    firsts = [tidy(g.short(joints=False, brief=True, shown=1)) for g in groups]  # one element, "(+N more)"
+    tries += [(h, 1, False, firsts) for h in heads]  # then the first cause naming its first element only
     tries += [(plain, 0, True, shorts)] if shorts else []  # what to do kept whole, the causes counted
     if not shorts:  # no cause: the message, then without its details
         tries = [(h, 0, False, shorts) for h in dict.fromkeys((head, *heads))]

@@ -4,6 +4,7 @@
   applied by Pinocchio 4.1: density × volume is used instead; the same holds for a geom ``pos`` and a joint
   ``pos`` from a default class (the geom or joint sits at the body origin);
 * ``compiler settotalmass`` is not applied;
+* geoms with ``contype="0" conaffinity="0"`` weigh nothing (:mod:`koenig_check.diagnosis.visual_geoms`);
 * mass and inertia are not computed from a mesh;
 * segments whose mass one engine sees as zero are "massless in Pinocchio" (or MuJoCo), not missing.
 
@@ -25,6 +26,7 @@ import numpy as np
 from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.diagnosis.inertia_groups import inertia_group_causes
 from koenig_check.diagnosis.root_frame import FrameOffset, _vec, root_frame_offset
+from koenig_check.diagnosis.visual_geoms import visual_geom_causes
 from koenig_check.engines.canonical import segment_by_body_id, segment_of_body
 from koenig_check.engines.parser_traps import file_causes
 from koenig_check.findings import Finding, Kind, shown_names
@@ -72,12 +74,15 @@ def _pinocchio_segment_masses(pair: Any) -> dict[str, float]:
     return {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
 
 
-def massless_causes(pair: Any) -> list[Finding]:
+def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Finding]:
     """Segments with mass in one engine and none in the other ("massless in Pinocchio").
 
     Parameters
     ----------
     pair : ModelPair
+    explained : set of str
+        Segments whose missing mass another cause already explains: a finding only on such segments is not a root
+        cause (the segments stay massless, not missing).
 
     Returns
     -------
@@ -111,7 +116,7 @@ def massless_causes(pair: Any) -> list[Finding]:
                 f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'} (mass only in the other engine)",
                 values=values,
                 affects_energy=True,
-                root_cause=True,
+                root_cause=not set(names) <= explained,
                 segments=tuple(names),
             )
         )
@@ -307,27 +312,36 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
     seg_of = segment_of_body(pair.mujoco.model)
     segs = _segments(pair, None)
     geoms: list[str] = []
+    visual: list[str] = []
     segments: list[str] = []
     for body in spec.bodies:
         segment = seg_of.get(body.name, "")
         if not segment or segment in explained or not _mass_differs(segs, segment):
             continue
         meshed = [g.name or f"{body.name}/geom{k}" for k, g in enumerate(body.geoms) if g.meshname]
+        visual += [
+            g.name or f"{body.name}/geom{k}"
+            for k, g in enumerate(body.geoms)
+            if g.meshname and int(g.contype) == 0 and int(g.conaffinity) == 0
+        ]
         if meshed:
             geoms += meshed
             segments.append(segment)
     if not geoms:
         return []
     segments = list(dict.fromkeys(segments))
+    geoms = [g for g in geoms if g not in visual] + visual  # those Pinocchio weighs (1 kg each) first
+    also = f"; {shown_names(visual)}: contype=0 and conaffinity=0, read as visual only, count as nothing" * bool(visual)
     return [
         Finding(
             Kind.MASS,
             "pinocchio",
             f"geom {shown_names(geoms)}",
             "geoms with a mesh: Pinocchio's MJCF parser does not compute mass and inertia from the mesh "
-            "(a mesh-typed geom counts as 1 kg with unit inertia, a primitive fitted to a mesh as nothing)",
+            f"(a mesh-typed geom counts as 1 kg with unit inertia, a primitive fitted to a mesh as nothing{also})",
             values={
                 "geoms": tuple(geoms),
+                "visual geoms": tuple(visual),
                 "mujoco": float(sum(segs.mass[s][0] for s in segments)),
                 "pinocchio": float(sum(segs.mass[s][1] for s in segments)),
             },
@@ -360,8 +374,10 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
     causes += compiler_causes(pair)
     causes += inertia_group_causes(pair)
     causes += class_value_causes(pair, offset)
+    visual = visual_geom_causes(pair)
+    causes += visual
     causes += mesh_causes(pair)
-    causes += massless_causes(pair)
+    causes += massless_causes(pair, explained={s for c in visual for s in c.segments})
     if frame is not None:
         causes.append(frame)
     return by_effect(sorted(causes, key=lambda f: not f.affects_energy)), offset  # the largest effect first

@@ -32,18 +32,39 @@ def mujoco_joint_names(model: mujoco.MjModel) -> list[str]:
     list of str
         The joint's name, or for an unnamed joint the name Pinocchio's MJCF parser gives it
         (``"<body>_free"`` for a free joint, ``"<body>Joint_<k>"`` otherwise, ``k`` counting the
-        body's joints).
+        body's joints; ``<body>`` as :func:`pinocchio_body_name`).
     """
     names = []
     for j in range(model.njnt):
         name = model.joint(j).name
         if not name:
             body = int(model.jnt_bodyid[j])
-            bname = model.body(body).name or f"body{body}"
+            bname = pinocchio_body_name(model, body)
             k = j - int(model.body_jntadr[body])
             name = f"{bname}_free" if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE else f"{bname}Joint_{k}"
         names.append(name)
     return names
+
+
+def pinocchio_body_name(model: mujoco.MjModel, body: int) -> str:
+    """The name Pinocchio's MJCF parser gives a MuJoCo body.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    body : int
+
+    Returns
+    -------
+    str
+        The body's own name; for an unnamed body its parent's name followed by ``"Bis"``, a top-level body's
+        parent (the world) counting as ``""`` (``"Bis"``, ``"BisBis"`` for an unnamed body in it).
+    """
+    name = model.body(body).name
+    if name or body == 0:
+        return name if body else ""
+    parent = int(model.body_parentid[body])
+    return (pinocchio_body_name(model, parent) if parent else "") + "Bis"
 
 
 #: (qpos, qvel) sizes of MuJoCo's joint types with more than one coordinate.

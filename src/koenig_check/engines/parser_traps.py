@@ -18,6 +18,7 @@ from typing import Any, TypeVar, cast
 
 import mujoco
 
+from koenig_check.engines.bare_bodies import bare_body_causes
 from koenig_check.engines.canonical import segment_of_body
 from koenig_check.engines.registry import label
 from koenig_check.engines.replicates import replicate_causes
@@ -141,6 +142,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
             )
         )
     out += frame_causes(root, seg_of)
+    out += bare_body_causes(root, seg_of)
     out += axisangle_causes(root, seg_of)
     out += replicate_causes(root, seg_of)
     for body in world_bodies[1:]:

@@ -72,8 +72,16 @@ class Included:
     defaults: bool  # it defines default classes
 
 
+#: Sections whose ``<joint>`` elements are not joints: a default class's attributes, an equality or a tendon
+#: naming a joint (``<equality><joint joint1=...>``, ``<tendon><fixed><joint joint=...>``), and the like.
+_NOT_JOINTS = frozenset({"default", "equality", "tendon", "actuator", "contact", "sensor", "keyframe", "custom"})
+
+
 def joint_names(element: ET.Element) -> list[str]:
     """The names of the joints (and free joints) anywhere inside an element ("?" for an unnamed one).
+
+    A ``<joint>`` in a ``<default>``, ``<equality>``, ``<tendon>`` (or another section that only refers to joints)
+    is not a joint and is not counted.
 
     Parameters
     ----------
@@ -83,7 +91,10 @@ def joint_names(element: ET.Element) -> list[str]:
     -------
     list of str
     """
-    return [j.get("name", "?") for j in element.iter() if j.tag in ("joint", "freejoint")]
+    if element.tag in _NOT_JOINTS:
+        return []
+    own = [element.get("name", "?")] if element.tag in ("joint", "freejoint") else []
+    return own + [name for child in element for name in joint_names(child)]
 
 
 def includes(root: ET.Element, directory: Path) -> list[Included]:

@@ -104,12 +104,37 @@ def expand_xacro(
         doc = XacroDoc.from_file(path, walk_up=False, subargs=values, resolve_packages=True)
         text = doc.to_urdf_string(use_protocols=True)
     except Exception as err:  # xacro's own reason (undefined arg, unknown package, bad XML), one line
-        reason = one_line(err)
+        reason = xacro_reason(err)
         raise ModelLoadError(f"{name}: xacro cannot expand {path.name}: {reason}") from None
     empty = _no_link(path, text)
     if empty:
         raise ModelLoadError(f"{name}: {empty}")
     return _write(path, values, text)
+
+
+#: The Python spelling of an exception's type that xacrodoc puts before its message (``<class 'x.Y'>: ``).
+_TYPE_REPR = re.compile(r"<class '[\w.]+'>:\s*")
+
+
+def xacro_reason(err: BaseException) -> str:
+    """The reason xacro gives, on one line, said once and without the Python spelling of an exception's type.
+
+    xacro's ``XacroException`` prints its message and then the exception it wraps, and xacrodoc's message is that
+    exception's type and text: ``<class 'xacrodoc.packages.PackageNotFoundError'>: Package not found: pkg Package
+    not found: pkg`` becomes ``Package not found: pkg``; anything xacro adds after the repeat is kept.
+
+    Parameters
+    ----------
+    err : BaseException
+        What expanding the file raised.
+
+    Returns
+    -------
+    str
+    """
+    text = _TYPE_REPR.sub("", one_line(err))
+    repeated = re.fullmatch(r"(.{10,}?) \1( .*)?", text)  # a whole clause said twice, not a word
+    return repeated[1] + (repeated[2] or "") if repeated else text
 
 
 def _no_link(path: Path, text: str) -> str:

@@ -46,6 +46,75 @@ def test_parser_reason_keeps_every_line_of_reason_and_drops_source_locations() -
     )
 
 
+def test_parser_reason_puts_urdfdom_skipped_link_elements_last_and_folds_repeats() -> None:
+    output = [
+        "Error:   Could not parse collision element for Link [a]",
+        "Error:   Could not parse collision element for Link [b]",
+        "Error:   Could not parse visual element for Link [b]",
+        "Error:   Joint [j] has no known type [spherical]",
+        "Error:   joint xml is not initialized correctly",
+    ]
+    assert parser_reason(ValueError("not a valid URDF model."), output) == (
+        "not a valid URDF model.; Joint [j] has no known type [spherical]; joint xml is not initialized correctly; "
+        "Could not parse collision element for Link [a] (and 1 more); Could not parse visual element for Link [b]"
+    )
+
+
+def test_pinocchio_refusal_names_the_element_it_stopped_at_not_those_it_skipped() -> None:
+    """humanoid.urdf of pybullet_data: eight capsule collisions urdfdom skips, then a spherical joint it refuses."""
+    import mujoco
+
+    path = MODELS / "spherical_capsules.urdf"
+    model = mujoco.MjModel.from_xml_path(str(path))  # MuJoCo reads the file: the refusal is Pinocchio's alone
+    assert list(model.jnt_type) == [mujoco.mjtJoint.mjJNT_BALL, mujoco.mjtJoint.mjJNT_HINGE]
+    with pytest.raises(ModelLoadError) as info:
+        load_model(path)
+    msg = str(info.value)
+    stopped, skipped = (
+        "Joint [shoulder] has no known type [spherical]",
+        "collision element for Link [base] (and 2 more)",
+    )
+    assert "\n" not in msg and str(path) in msg and stopped in msg and skipped in msg
+    assert msg.index(stopped) < msg.index(skipped) and "Link [upper]" not in msg
+    check = compare(path, n_poses=2)  # the one-line reason of the batch keeps the element it stopped at
+    assert not check.ok and stopped in check.reason()
+
+
+#: A joint whose default class is defined in an included file (Pinocchio's MJCF parser ignores <include>).
+CLASS_IN_INCLUDE = """<mujoco model="class_in_include">
+  <include file="classes.xml"/>
+  <worldbody>
+    <body name="arm">
+      <joint name="shoulder" type="hinge" axis="0 1 0" class="soft"/>
+      <geom type="sphere" size="0.1" pos="0 0 0.3" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_a_class_pinocchio_cannot_find_is_its_refusal_naming_the_class_and_the_element(tmp_path: Path) -> None:
+    """Pinocchio raises IndexError ('unordered_map::at'): a refusal naming the file, not a bare C++ message."""
+    import mujoco
+    import pinocchio as pin
+
+    (tmp_path / "classes.xml").write_text(
+        '<mujocoinclude><default><default class="soft"><joint damping="2"/></default></default></mujocoinclude>'
+    )
+    path = tmp_path / "class_in_include.xml"
+    path.write_text(CLASS_IN_INCLUDE)
+    assert mujoco.MjModel.from_xml_path(str(path)).dof_damping[0] == 2.0  # MuJoCo reads the class
+    with pytest.raises(IndexError, match="unordered_map::at"):  # Pinocchio's own reason, as it gives it
+        pin.buildModelFromMJCF(str(path))
+    with pytest.raises(ModelLoadError) as info:
+        load_model(path)
+    msg = str(info.value)
+    assert "\n" not in msg and msg.startswith(f"{path}: Pinocchio cannot parse the file: unordered_map::at")
+    assert "class 'soft' of joint shoulder: not in the file's own <default>" in msg
+    check = compare(path, n_poses=2)
+    assert not check.ok and "class 'soft' of joint shoulder" in check.reason()
+
+
 def test_floating_keyframes_pinocchio_refuses_are_dropped_for_pinocchio_and_said(tmp_path: Path) -> None:
     path = MODELS / "keyframe_floating.xml"
     with pytest.raises(ModelLoadError, match="Keyframe size does not match model size"):

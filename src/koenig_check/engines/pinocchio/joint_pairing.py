@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import mujoco
 import pinocchio as pin
 
-from koenig_check.engines.canonical import mujoco_joint_names
+from koenig_check.engines.canonical import mujoco_joint_names, pinocchio_body_name
 from koenig_check.engines.errors import JointMismatch
 from koenig_check.engines.pinocchio.planar import planar_targets
 
@@ -113,7 +113,7 @@ def match_joints(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str = "<m
         # "<body>Joint_<k>"; MuJoCo's compiled model keeps no trace of which one the file wrote.
         if not mj_model.joint(j).name and mj_model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE:
             body = int(mj_model.jnt_bodyid[j])
-            bname = mj_model.body(body).name or f"body{body}"
+            bname = pinocchio_body_name(mj_model, body)
             index.setdefault(f"{bname}Joint_{j - int(mj_model.body_jntadr[body])}", j)
     pairs: dict[int, JointPair] = {}
     only_pin: list[str] = []

@@ -14,6 +14,7 @@ link and its fixed joint are removed from the XML given to Pinocchio.
 from __future__ import annotations
 
 import os
+import re
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
@@ -33,6 +34,11 @@ from koenig_check.sources.catalogue import ModelSource
 _SOURCE_LOCATION = ("From file:", "in function:", "at line:", "message:")
 #: Pinocchio's MJCF parser refuses a keyframe whose size is that of the file's joints, not of the model it built.
 KEYFRAME_SIZE = "Keyframe size does not match model size"
+#: urdfdom's line for a link's ``<visual>``, ``<collision>`` or ``<inertial>`` it could not read: it leaves that element
+#: out and reads on (the result of its link parser is not checked), so the line is not why a file was refused.
+_SKIPPED_ELEMENT = re.compile(r"^Could not parse (visual|collision|inertial) element for Link \[")
+#: A name in brackets in urdfdom's lines (``Link [right_hip]``).
+_BRACKETED = re.compile(r"\[[^\]]*\]")
 
 
 def parser_reason(exc: BaseException, parser_output: list[str] | None = None) -> str:
@@ -48,12 +54,24 @@ def parser_reason(exc: BaseException, parser_output: list[str] | None = None) ->
     Returns
     -------
     str
-        Every line of the reason, joined with ``"; "``.
+        Every line of the reason, joined with ``"; "``: the exception's, then urdfdom's errors, those about link
+        elements it skipped and read on after last (they are not why the file was refused); one message said of
+        several names (``Link [a]``, ``Link [b]``) once, with the first name and how many more.
     """
     lines = [line.strip() for line in str(exc).splitlines()]
     reason = [line for line in lines if line and not line.startswith(_SOURCE_LOCATION)]
-    reason += [line[len("Error:") :].strip() for line in parser_output or [] if line.startswith("Error:")]
+    errors = [line[len("Error:") :].strip() for line in parser_output or [] if line.startswith("Error:")]
+    reason += _folded([e for e in errors if not _SKIPPED_ELEMENT.match(e)])
+    reason += _folded([e for e in errors if _SKIPPED_ELEMENT.match(e)])
     return "; ".join(dict.fromkeys(reason)) or type(exc).__name__
+
+
+def _folded(lines: list[str]) -> list[str]:
+    """Lines that differ only in the names in brackets, said once: the first, and how many more."""
+    groups: dict[str, list[str]] = {}
+    for line in dict.fromkeys(lines):
+        groups.setdefault(_BRACKETED.sub("[]", line), []).append(line)
+    return [same[0] + (f" (and {len(same) - 1} more)" if len(same) > 1 else "") for same in groups.values()]
 
 
 def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[pin.Model, list[Finding]]:
@@ -111,11 +129,11 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
                 )
     except ModelLoadError:
         raise  # our own refusal, already one line naming the file (not Pinocchio's parser: no "cannot parse")
-    except (RuntimeError, ValueError) as exc:
+    except (RuntimeError, ValueError, IndexError) as exc:  # IndexError: a name its MJCF parser looks up in vain
         reason = parser_reason(exc, parser_output)
         hint = limitation_hint(source, reason)
         error = ModelLoadError(f"{path}: Pinocchio cannot parse the file: {reason}" + (f" ({hint})" if hint else ""))
-        if "hfields" in reason:  # one line: what to do stays, not in parentheses (where an engine's detail is)
+        if "hfields" in reason or _UNKNOWN_NAME in reason:  # one line: what to do stays, not in parentheses
             error.brief = f"{path}: Pinocchio cannot parse the file: {reason}; {hint}"
         raise error from exc
     notes += [
@@ -154,7 +172,33 @@ def limitation_hint(source: ModelSource, reason: str) -> str:
             )
     if KEYFRAME_SIZE in reason:
         return "the file's keyframes do not fit the model Pinocchio builds: remove <keyframe> from a copy"
+    if _UNKNOWN_NAME in reason and source.format == "mjcf":
+        unknown = _undefined_classes(Path(source.path))
+        if unknown:
+            classes = ", ".join(unknown)
+            return f"class {classes}: not in the file's own <default>; Pinocchio's MJCF parser ignores <include>"
     return ""
+
+
+#: What Pinocchio's MJCF parser raises (IndexError) for a name it cannot find, e.g. a default class.
+_UNKNOWN_NAME = "unordered_map::at"
+
+
+def _undefined_classes(path: Path) -> list[str]:
+    """The default classes an MJCF file uses and does not define itself (``'soft' of joint shoulder``)."""
+    try:
+        root = parse_xml(path).getroot()
+    except ET.ParseError:
+        return []
+    defined = {"main"} | {d.get("class", "main") for d in root.iter("default")}
+    out: dict[str, str] = {}
+    for element in root.iter():
+        for attr in ("class", "childclass"):
+            name = element.get(attr)
+            if name is not None and name not in defined and name not in out:
+                label = f" of {element.tag} {element.get('name')}" if element.get("name") else f" of a {element.tag}"
+                out[name] = f"'{name}'{label}"
+    return list(out.values())
 
 
 @contextmanager
