@@ -113,13 +113,23 @@ def _root_format(path: Path, data: bytes) -> str:
             except _NotWellFormedError:
                 pass
         refusal = _mujoco_refusal(path)
-        if refusal is None and err.root_tag in _FORMATS:
-            return _FORMATS[err.root_tag]  # MuJoCo reads it: the engines decide
+        root_tag = err.root_tag or _first_tag(engines_read)  # Expat failed inside the root's own start tag
+        if refusal is None and root_tag in _FORMATS:
+            return _FORMATS[root_tag]  # MuJoCo reads it: the engines decide
         because = f"; MuJoCo: {refusal}" if refusal else ""  # whole: its line is where the open element starts
         raise ModelFileError(f"{path}: {err}{because}") from None
 
 
 _FORMATS = {"mujoco": "mjcf", "robot": "urdf"}
+
+#: The first element's name after the XML declaration, comments and processing instructions.
+_FIRST_TAG = re.compile(rb"(?:\s|<\?.*?\?>|<!--.*?-->)*<([A-Za-z_][\w.:-]*)", re.DOTALL)
+
+
+def _first_tag(data: bytes) -> str | None:
+    """The root element's name as written, for a file Expat refuses in the root's own start tag."""
+    match = _FIRST_TAG.match(data)
+    return match.group(1).decode("ascii", "replace") if match else None
 
 
 def as_engines_read(data: bytes) -> bytes:

@@ -1,0 +1,51 @@
+"""A file Expat refuses but both engines read is checked, not refused by the pre-flight (MJCF).
+
+TinyXML2 (MuJoCo's parser, and Pinocchio's for MJCF) reads a bare ``&`` in an attribute; Expat does not.  The
+pre-flight asks MuJoCo before refusing: when MuJoCo reads the file, the root element decides the format.  An ``&``
+in the root element's own start tag (``<mujoco model="arm & base">``) used to be refused: Expat fails before it
+reports the root element, so the root was unknown.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+import pinocchio as pin
+import pytest
+
+import koenig_check
+from koenig_check.modelfile.validate import preflight
+
+_ARM = """<mujoco model="{model}">
+  <worldbody>
+    <body name="upper">
+      <joint name="shoulder" type="hinge" axis="0 1 0"/>
+      <geom name="{geom}" type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="1.5"/>
+      <body name="lower" pos="0.3 0 0">
+        <joint name="elbow" type="hinge" axis="0 0 1"/>
+        <geom type="box" size="0.1 0.02 0.03" pos="0.1 0 0" mass="0.7"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+_CASES = {
+    "ampersand-in-the-root-tag": {"model": "arm & base", "geom": "upper_geom"},
+    "ampersand-in-a-geom-name": {"model": "arm", "geom": "upper & geom"},
+}
+
+
+@pytest.mark.parametrize("case", sorted(_CASES))
+def test_a_file_both_engines_read_is_checked_not_refused(tmp_path: Path, case: str) -> None:
+    path = tmp_path / "arm.xml"
+    path.write_text(_ARM.format(**_CASES[case]))
+    mj = mujoco.MjModel.from_xml_path(str(path))  # the engines' own readers accept it
+    pn = pin.buildModelFromMJCF(str(path))
+    assert (mj.nv, pn.nv) == (2, 2)
+    assert preflight(path) == "mjcf"
+    check = koenig_check.compare([path], n_poses=4, seed=2)
+    assert not check.failures, check.failures
+    assert check.ok, check.reason()
+    assert sum(c.n_poses for c in check.comparisons) == 4
