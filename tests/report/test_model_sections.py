@@ -117,3 +117,28 @@ def test_html_sections_show_their_own_models_parity_verdict_and_table(check, alo
             assert verdict == want_verdict, (comp.model, formula)
             shown = [html.unescape(x) for x in maxima.split("<br>")]
             assert all(map(_close, shown, want)), (comp.model, formula, shown, want)
+
+
+def _parity_numbers(section: str) -> tuple[float, str, float]:
+    """(largest relative difference, its pose, largest armature difference in J) of an Engine parity line."""
+    found = re.search(
+        r"largest relative difference (\S+) \(pose ([^)]*)\); armature energy, largest difference (\S+) J", section
+    )
+    assert found is not None, section
+    return float(found.group(1)), found.group(2), float(found.group(3))
+
+
+def test_parity_lines_give_the_models_own_largest_difference_its_pose_and_the_armature_gap(check, alone, page) -> None:
+    """class_mass: MuJoCo and Pinocchio differ by several times the energy (6 kg of pole in Pinocchio) at some
+    pose, and no joint has armature in either engine (0 J), as in a run of the model alone."""
+    text = summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol)
+    for k, comp in enumerate(check.comparisons):
+        (own,) = alone[comp.model].parities
+        anchor = "model-" + "".join(c if c.isalnum() else "-" for c in comp.model)
+        html_section = html.unescape(page.split(f'id="{anchor}-{k}"', 1)[1].split("</section>", 1)[0])
+        for section in (_md_section(text, comp.model), re.sub(r"<[^>]+>", "", html_section)):
+            rigid, pose, armature = _parity_numbers(section)
+            assert _close(str(rigid), own.rigid_max_rel) and pose == own.worst_pose, (comp.model, section[:300])
+            assert armature == own.armature_max_abs == 0.0, comp.model
+    (class_mass,) = alone[check.comparisons[1].model].parities
+    assert class_mass.rigid_max_rel > 1.0  # the test can tell the rigid gap from the armature gap
