@@ -162,7 +162,8 @@ def parse_xml(path: str | Path) -> ET.ElementTree[ET.Element[str]]:
     Raises
     ------
     xml.etree.ElementTree.ParseError
-        Expat's error on the file as written, when the file as the engines read it does not parse either.
+        Expat's error on the file as written, when the file as the engines read it (leading white space skipped,
+        the text ending at the first NUL byte, a bare ``&`` a character) does not parse either.
     OSError
         When the file cannot be read.
     """
@@ -171,12 +172,17 @@ def parse_xml(path: str | Path) -> ET.ElementTree[ET.Element[str]]:
         return ET.ElementTree(ET.fromstring(data))
     except ET.ParseError as err:
         engines_read = as_engines_read(data)
-        if engines_read != data:
+        literal = _BARE_AMPERSAND.sub(b"&amp;", engines_read)  # TinyXML2 keeps a bare & as the character
+        for text in dict.fromkeys(t for t in (engines_read, literal) if t != data):
             try:
-                return ET.ElementTree(ET.fromstring(engines_read))
+                return ET.ElementTree(ET.fromstring(text))
             except ET.ParseError:
                 pass
         raise err from None
+
+
+#: An ``&`` that starts no entity or character reference (``a & b``): Expat refuses it, TinyXML2 reads it as is.
+_BARE_AMPERSAND = re.compile(rb"&(?!(?:[A-Za-z_][\w.-]*|#[0-9]+|#x[0-9A-Fa-f]+);)")
 
 
 class _NotWellFormedError(Exception):
