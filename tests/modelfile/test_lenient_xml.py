@@ -1,9 +1,10 @@
-"""A file Expat refuses but both engines read is checked, not refused by the pre-flight (MJCF).
+"""A file Expat refuses but both engines read is checked, not refused by the pre-flight.
 
-TinyXML2 (MuJoCo's parser, and Pinocchio's for MJCF) reads a bare ``&`` in an attribute; Expat does not.  The
-pre-flight asks MuJoCo before refusing: when MuJoCo reads the file, the root element decides the format.  An ``&``
-in the root element's own start tag (``<mujoco model="arm & base">``) used to be refused: Expat fails before it
-reports the root element, so the root was unknown.
+TinyXML2 (MuJoCo's parser, and Pinocchio's for MJCF) reads a bare ``&`` in an attribute as the character; Expat
+refuses it.  The file is read again with each bare ``&`` escaped; an ``&`` in the root element's own start tag
+(``<mujoco model="arm & base">``) used to be refused, and in a URDF it passed the pre-flight and failed in our
+mimic-joint reader.  Otherwise the pre-flight asks MuJoCo before refusing: when MuJoCo reads the file, the root
+element decides the format (``--`` inside a comment).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import koenig_check
 from koenig_check.modelfile.validate import preflight
 
 _ARM = """<mujoco model="{model}">
-  <worldbody>
+  <worldbody>{comment}
     <body name="upper">
       <joint name="shoulder" type="hinge" axis="0 1 0"/>
       <geom name="{geom}" type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="1.5"/>
@@ -32,8 +33,10 @@ _ARM = """<mujoco model="{model}">
 """
 
 _CASES = {
-    "ampersand-in-the-root-tag": {"model": "arm & base", "geom": "upper_geom"},
-    "ampersand-in-a-geom-name": {"model": "arm", "geom": "upper & geom"},
+    "ampersand-in-the-root-tag": {"model": "arm & base", "geom": "upper_geom", "comment": ""},
+    "ampersand-in-a-geom-name": {"model": "arm", "geom": "upper & geom", "comment": ""},
+    # Expat refuses "--" inside a comment whatever the text around it: MuJoCo's reading decides
+    "double-hyphen-in-a-comment": {"model": "arm", "geom": "upper_geom", "comment": "\n    <!-- upper -- lower -->"},
 }
 
 

@@ -99,37 +99,27 @@ def _root_format(path: Path, data: bytes) -> str:
     Expat is stricter than TinyXML2, the parser of MuJoCo and of Pinocchio's URDF reader: a blank line
     before ``<?xml ...?>`` and a NUL byte after the last element are refused by Expat and read by both
     engines.  A pre-flight check never refuses what the engines accept: the file is checked again as
-    TinyXML2 reads it (leading white space skipped, the text ending at the first NUL byte), and when that
+    TinyXML2 reads it (leading white space skipped, the text ending at the first NUL byte, a bare ``&`` the
+    character), and when that
     fails as well, MuJoCo's parser decides; its refusal is given whole after the line and column (TinyXML2's
     own "Line number" is the line of the element it was reading: for a mismatched tag, where that element opens).
     """
     try:
         return _parse(path, data)
     except _NotWellFormedError as err:
-        engines_read = as_engines_read(data)
-        if engines_read != data:
+        for text in _as_the_engines_read(data):
             try:
-                return _parse(path, engines_read)
+                return _parse(path, text)
             except _NotWellFormedError:
                 pass
         refusal = _mujoco_refusal(path)
-        root_tag = err.root_tag or _first_tag(engines_read)  # Expat failed inside the root's own start tag
-        if refusal is None and root_tag in _FORMATS:
-            return _FORMATS[root_tag]  # MuJoCo reads it: the engines decide
+        if refusal is None and err.root_tag in _FORMATS:
+            return _FORMATS[err.root_tag]  # MuJoCo reads it: the engines decide
         because = f"; MuJoCo: {refusal}" if refusal else ""  # whole: its line is where the open element starts
         raise ModelFileError(f"{path}: {err}{because}") from None
 
 
 _FORMATS = {"mujoco": "mjcf", "robot": "urdf"}
-
-#: The first element's name after the XML declaration, comments and processing instructions.
-_FIRST_TAG = re.compile(rb"(?:\s|<\?.*?\?>|<!--.*?-->)*<([A-Za-z_][\w.:-]*)", re.DOTALL)
-
-
-def _first_tag(data: bytes) -> str | None:
-    """The root element's name as written, for a file Expat refuses in the root's own start tag."""
-    match = _FIRST_TAG.match(data)
-    return match.group(1).decode("ascii", "replace") if match else None
 
 
 def as_engines_read(data: bytes) -> bytes:
@@ -171,14 +161,23 @@ def parse_xml(path: str | Path) -> ET.ElementTree[ET.Element[str]]:
     try:
         return ET.ElementTree(ET.fromstring(data))
     except ET.ParseError as err:
-        engines_read = as_engines_read(data)
-        literal = _BARE_AMPERSAND.sub(b"&amp;", engines_read)  # TinyXML2 keeps a bare & as the character
-        for text in dict.fromkeys(t for t in (engines_read, literal) if t != data):
+        for text in _as_the_engines_read(data):
             try:
                 return ET.ElementTree(ET.fromstring(text))
             except ET.ParseError:
                 pass
         raise err from None
+
+
+def _as_the_engines_read(data: bytes) -> list[bytes]:
+    """The file's text as TinyXML2 reads it, where it differs from the text as written.
+
+    Leading white space skipped and the text ending at the first NUL byte; then also each bare ``&`` taken as the
+    character.
+    """
+    engines_read = as_engines_read(data)
+    literal = _BARE_AMPERSAND.sub(b"&amp;", engines_read)
+    return [t for t in dict.fromkeys((engines_read, literal)) if t != data]
 
 
 #: An ``&`` that starts no entity or character reference (``a & b``): Expat refuses it, TinyXML2 reads it as is.
