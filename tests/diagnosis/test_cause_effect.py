@@ -55,3 +55,13 @@ def test_jaco_leads_with_its_meshes_not_with_a_class_mass(name: str) -> None:
     reason = koenig_check.compare(path, n_poses=2, formulas=["exact"]).reason()
     assert reason.startswith(f"{name}: root cause: geom {lead.element.split()[1].rstrip(',')} (+")
     assert "geoms with a mesh" in reason.split(" and ")[0]
+
+
+def test_the_reason_names_the_root_cause_that_changes_the_most_mass_first() -> None:
+    """Found in file order (0.01 kg first), named by effect: the 2.9 kg cause leads, also in the one-line reason."""
+    from koenig_check.diagnosis.reason import disagreement_cause
+
+    small, large = _mass("pinocchio", 0.5, 0.51, "small"), _mass("pinocchio", 0.1, 3.0, "large")
+    assert ordered_causes([small, large]) == [large, small]
+    text = disagreement_cause([small, large])  # one cause on two geoms: named together, the larger first
+    assert text == "pinocchio: geoms large, small: mass read another way"

@@ -59,3 +59,37 @@ def test_a_run_over_several_models_equals_each_model_alone(alone: dict[str, tupl
         for name, values in records.items():
             np.testing.assert_array_equal(values, r_alone[name], err_msg=f"{model}: {name}")
     assert [a.agrees for _, a, _, _ in together.values()] == [True, False, True]
+
+
+#: Three engines, so that a worker must attach Drake to the model it loads itself.
+DASK_OPTIONS = {**OPTIONS, "n_poses": 40, "chunk_poses": 20, "engines": ("mujoco", "pinocchio", "drake")}
+
+
+def test_a_dask_worker_process_running_several_models_gives_each_its_own_result(tmp_path: Path) -> None:
+    """One Dask worker process runs the chunks of every model of the batch, one model after the other.
+
+    It keeps the model it loaded between chunks: a later model's chunks must not be computed on an earlier model,
+    nor without the engines the run asked for (Drake).  A missing file in the middle fails alone.  Expected: each
+    model run alone in this process, with the same options (pose ``i`` depends on the seed and ``i`` only).
+    """
+    distributed = pytest.importorskip("distributed")
+    pytest.importorskip("pydrake")
+    missing = tmp_path / "missing.xml"
+    alone: dict[str, tuple] = {}
+    for model in MODELS:
+        _fresh_process()
+        alone.update(_by_model(koenig_check.compare(model, **DASK_OPTIONS)))
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        check = koenig_check.compare([MODELS[0], missing, *MODELS[1:]], client=client, **DASK_OPTIONS)
+    together = _by_model(check)
+    assert list(together) == ["gimbal.xml", "class_mass.xml", "double_pendulum.urdf"]
+    assert [label for label, _ in check.failures] == ["missing.xml"]
+    for model, (summaries, agreement, findings, records) in together.items():
+        s_alone, a_alone, f_alone, r_alone = alone[model]
+        assert {s.source for s in summaries} == {"mujoco", "pinocchio", "drake"}, model
+        assert summaries == s_alone and agreement == a_alone and findings == f_alone, model
+        for name, values in records.items():
+            np.testing.assert_array_equal(values, r_alone[name], err_msg=f"{model}: {name}")

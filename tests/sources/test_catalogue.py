@@ -79,3 +79,17 @@ def test_detect_format(tmp_path):
     assert detect_format(mj) == "mjcf" and detect_format(urdf) == "urdf"
     with pytest.raises(ModelLoadError, match=r"c.xml.*<sdf>"):
         detect_format(other)
+
+
+@pytest.mark.parametrize(
+    ("given", "what"),
+    [
+        ("ur5_robt", "no such file and no model of that name"),  # a plain name: it could have been either
+        ("robots/ur5_robt.urdf", "no such file"),  # written as a path: a file was meant
+    ],
+)
+def test_an_unknown_name_says_what_was_looked_for(given: str, what: str) -> None:
+    """load_model(name) in Python reaches resolve_model without the command line's usage check."""
+    with pytest.raises(ModelLoadError) as err:
+        resolve_model(given)
+    assert str(err.value).startswith(f"{given}: {what} (")

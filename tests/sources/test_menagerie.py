@@ -137,3 +137,17 @@ def test_paths_flag_shows_the_local_file(tmp_path, monkeypatch, capsys):
     robot_dir = menagerie_root(tmp_path, monkeypatch)
     assert main(["models", "--menagerie", "--paths"]) == 0
     assert str(Path(robot_dir) / MENAGERIE_MODEL_FILE) in capsys.readouterr().out
+
+
+def test_a_cache_that_cannot_be_written_is_one_line_saying_which_variable_to_set(tmp_path, monkeypatch):
+    """The operating system's refusal (here: the cache folder would be inside a regular file) is an OSError,
+    not one of the package's errors: it is still one line naming the model and the variables to set."""
+    no_network(tmp_path, monkeypatch)
+    blocker = tmp_path / "a-file"
+    blocker.write_text("")
+    monkeypatch.setenv("MENAGERIE_CACHE_DIR", str(blocker / "cache"))
+    with pytest.raises(ModelSourceError) as info:
+        resolve_model(f"menagerie:{MENAGERIE_ROBOT}")
+    text = str(info.value)
+    assert "\n" not in text and text.startswith(f"menagerie:{MENAGERIE_ROBOT}: ")
+    assert "MENAGERIE_CACHE_DIR" in text and "MENAGERIE_BASE_URL" in text

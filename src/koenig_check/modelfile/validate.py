@@ -99,17 +99,17 @@ def _root_format(path: Path, data: bytes) -> str:
     Expat is stricter than TinyXML2, the parser of MuJoCo and of Pinocchio's URDF reader: a blank line
     before ``<?xml ...?>`` and a NUL byte after the last element are refused by Expat and read by both
     engines.  A pre-flight check never refuses what the engines accept: the file is checked again as
-    TinyXML2 reads it (leading white space skipped, the text ending at the first NUL byte), and when that
+    TinyXML2 reads it (leading white space skipped, the text ending at the first NUL byte, a bare ``&`` the
+    character), and when that
     fails as well, MuJoCo's parser decides; its refusal is given whole after the line and column (TinyXML2's
     own "Line number" is the line of the element it was reading: for a mismatched tag, where that element opens).
     """
     try:
         return _parse(path, data)
     except _NotWellFormedError as err:
-        engines_read = as_engines_read(data)
-        if engines_read != data:
+        for text in _as_the_engines_read(data):
             try:
-                return _parse(path, engines_read)
+                return _parse(path, text)
             except _NotWellFormedError:
                 pass
         refusal = _mujoco_refusal(path)
@@ -152,7 +152,8 @@ def parse_xml(path: str | Path) -> ET.ElementTree[ET.Element[str]]:
     Raises
     ------
     xml.etree.ElementTree.ParseError
-        Expat's error on the file as written, when the file as the engines read it does not parse either.
+        Expat's error on the file as written, when the file as the engines read it (leading white space skipped,
+        the text ending at the first NUL byte, a bare ``&`` a character) does not parse either.
     OSError
         When the file cannot be read.
     """
@@ -160,13 +161,27 @@ def parse_xml(path: str | Path) -> ET.ElementTree[ET.Element[str]]:
     try:
         return ET.ElementTree(ET.fromstring(data))
     except ET.ParseError as err:
-        engines_read = as_engines_read(data)
-        if engines_read != data:
+        for text in _as_the_engines_read(data):
             try:
-                return ET.ElementTree(ET.fromstring(engines_read))
+                return ET.ElementTree(ET.fromstring(text))
             except ET.ParseError:
                 pass
         raise err from None
+
+
+def _as_the_engines_read(data: bytes) -> list[bytes]:
+    """The file's text as TinyXML2 reads it, where it differs from the text as written.
+
+    Leading white space skipped and the text ending at the first NUL byte; then also each bare ``&`` taken as the
+    character.
+    """
+    engines_read = as_engines_read(data)
+    literal = _BARE_AMPERSAND.sub(b"&amp;", engines_read)
+    return [t for t in dict.fromkeys((engines_read, literal)) if t != data]
+
+
+#: An ``&`` that starts no entity or character reference (``a & b``): Expat refuses it, TinyXML2 reads it as is.
+_BARE_AMPERSAND = re.compile(rb"&(?!(?:[A-Za-z_][\w.-]*|#[0-9]+|#x[0-9A-Fa-f]+);)")
 
 
 class _NotWellFormedError(Exception):
