@@ -116,3 +116,35 @@ def test_keyframe_poses_satisfy_the_joint_relation_through_the_keyframe_path(tmp
     mujoco.mj_forward(model, data)
     mujoco.mj_energyVel(model, data)
     np.testing.assert_allclose(records["reference_value"][row], data.energy[1], rtol=1e-12)
+
+
+#: A URDF with "--" inside a comment: TinyXML2 (MuJoCo, Pinocchio) reads it, Python's Expat refuses it.
+DASHED_COMMENT = """<robot name="dashed">
+  <!-- a comment -- with two dashes -->
+  <link name="base"/>
+  <link name="a"><inertial><origin xyz="0.1 0 0"/><mass value="1"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+
+
+def test_a_urdf_only_tinyxml_reads_is_compared_and_its_mimic_check_says_it_was_not_made(tmp_path: Path) -> None:
+    """The mimic reader used to end the model with Expat's raw "not well-formed (invalid token)"."""
+    import xml.etree.ElementTree as ET
+
+    import mujoco
+    import pinocchio as pin
+
+    import koenig_check
+    from koenig_check.findings import Kind
+
+    path = tmp_path / "dashed.urdf"
+    path.write_text(DASHED_COMMENT, encoding="utf-8")
+    with pytest.raises(ET.ParseError):
+        ET.parse(path)
+    assert mujoco.MjModel.from_xml_path(str(path)).nv == 1 and pin.buildModelFromUrdf(str(path)).nv == 1
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"])
+    assert check.ok and not check.failures, check.reason()
+    notes = [f for f in check.comparisons[0].findings if f.kind is Kind.LOAD and f.element == "mimic joints"]
+    assert len(notes) == 1 and "not looked for" in notes[0].summary and "MuJoCo reads it" in notes[0].summary

@@ -15,6 +15,7 @@ connect, weld) are not projected onto.
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 
 import mujoco
@@ -192,7 +193,12 @@ def _equality_findings(model: mujoco.MjModel) -> list[Finding]:
 
 def _mimic_findings(source: ModelSource, model: mujoco.MjModel) -> list[Finding]:
     out = []
-    for joint in parse_xml(source.path).getroot().findall("joint"):
+    try:
+        root = parse_xml(source.path).getroot()
+    except ET.ParseError as err:  # TinyXML2 (MuJoCo) reads what Expat refuses, e.g. "--" inside a comment
+        why = f"not looked for: Python's XML reader refuses the file ({err}); MuJoCo reads it"
+        return [Finding(Kind.LOAD, "file", "mimic joints", why, {"reason": str(err)})]
+    for joint in root.findall("joint"):
         mimic = joint.find("mimic")
         if mimic is None:
             continue

@@ -11,6 +11,8 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from koenig_check.modelfile.validate import parse_xml
+
 
 def undeclared_links(path: str | Path) -> str:
     """Which joints name a link the URDF does not declare, in one clause, or ``""``.
@@ -27,7 +29,7 @@ def undeclared_links(path: str | Path) -> str:
         name='world'/>"``; empty when every link named is declared or the file cannot be read.
     """
     try:
-        root = ET.parse(path).getroot()
+        root = parse_xml(path).getroot()
     except (OSError, ET.ParseError):
         return ""
     declared = {link.get("name") for link in root.iter("link")}
@@ -63,7 +65,7 @@ def planar_joints(path: str | Path) -> list[str]:
         Empty when there is none or the file cannot be read.
     """
     try:
-        root = ET.parse(path).getroot()
+        root = parse_xml(path).getroot()
     except (OSError, ET.ParseError):
         return []
     return [j.get("name", "?") for j in root.iter("joint") if j.get("type") == "planar"]
@@ -83,7 +85,7 @@ def planar_axes(path: str | Path) -> dict[str, tuple[float, ...]]:
         Joint name -> axis as written; empty when there is none or the file cannot be read.
     """
     try:
-        root = ET.parse(path).getroot()
+        root = parse_xml(path).getroot()
     except (OSError, ET.ParseError):
         return {}
     out = {}
