@@ -99,7 +99,7 @@ def display_name(path: str | os.PathLike[str]) -> str:
     return p.name
 
 
-_ABSOLUTE = re.compile(r"(?<![\w.])/(?:[^\s'\"():,;]+/)+([^\s'\"():,;]*)")
+_ABSOLUTE = re.compile(r"(?<![\w.:/])/(?:[^\s'\"():,;]+/)+([^\s'\"():,;]*)")
 
 
 def scrub(text: str) -> str:

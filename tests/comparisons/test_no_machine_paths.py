@@ -44,3 +44,14 @@ def test_engine_messages_are_rewritten() -> None:
     expected = "example-robot-data: ur_description/urdf/ur5_robot.urdf: link 'base' refused; copy at ur5_robot.urdf"
     assert out == expected + " (line 3)"
     assert not any(f in out for f in FORBIDDEN)
+
+
+def test_a_web_address_in_an_engine_message_is_kept() -> None:
+    """Drake ends its refusals with a troubleshooting link: not a path of the machine, kept whole."""
+    message = (
+        "only .obj meshes, /tmp/a/b/leg.stl was requested. See https://drake.mit.edu/troubleshooting.html for more"
+    )
+    assert (
+        scrub(message)
+        == "only .obj meshes, leg.stl was requested. See https://drake.mit.edu/troubleshooting.html for more"
+    )
