@@ -28,9 +28,8 @@ def undeclared_links(path: str | Path) -> str:
         ``"joint 'base_weld': parent link 'world' not declared; only Drake implies the world link: add <link
         name='world'/>"``; empty when every link named is declared or the file cannot be read.
     """
-    try:
-        root = parse_xml(path).getroot()
-    except (OSError, ET.ParseError):
+    root = _readable_root(path)
+    if root is None:
         return ""
     declared = {link.get("name") for link in root.iter("link")}
     missing = []
@@ -64,9 +63,8 @@ def planar_joints(path: str | Path) -> list[str]:
     list of str
         Empty when there is none or the file cannot be read.
     """
-    try:
-        root = parse_xml(path).getroot()
-    except (OSError, ET.ParseError):
+    root = _readable_root(path)
+    if root is None:
         return []
     return [j.get("name", "?") for j in root.iter("joint") if j.get("type") == "planar"]
 
@@ -84,9 +82,8 @@ def planar_axes(path: str | Path) -> dict[str, tuple[float, ...]]:
     dict of str to tuple of float
         Joint name -> axis as written; empty when there is none or the file cannot be read.
     """
-    try:
-        root = parse_xml(path).getroot()
-    except (OSError, ET.ParseError):
+    root = _readable_root(path)
+    if root is None:
         return {}
     out = {}
     for joint in root.iter("joint"):
@@ -98,3 +95,11 @@ def planar_axes(path: str | Path) -> dict[str, tuple[float, ...]]:
             except ValueError:
                 out[joint.get("name", "?")] = ()
     return out
+
+
+def _readable_root(path: str | Path) -> ET.Element | None:
+    """The URDF document's root element, or ``None`` when the file cannot be read (the engines then say why)."""
+    try:
+        return parse_xml(path).getroot()
+    except (OSError, ET.ParseError):
+        return None
