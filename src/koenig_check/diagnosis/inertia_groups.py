@@ -9,35 +9,17 @@ file with every group counted, gets Pinocchio's mass there.
 
 from __future__ import annotations
 
-import warnings
 from typing import Any
 
 import mujoco
 import numpy as np
 
+from koenig_check.diagnosis.segment_masses import compiled, mujoco_segment_masses, pinocchio_segment_masses
 from koenig_check.engines.canonical import segment_of_body
 from koenig_check.findings import Finding, Kind, shown_names
 
 #: Relative mass difference under which two masses are the same.
 RTOL = 1e-9
-
-
-def _compiled(spec: mujoco.MjSpec) -> mujoco.MjModel | None:
-    try:
-        with warnings.catch_warnings():  # the compiler's warnings are the loader's findings already
-            warnings.simplefilter("ignore")
-            return spec.compile()
-    except Exception:  # a file MuJoCo compiles only after the loader's repairs: no verdict here
-        return None
-
-
-def _segment_masses(model: mujoco.MjModel) -> dict[str, float]:
-    """MuJoCo's mass of every segment (the bodies each joint moves)."""
-    out: dict[str, float] = {}
-    for body, segment in segment_of_body(model).items():
-        if segment:
-            out[segment] = out.get(segment, 0.0) + float(model.body(body).mass[0])
-    return out
 
 
 def _same(a: float, b: float) -> bool:
@@ -66,15 +48,13 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
     low, high = (int(x) for x in spec.compiler.inertiagrouprange)
     if low <= 0 and high >= mujoco.mjNGROUP - 1:
         return []
-    narrow = _compiled(spec)
+    narrow = compiled(spec)
     spec.compiler.inertiagrouprange = [0, mujoco.mjNGROUP - 1]
-    every = _compiled(spec)
+    every = compiled(spec)
     if narrow is None or every is None:
         return []
-    as_file, all_groups = _segment_masses(narrow), _segment_masses(every)
-    names = pair.state_map.segment_names
-    inertias = pair.pinocchio.model.inertias
-    pinocchio = {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
+    as_file, all_groups = mujoco_segment_masses(narrow), mujoco_segment_masses(every)
+    pinocchio = pinocchio_segment_masses(pair)
     segments = [
         s
         for s, m in as_file.items()

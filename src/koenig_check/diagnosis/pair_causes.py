@@ -26,6 +26,7 @@ import numpy as np
 from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.diagnosis.inertia_groups import inertia_group_causes
 from koenig_check.diagnosis.root_frame import FrameOffset, _vec, root_frame_offset
+from koenig_check.diagnosis.segment_masses import pinocchio_segment_masses
 from koenig_check.diagnosis.visual_geoms import visual_geom_causes
 from koenig_check.engines.canonical import segment_by_body_id, segment_of_body
 from koenig_check.engines.parser_traps import file_causes
@@ -56,7 +57,7 @@ def _segments(pair: Any, offset: FrameOffset | None) -> _Segments:
     if offset is not None:
         com_b, pole_b = offset.point(com_b), offset.point(pole_b)
     b_index = {n: k for k, n in enumerate(sb.names)}
-    pin_mass = _pinocchio_segment_masses(pair)
+    pin_mass = pinocchio_segment_masses(pair)
     mass, com, pole = {}, {}, {}
     for k, n in enumerate(sa.names):
         mass[n] = (float(sa.mass[k]), pin_mass.get(n, float("nan")))
@@ -65,13 +66,6 @@ def _segments(pair: Any, offset: FrameOffset | None) -> _Segments:
             pole[n] = (sa.pole[0, k], pole_b[b_index[n]])
     size = max(float(np.abs(sa.com[0]).max(initial=0.0)), float(np.abs(sa.pole[0]).max(initial=0.0)), 1.0)
     return _Segments(mass, com, pole, size)
-
-
-def _pinocchio_segment_masses(pair: Any) -> dict[str, float]:
-    """Pinocchio's mass of every joint-keyed segment, massless ones included."""
-    names = pair.state_map.segment_names
-    inertias = pair.pinocchio.model.inertias
-    return {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
 
 
 def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Finding]:
@@ -97,7 +91,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
             strict=True,
         )
     )
-    pin_mass = _pinocchio_segment_masses(pair)
+    pin_mass = pinocchio_segment_masses(pair)
     out = []
     for engine, have, lack in (("pinocchio", mj_mass, pin_mass), ("mujoco", pin_mass, mj_mass)):
         if engine == "mujoco":

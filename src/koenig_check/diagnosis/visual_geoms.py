@@ -15,7 +15,7 @@ from typing import Any
 
 import mujoco
 
-from koenig_check.diagnosis.inertia_groups import _compiled, _segment_masses
+from koenig_check.diagnosis.segment_masses import compiled, mujoco_segment_masses, pinocchio_segment_masses
 from koenig_check.engines.canonical import segment_of_body
 from koenig_check.findings import Finding, Kind, shown_names
 
@@ -51,22 +51,20 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
     except Exception:
         return []
     visual = [g for g in spec.geoms if _visual(g) and g.parent.name != "world"]
-    names = pair.state_map.segment_names
-    inertias = pair.pinocchio.model.inertias
-    pinocchio = {names[i]: float(inertias[i].mass) for i in range(1, len(inertias)) if names[i]}
-    loaded = _segment_masses(pair.mujoco.model)
+    pinocchio = pinocchio_segment_masses(pair)
+    loaded = mujoco_segment_masses(pair.mujoco.model)
     scale = RTOL * max(sum(loaded.values()), sum(pinocchio.values()), 1e-300)
     if not visual or all(abs(m - pinocchio.get(s, m)) <= scale for s, m in loaded.items()):
         return []  # no geom Pinocchio reads as visual, or no mass differs: nothing to explain (and no compiling)
-    as_file = _compiled(spec)
+    as_file = compiled(spec)
     for geom in visual:
         geom.mass = 0.0  # an explicit mass overrides the density, for primitives and meshes alike
     spec.compiler.boundmass = max(float(spec.compiler.boundmass), _BOUND)
     spec.compiler.boundinertia = max(float(spec.compiler.boundinertia), _BOUND)
-    without = _compiled(spec)
+    without = compiled(spec)
     if as_file is None or without is None:
         return []
-    mujoco_mass, without_mass = _segment_masses(as_file), _segment_masses(without)
+    mujoco_mass, without_mass = mujoco_segment_masses(as_file), mujoco_segment_masses(without)
     segments = [
         s
         for s, m in mujoco_mass.items()
