@@ -286,19 +286,21 @@ def as_note(finding: Finding) -> str:
     return f"{_COUNT_WORDS.get(voters, str(voters))} engines: {finding.message()}"
 
 
-def lead_line(findings: Sequence[Finding]) -> str:
+def lead_line(findings: Sequence[Finding], counted: bool = False) -> str:
     """The head of a one-line reason (empty when none): checks asked for and not made, then the verdicts.
 
     Parameters
     ----------
     findings : sequence of Finding
+    counted : bool
+        Each verdict after the number of engines that voted on it (:func:`as_note`), as the report writes it.
 
     Returns
     -------
     str
     """
     ordered = [f for kind in LEADING_KINDS for f in findings if f.kind is kind]
-    return "; ".join(f.message() for f in ordered)
+    return "; ".join(as_note(f) if counted else f.message() for f in ordered)
 
 
 def engine_usage(findings: Sequence[Finding], engine: str | None = None) -> str:

@@ -142,7 +142,7 @@ def model_findings(
     -------
     ModelFindings
     """
-    from koenig_check.diagnosis.reason import LEADING_KINDS, as_note
+    from koenig_check.diagnosis.reason import lead_line
     from koenig_check.engines.registry import label as engine_label
 
     if parity is None:
@@ -159,7 +159,7 @@ def model_findings(
         )
     else:
         engines = f"MuJoCo and Pinocchio DISAGREE: {parity.reason}"
-    lead = "; ".join(as_note(f) for kind in LEADING_KINDS for f in comp.findings if f.kind is kind)
+    lead = lead_line(comp.findings, counted=True)
     if lead:  # an engine asked for and unable, then the verdicts after the number of engines that voted
         engines += f"; {lead}"
     exact, inexact = [], []
