@@ -140,7 +140,7 @@ class Finding:
         if shown:
             whole = self.kind in _WHOLE_VALUE_KINDS
             paired = _before_after(self.values)  # a value before and after a change, with digits that differ
-            text += " (" + ", ".join(f"{k} {paired.get(k) or _fmt(v, whole)}" for k, v in shown.items()) + ")"
+            text += " (" + ", ".join(f"{k} {paired.get(k) or value_text(v, whole)}" for k, v in shown.items()) + ")"
         if self.hint:
             text += f"; {self.hint}"
         return text
@@ -194,19 +194,31 @@ def _empty(value: Any) -> bool:
     return isinstance(value, (tuple, list, dict, set, frozenset, str)) and not value
 
 
-def _fmt(value: Any, whole: bool = False) -> str:
-    """A value for people: 6 significant digits; names listed ``a, b, c`` (never a Python repr)."""
+def value_text(value: Any, whole: bool = False) -> str:
+    """A value for people: 6 significant digits; names listed ``a, b, c`` (never a Python repr).
+
+    Parameters
+    ----------
+    value : Any
+        A number, a vector of numbers, names, or anything else (its ``str``).
+    whole : bool
+        Print a number below the round-off threshold as it is, not as 0.
+
+    Returns
+    -------
+    str
+    """
     if isinstance(value, float):  # round-off printed as 0, as everywhere else (as_dict keeps the value)
         return format(value, ".6g") if whole else fmt(value, ".6g")
     if isinstance(value, (tuple, list)) and value and all(isinstance(v, float) for v in value):
-        inner = ", ".join(_fmt(v, whole) for v in value)  # a vector: 6 significant digits, as a single number
+        inner = ", ".join(value_text(v, whole) for v in value)  # a vector: 6 significant digits, as a single number
         return f"[{inner}]" if isinstance(value, list) else f"({inner})"
     if isinstance(value, (tuple, list, set, frozenset)):  # names (joints, bodies), line numbers: a plain list
         items = list(value)
         if len(items) > SHOWN_ITEMS:
-            head = ", ".join(_fmt(v, whole) for v in items[: SHOWN_ITEMS - 2])
+            head = ", ".join(value_text(v, whole) for v in items[: SHOWN_ITEMS - 2])
             return f"{head} (+{len(items) - SHOWN_ITEMS + 2} more)"
-        return ", ".join(_fmt(v, whole) for v in items)
+        return ", ".join(value_text(v, whole) for v in items)
     return str(value)
 
 

@@ -11,7 +11,7 @@ import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from koenig_check.findings import Finding, _fmt, shown_names
+from koenig_check.findings import Finding, shown_names, value_text
 
 #: The plural of an element's tag (``body ball``, ``body peg`` -> ``bodies ball, peg``).
 _PLURAL = {"body": "bodies", "class": "classes", "mesh": "meshes", "compiler": "compiler"}
@@ -146,7 +146,8 @@ class CauseGroup:
             return first.message()
         text = f"{first.engine}: {self.elements()}: {first.summary}"
         shared = {k: v for k, v in first.values.items() if all(f.values.get(k) == v for f in self.findings)}
-        shown = {k: _fmt(v) for k, v in shared.items() if _fmt(v)}
+        texts = {k: value_text(v) for k, v in shared.items()}
+        shown = {k: t for k, t in texts.items() if t}
         if shown:
             text += " (" + ", ".join(f"{k} {v}" for k, v in shown.items()) + ")"
         lost = self.lost_joints()
