@@ -21,7 +21,8 @@ after the other, each in a fresh Python process (so that each one's peak memory 
 
 Each measurement is timed inside its process after the Python imports, the same for all three
 (matplotlib included; their time is reported in a column of its own).  (b) and (c) include loading
-the model, drawing the poses and the diagnosis, as a user pays them; (a) is the engine calls alone.  The ratios b/a and c/a are the result; seconds
+the model, drawing the poses and the diagnosis, as a user pays them; (a) is the engine calls alone.
+The ratios b/a and c/a are the result; seconds
 depend on the shared machine.  Besides the wall clock, each measurement's own CPU time (user +
 system, ``time.process_time``) is reported: on a shared machine it is not inflated by the time
 the process waits for a core.  (With ``--jobs``, the wall clock only: the work is in the workers.)

@@ -36,7 +36,7 @@ def _fresh_process() -> None:
 
     engine_runs._POINTS.clear()
     chunks._CODES.clear()
-    pipeline._MODELS.clear()
+    pipeline._WORKER.models.clear()
 
 
 @pytest.fixture(scope="module")

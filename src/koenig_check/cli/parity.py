@@ -16,7 +16,7 @@ from koenig_check.cli.parsing import add_command, check_models, load_options_of,
 from koenig_check.engines.load_options import add_load_arguments
 
 #: Random states on which a third engine's energies are compared by default (``compare``'s default poses; not
-#: :data:`koenig_check.api.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
+#: :data:`koenig_check.run.engine_runs.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
 DEFAULT_POSES = 20
 
 

@@ -19,7 +19,7 @@ import pyarrow as pa
 from koenig_check.arguments import RECORD_MODES as RECORD_MODES  # its home: what a user may ask for
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.cache import SharedStates
-from koenig_check.run.engine_runs import EngineRun
+from koenig_check.run.engine_runs import EngineRun, VerdictPoses
 from koenig_check.run.poses import PoseSet
 from koenig_check.run.records import STORED_SCHEMA, categorical
 from koenig_check.run.stats import DEFAULT_RTOL, Extreme, ModelStats, relative_error
@@ -64,11 +64,16 @@ def formula_names(formulas: Iterable[str] | None, path: bool) -> tuple[list[str]
 
 @dataclass
 class ChunkResult:
-    """What one chunk of poses contributes: its statistics and, when asked, its records."""
+    """What one chunk of poses contributes: its statistics, its records when asked, its verdict poses.
+
+    ``verdict``: the chunk's share of the run's first poses, which the verdicts compare
+    (:class:`~koenig_check.run.engine_runs.VerdictPoses`).
+    """
 
     index: int
     stats: ModelStats
     records: pa.Table | None
+    verdict: VerdictPoses | None = None
 
 
 def evaluate_chunk(

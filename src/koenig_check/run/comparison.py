@@ -15,9 +15,9 @@ from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL, ModelStats
 
 
-@dataclass
+@dataclass(frozen=True)
 class ModelComparison:
-    """Everything the grid produced for one model and one pose set.
+    """Everything the grid produced for one model and one pose set; immutable once built.
 
     Attributes
     ----------
