@@ -2,11 +2,12 @@
 
 Its result is :class:`~koenig_check.run.cross_check.CrossCheck`; poses are drawn by
 :func:`~koenig_check.run.pose_kinds.make_poses`, the load options merged by
-:func:`~koenig_check.engines.load_options.load_options_from` (the three names still import from here).
+:func:`~koenig_check.engines.load_options.load_options_from`.
 """
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
@@ -171,7 +172,9 @@ class PreparedModels:
     models: tuple[str | Path, ...]
 
 
-def prepare_models(models: Sequence[str | Path], pinocchio_model: str | Path | None = None) -> PreparedModels:
+def prepare_models(
+    models: Sequence[str | Path], pinocchio_model: str | os.PathLike[str] | None = None
+) -> PreparedModels:
     """Check and fetch the models of a batch before any is loaded (extras, names, downloads), once.
 
     Parameters

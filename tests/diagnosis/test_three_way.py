@@ -10,7 +10,7 @@ import pytest
 import koenig_check
 from koenig_check.cli import main
 from koenig_check.diagnosis.reason import REASON_WIDTH
-from koenig_check.engines.errors import EngineUnavailableError as DrakeUnavailableError
+from koenig_check.engines.errors import EngineUnavailableError
 from koenig_check.findings import Kind
 from koenig_check.testing import assert_energy_parity
 
@@ -160,7 +160,7 @@ def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.Mo
     check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
     assert set(check.comparisons[0].engines) == {"mujoco", "pinocchio"}
     assert any("Drake not used: not installed" in note for note in check.comparisons[0].notes)
-    with pytest.raises(DrakeUnavailableError, match="pydrake is not installed"):
+    with pytest.raises(EngineUnavailableError, match="pydrake is not installed"):
         koenig_check.compare("gimbal.xml", engines=ALL)
     with pytest.raises(SystemExit) as usage:  # a usage error, before any work (like argparse's)
         main(["compare", "gimbal.xml", "--engines", "mujoco,pinocchio,drake"])

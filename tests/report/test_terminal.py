@@ -117,12 +117,6 @@ def test_a_model_changed_to_be_loaded_says_so_on_its_row(model, element: str, ef
     assert element in row and effect in row
 
 
-def test_the_former_name_and_module_give_the_same_table() -> None:
-    from koenig_check.verdict import verdict_table  # type: ignore[import-not-found]  # the module's old name
-
-    assert verdict_table is terminal_table
-
-
 def _drake_installed() -> bool:
 
     return installed("drake")

@@ -6,8 +6,6 @@ from __future__ import annotations
 import gc
 import weakref
 
-import koenig_check
-
 
 def test_a_finished_compare_holds_no_model(monkeypatch) -> None:
     import koenig_check.engines

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check import stats
+from koenig_check.run import stats
 from koenig_check.run.stats import Extreme, QuantileSketch
 
 

@@ -72,7 +72,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
         From :func:`koenig_check.engines.load_model`.
     rtol : float
         Relative tolerance; lengths are compared with ``rtol`` × the model's size,

@@ -31,7 +31,7 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
         MuJoCo and Pinocchio loaded from the same MJCF file.
 
     Returns

@@ -73,7 +73,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     explained : set of str
         Segments whose missing mass another cause already explains: a finding only on such segments is not a root
         cause (the segments stay massless, not missing).
@@ -135,7 +135,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     offset : FrameOffset, optional
         A dropped root pose to remove before comparing positions.
 
@@ -255,7 +255,7 @@ def compiler_causes(pair: Any) -> list[Finding]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
 
     Returns
     -------
@@ -292,7 +292,7 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     explained : set of str
         Segments whose mass difference another cause already explains.
 
@@ -352,7 +352,7 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
 
     Returns
     -------

@@ -10,21 +10,11 @@ engine is not used, an ``ENGINE_NOT_USED`` finding says why.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from koenig_check.engines import registry
 from koenig_check.engines.registry import install_hint, label, not_used, optional
 from koenig_check.findings import Finding, Kind
-
-if TYPE_CHECKING:
-    OPTIONAL: tuple[str, ...]  # read through __getattr__, from the specs
-
-
-def __getattr__(name: str) -> tuple[str, ...]:
-    """``OPTIONAL``, the tuple of earlier versions: the optional engines in report order, read when asked."""
-    if name == "OPTIONAL":
-        return optional()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def asked_for(engines: Sequence[str] | None) -> tuple[str, ...]:

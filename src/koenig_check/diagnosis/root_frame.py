@@ -68,7 +68,7 @@ def root_frame_offset(pair: Any, atol: float = 1e-9) -> tuple[FrameOffset | None
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     atol : float
         Under this (rotation entries, metres) the poses are the same.
 

@@ -36,7 +36,7 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
         MuJoCo and Pinocchio loaded from the same MJCF file.
 
     Returns

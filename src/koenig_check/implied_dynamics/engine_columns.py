@@ -57,7 +57,3 @@ def _add_column(result: Any, name: str, engine: Any, parity_label: str) -> None:
         result.errors.append(discrepancy(r.Q, Q, formula, route, name))
     result.errors.append(discrepancy(result.engine_mass["mujoco"], M, parity_label, "mujoco", name))
     result.errors.append(discrepancy(result.engine_forces["mujoco"], Q, parity_label, "mujoco", name))
-
-
-#: The former name of :func:`add_engine_columns` (Drake was the only optional engine).
-add_drake_column = add_engine_columns

@@ -17,13 +17,13 @@ from koenig_check.report.content import (
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 
 def summary_markdown(
     comparisons: Sequence[ModelComparison],
     summaries: Sequence[FormulaSummary],
-    parities: Sequence[EngineParity],
+    parities: Sequence[EngineAgreement],
     failures: Sequence[tuple[str, str]] = (),
     rtol: float = 1e-9,
     settings: dict[str, dict] | None = None,
@@ -39,7 +39,7 @@ def summary_markdown(
     ----------
     comparisons : sequence of ModelComparison
     summaries : sequence of FormulaSummary
-    parities : sequence of EngineParity
+    parities : sequence of EngineAgreement
     failures : sequence of (model, reason)
         Models that could not be compared.
     rtol : float

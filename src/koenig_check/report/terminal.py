@@ -256,7 +256,3 @@ def terminal_table(check: CrossCheck) -> str:
         "over/under: share of poses where the formula over- / under-estimates the engine's energy.",
     ]
     return "\n".join(lines)
-
-
-#: The former name of :func:`terminal_table` ("verdict" now means only the three-engine ``Kind.VERDICT``).
-verdict_table = terminal_table

@@ -17,7 +17,7 @@ from koenig_check.report.markdown import summary_markdown
 from koenig_check.report.record_files import RecordFiles
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.records import RECORD_FIELDS, RecordTable
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 if TYPE_CHECKING:
     from koenig_check.run.cross_check import CrossCheck
@@ -39,7 +39,7 @@ def write_json(
     path: Path,
     records: RecordTable | None,
     summaries: Sequence[FormulaSummary],
-    parities: Sequence[EngineParity],
+    parities: Sequence[EngineAgreement],
     failures: Sequence[tuple[str, str]] = (),
     extra: dict[str, Any] | None = None,
 ) -> Path:
@@ -54,7 +54,7 @@ def write_json(
     path : Path
     records : RecordTable or None
     summaries : sequence of FormulaSummary
-    parities : sequence of EngineParity
+    parities : sequence of EngineAgreement
     failures : sequence of (model, reason)
     extra : dict, optional
         Anything else to store (e.g. load notes).

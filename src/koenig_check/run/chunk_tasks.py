@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.load_options import LoadOptions
-from koenig_check.engines.registry import REQUIRED as ENGINES
+from koenig_check.engines.registry import required
 from koenig_check.run.engine_runs import VERDICT_POSES
 from koenig_check.run.poses import PoseSet, random_pose_range
 
@@ -54,11 +54,6 @@ class WorkerModel:
 
     model: str
     options: LoadOptions = field(default_factory=LoadOptions)
-
-
-#: The former name of :class:`WorkerModel` (until it was renamed: "model source" means where a file comes from,
-#: :class:`koenig_check.sources.catalogue.ModelSource`), kept importable.
-ModelSource = WorkerModel
 
 
 @dataclass(frozen=True)
@@ -104,7 +99,7 @@ class ChunkTask:
     index: int
     poses: RandomRange | PoseSet
     planar_normals: dict[str, np.ndarray] | None = None
-    engines: tuple[str, ...] = ENGINES
+    engines: tuple[str, ...] = field(default_factory=required)
     verdict_poses: int = 0
 
 
@@ -151,7 +146,7 @@ def plan(
     random: RandomRange | None = None,
     size: int | None = None,
     planar_normals: dict[str, np.ndarray] | None = None,
-    engines: tuple[str, ...] = ENGINES,
+    engines: tuple[str, ...] | None = None,
 ) -> list[ChunkTask]:
     """Cut a model's poses into chunk tasks.
 
@@ -181,6 +176,7 @@ def plan(
     list of ChunkTask
     """
     size = size or chunk_size(n_segments)
+    engines = required() if engines is None else engines
     if size < 1:
         raise ValueError(f"chunk size must be >= 1, got {size}")
     formulas = tuple(formulas)

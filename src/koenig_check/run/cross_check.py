@@ -11,7 +11,7 @@ from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 
 @dataclass(repr=False)
@@ -25,7 +25,7 @@ class CrossCheck(ResultLookup):
     ----------
     comparisons : list of ModelComparison
     summaries : list of FormulaSummary
-    parities : list of EngineParity
+    parities : list of EngineAgreement
     failures : list of (str, str)
         Models that could not be compared, with a one-line reason each (the engine's whole reason).
     failure_lines : dict of str to str
@@ -38,7 +38,7 @@ class CrossCheck(ResultLookup):
 
     comparisons: list[ModelComparison] = field(default_factory=list)
     summaries: list[FormulaSummary] = field(default_factory=list)
-    parities: list[EngineParity] = field(default_factory=list)
+    parities: list[EngineAgreement] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
     failure_lines: dict[str, str] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
@@ -59,7 +59,7 @@ class CrossCheck(ResultLookup):
         verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
         return not self.failures and all(p.agrees for p in self.parities) and not verdicts
 
-    def add(self, comparison: ModelComparison) -> EngineParity:
+    def add(self, comparison: ModelComparison) -> EngineAgreement:
         """Record one model's comparison with its summaries and engine parity.
 
         Parameters
@@ -68,7 +68,7 @@ class CrossCheck(ResultLookup):
 
         Returns
         -------
-        EngineParity
+        EngineAgreement
             The parity just recorded.
         """
         self.comparisons.append(comparison)

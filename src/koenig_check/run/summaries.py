@@ -178,7 +178,7 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
 
     Returns
     -------
-    EngineParity
+    EngineAgreement
         ``agrees`` with a one-line ``reason`` when it does not.
     """
     if comparison.stats is None:
@@ -243,8 +243,3 @@ def _gap(p: Any, rtol: float, cli: bool = False) -> str:
     parts += [f"{name}'s exact differs from its own energy by {v:.2g}" for name, v in p.self_rel.items() if v > rtol]
     hint = rounding_hint(float(p.rigid.value), rtol, cli=cli) if len(parts) == 1 else ""
     return hint or ", ".join(parts)  # within a written file's rounding, the hint says the gap and what to do
-
-
-#: Former names of :class:`EngineAgreement` and :func:`engine_agreement` ("parity" now means import parity only).
-EngineParity = EngineAgreement
-engine_parity = engine_agreement
