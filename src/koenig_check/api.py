@@ -54,7 +54,7 @@ def compare_model(
     on_chunk: Callable[[int, int], None] | None = None,
     **load_kwargs: Any,
 ) -> ModelComparison:
-    """Load one model into both engines and run the comparison grid on it.
+    """Load one model into both engines and run the comparison on it.
 
     Parameters
     ----------
@@ -141,7 +141,7 @@ def compare_model(
         chunk_poses=chunk_poses,
         on_chunk=on_chunk,
     )
-    disagree = run.stats is not None and run.stats.parity.rigid.value > rtol
+    disagree = run.stats is not None and run.stats.agreement.rigid.value > rtol
     diagnosis = diagnose(
         loaded,
         disagree=disagree,

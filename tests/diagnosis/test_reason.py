@@ -70,7 +70,7 @@ def test_reasons_of_the_corpus_are_one_short_sentence_leading_with_the_root_caus
     if check.failures:
         return  # a file an engine refuses: its whole reason, on one line
     (line,) = check.reasons()
-    assert line.startswith(f"{check.parities[0].model}: ")
+    assert line.startswith(f"{check.agreements[0].model}: ")
     causes = ordered_causes(check.comparisons[0].findings)
     if causes and len(short_cause(causes[0])) < 100:
         assert f"root cause: {short_cause(causes[0])}" in line

@@ -218,7 +218,7 @@ def test_a_departing_fourth_engine_is_named_by_the_verdict(fourth_engine: str) -
     note = f"four engines: {verdicts[0].message()}"  # four voted: the note says so, not "three engines"
     assert note in comparison.notes
     summaries = [s for s in check.summaries if s.model == comparison.model]
-    assert model_findings(comparison, summaries, check.parities[0], 1e-9).engines.endswith(f"; {note}")
+    assert model_findings(comparison, summaries, check.agreements[0], 1e-9).engines.endswith(f"; {note}")
 
 
 def test_the_export_proves_it_reads_the_same_robot(fourth_engine: str, tmp_path: Path) -> None:

@@ -19,7 +19,7 @@ OPTIONS = dict(
 
 def _by_model(check: koenig_check.api.CrossCheck) -> dict[str, tuple]:
     out = {}
-    for comp, agreement in zip(check.comparisons, check.parities, strict=True):
+    for comp, agreement in zip(check.comparisons, check.agreements, strict=True):
         rec = comp.records.columns
         out[comp.model] = (
             [s for s in check.summaries if s.model == comp.model],

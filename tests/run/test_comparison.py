@@ -1,4 +1,4 @@
-"""The comparison grid on synthetic engine runs (no engine needed): records, summaries, parity."""
+"""The comparison on synthetic engine runs (no engine needed): records, summaries, the engines' agreement."""
 
 from __future__ import annotations
 

@@ -156,7 +156,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
     str
     """
     rtol = check.rtol
-    parity = {p.model: p for p in check.parities}
+    parity = {p.model: p for p in check.agreements}
     by_model: dict[str, list[FormulaSummary]] = {}
     for s in check.summaries:
         by_model.setdefault(s.model, []).append(s)
@@ -175,7 +175,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
         + "</p></nav>",
         '<section id="findings"><h2>What this run found</h2>',
         "<p>"
-        + _code(" ".join(run_overview(check.comparisons, check.summaries, check.parities, check.failures)))
+        + _code(" ".join(run_overview(check.comparisons, check.summaries, check.agreements, check.failures)))
         + "</p><ul>",
     ]
     for k, comp in enumerate(check.comparisons):

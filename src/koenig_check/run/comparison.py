@@ -17,7 +17,7 @@ from koenig_check.run.stats import DEFAULT_RTOL, ModelStats
 
 @dataclass(frozen=True)
 class ModelComparison:
-    """Everything the grid produced for one model and one pose set; immutable once built.
+    """Everything the comparison produced for one model and one pose set; immutable once built.
 
     Attributes
     ----------

@@ -182,8 +182,8 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
         ``agrees`` with a one-line ``reason`` when it does not.
     """
     if comparison.stats is None:
-        raise ValueError(f"{comparison.model}: no statistics to read the engine parity from")
-    p = comparison.stats.parity
+        raise ValueError(f"{comparison.model}: no statistics to read the engines' agreement from")
+    p = comparison.stats.agreement
     reasons = []
     if p.rigid.value > rtol:
         mj, pn = p.rigid.extra
@@ -230,7 +230,7 @@ def gap_words(comparison: ModelComparison, rtol: float = DEFAULT_RTOL, cli: bool
     -------
     str
     """
-    return _gap(comparison.stats.parity, rtol, cli) if comparison.stats is not None else ""
+    return _gap(comparison.stats.agreement, rtol, cli) if comparison.stats is not None else ""
 
 
 def _gap(p: Any, rtol: float, cli: bool = False) -> str:

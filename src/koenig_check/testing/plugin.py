@@ -279,7 +279,7 @@ def merged(checks: list[CrossCheck]) -> CrossCheck:
     for check in checks:
         out.comparisons += check.comparisons
         out.summaries += check.summaries
-        out.parities += check.parities
+        out.agreements += check.agreements
         out.failures += check.failures
         out.settings.update(check.settings)
     return out

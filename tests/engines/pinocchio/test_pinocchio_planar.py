@@ -115,7 +115,7 @@ def test_compare_agrees_pose_by_pose_and_notes_how_the_engines_read_the_joint(mo
     _, path = model
     check = koenig_check.compare(path, n_poses=8, formulas=["exact"])
     assert check.ok, check.reason()
-    assert check.parities[0].rigid_max_rel <= ROUNDOFF
+    assert check.agreements[0].rigid_max_rel <= ROUNDOFF
     loaded = load_model(path)
     qpos, qvel = random_states(loaded.mujoco.model, 8, seed=11)
     e_mj = loaded.mujoco.kinetic_energy(qpos, qvel).rigid
