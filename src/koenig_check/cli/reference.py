@@ -56,9 +56,8 @@ def _table(parser: argparse.ArgumentParser) -> list[str]:
         if isinstance(action, argparse._SubParsersAction) or action.help == argparse.SUPPRESS:
             continue
         choices = ", ".join(f"`{c}`" for c in action.choices) if action.choices else ""
-        rows.append(
-            f"| `{_cell(_name(action))}` | {_cell(_help(parser, action))} | {_cell(choices)} | {_cell(_default(action))} |"
-        )
+        cells = (f"`{_cell(_name(action))}`", _cell(_help(parser, action)), _cell(choices), _cell(_default(action)))
+        rows.append("| " + " | ".join(cells) + " |")
     return rows
 
 
