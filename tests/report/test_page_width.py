@@ -2,42 +2,30 @@
 
 A real report (the demo's models at few poses, plus a disagreeing model) is opened in Chromium with a script
 that measures the page after it has loaded and writes the measurements into the DOM, which ``--dump-dom``
-prints.  Skipped, with the reason, where Chromium is not installed; CI installs it and sets
-``KOENIG_CHECK_REQUIRE_CHROMIUM=1``, which turns the skip into a failure.
+prints (tests/browser.py: skipped where Chromium is not installed, unless CI requires it).
 """
 
 from __future__ import annotations
 
 import base64
-import html
 import io
-import json
-import os
 import re
-import shutil
-import subprocess
-import tempfile
 from pathlib import Path
 
 import pytest
 from PIL import Image
 
+from browser import WINDOW, measure, require_chromium
 from koenig_check.api import compare_model
 from koenig_check.demo import run_demo
 from koenig_check.report import write_report
 from koenig_check.report.figures import MIN_FONT_KEY
 
 CAUSES = Path(__file__).parents[1] / "models" / "causes"
-WINDOW = 1280
 #: The smallest text a reader is asked to read, in CSS px at the page's display size.
 MIN_TEXT_PX = 10.0
 
-CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome")) if p), None)
-if CHROMIUM is None and os.environ.get("KOENIG_CHECK_REQUIRE_CHROMIUM") != "1":
-    pytest.skip(
-        "Chromium is not installed (apt-get install chromium): the page width at 1280 px is not measured",
-        allow_module_level=True,
-    )
+require_chromium()
 
 #: Run after the page has loaded: the widths, every element that reaches past the window or scrolls
 #: sideways, each image's shown and natural width, and the smallest computed font size of the page's text.
@@ -74,30 +62,6 @@ window.addEventListener("load", () => {
 """
 
 
-def chromium(page: Path, *args: str) -> str:
-    """Run headless Chromium on a local page with a 1280 px wide window; return what it prints."""
-    assert CHROMIUM is not None, "KOENIG_CHECK_REQUIRE_CHROMIUM=1 and Chromium is not installed"
-    with tempfile.TemporaryDirectory() as profile:
-        flags = [
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            f"--user-data-dir={profile}",
-            f"--window-size={WINDOW},1000",
-            "--force-device-scale-factor=1",
-        ]
-        done = subprocess.run(
-            [CHROMIUM, *flags, *args, page.as_uri()], capture_output=True, text=True, timeout=120, check=False
-        )
-    assert done.returncode == 0, done.stderr[-2000:]
-    return done.stdout
-
-
 @pytest.fixture(scope="module")
 def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A demo report at few poses, a robot with long joint names and a model whose engines disagree.
@@ -116,12 +80,7 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.fixture(scope="module")
 def measured(report: Path) -> dict:
-    page = report.with_name("measured.html")
-    page.write_text(report.read_text(encoding="utf-8").replace("</body>", _MEASURE + "</body>"), encoding="utf-8")
-    dom = chromium(page, "--dump-dom", "--virtual-time-budget=10000")
-    found = re.search(r'<pre id="measured" hidden="">(.*?)</pre>', dom, re.S)
-    assert found, "the measuring script did not run"
-    return json.loads(html.unescape(found.group(1)))
+    return measure(report, _MEASURE)
 
 
 def test_the_page_has_no_horizontal_scroll_at_1280_px(measured: dict) -> None:
