@@ -15,6 +15,7 @@ import re
 import shutil
 from html.parser import HTMLParser
 from pathlib import Path
+from typing import ClassVar
 
 import pytest
 
@@ -55,7 +56,13 @@ def test_every_page_of_the_nav_is_built_and_opens_from_index_html(site: Path) ->
 class _Resources(HTMLParser):
     """Every URL a page loads by itself (scripts, stylesheets, images, frames), not the links a reader follows."""
 
-    LOADING = {"script": "src", "img": "src", "iframe": "src", "link": "href", "source": "src"}
+    LOADING: ClassVar[dict[str, str]] = {
+        "script": "src",
+        "img": "src",
+        "iframe": "src",
+        "link": "href",
+        "source": "src",
+    }
 
     def __init__(self) -> None:
         super().__init__()

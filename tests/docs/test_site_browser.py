@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+
 from browser import WINDOW, measure, require_chromium
 
 require_chromium()
