@@ -32,6 +32,7 @@ require_chromium()
 _MEASURE = """
 <script>
 window.addEventListener("load", () => {
+  for (const d of document.querySelectorAll("details")) d.open = true;  // as a reader who unfolds every section
   const root = document.documentElement;
   const out = {scrollWidth: root.scrollWidth, clientWidth: root.clientWidth, innerWidth: window.innerWidth,
                outside: [], scrolling: [], images: [], smallestText: Infinity, smallestTextAt: ""};
@@ -62,14 +63,46 @@ window.addEventListener("load", () => {
 """
 
 
+#: The first screen of a laptop: the window the matrices must fit in, unscrolled.
+FIRST_SCREEN = (WINDOW, 800)
+
+#: After load, unscrolled: where each matrix ends, and the window's size.
+_FIRST_SCREEN = """
+<script>
+window.addEventListener("load", () => {
+  const out = {innerWidth: window.innerWidth, innerHeight: window.innerHeight, matrices: []};
+  for (const table of document.querySelectorAll("table.matrix")) {
+    const box = table.getBoundingClientRect();
+    out.matrices.push({cls: table.className, top: box.top, bottom: box.bottom, right: box.right,
+                       rows: table.tBodies[0].rows.length});
+  }
+  const pre = document.createElement("pre");
+  pre.id = "measured";
+  pre.hidden = true;
+  pre.textContent = JSON.stringify(out);
+  document.body.appendChild(pre);
+});
+</script>
+"""
+
+
 @pytest.fixture(scope="module")
-def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A demo report at few poses, a robot with long joint names and a model whose engines disagree.
+def demo_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, object, dict]:
+    """The demo's report at few poses (its twelve runs), and the run and figures it was written from."""
+    check, figures = run_demo(n_poses=4, grid_samples=5, trajectory_samples=20)
+    out = tmp_path_factory.mktemp("demo")
+    write_report(out, check, **figures)
+    return out / "report.html", check, figures
+
+
+@pytest.fixture(scope="module")
+def report(demo_report: tuple[Path, object, dict], tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The demo, a robot with long joint names and a model whose engines disagree.
 
     example-robot-data's kinova (joints named like ``j2s7s300_joint_finger_tip_1``) made main's tables scroll
     sideways inside their column at 1280 px; class_mass.xml shows its causes and its engine gap.
     """
-    check, figures = run_demo(n_poses=4, grid_samples=5, trajectory_samples=20)
+    _, check, figures = demo_report
     check.add(compare_model("kinova", n_poses=4))
     check.add(compare_model(CAUSES / "class_mass.xml", n_poses=6))
     assert not check.parities[-1].agrees  # the page shows a disagreement
@@ -113,3 +146,16 @@ def test_each_model_shows_its_engine_gap_figure(report: Path) -> None:
     text = report.read_text(encoding="utf-8")
     sections = text.split('<section class="model"')[1:]
     assert sections and all("gap between the engines" in s for s in sections)
+
+
+def test_the_first_screen_of_the_demos_report_holds_both_matrices(demo_report: tuple[Path, object, dict]) -> None:
+    page = demo_report[0]
+    width, height = FIRST_SCREEN
+    screen = measure(page, _FIRST_SCREEN, height=height)
+    assert screen["innerWidth"] == width and screen["innerHeight"] <= height
+    kinds = {m["cls"].split()[-1]: m for m in screen["matrices"]}
+    assert set(kinds) == {"engines", "errors"}
+    assert kinds["engines"]["rows"] == 12  # the demo's twelve runs, one row each
+    for m in screen["matrices"]:
+        assert 0 <= m["top"] and m["bottom"] <= screen["innerHeight"], m  # whole, without scrolling
+        assert m["right"] <= width, m

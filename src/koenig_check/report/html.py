@@ -61,18 +61,19 @@ details summary { cursor: pointer; color: #444; }
 dl dt { font-weight: 600; } dl dd { margin: 0 0 .4em 1.5em; }
 h1 { margin: .2em 0 .3em 0; font-size: 1.6em; }
 p.lead { margin: 0 0 .5em 0; font-size: .92em; }
-.matrices { display: grid; grid-template-columns: minmax(0, 4fr) minmax(0, 8fr); gap: 1.5em; align-items: start; }
+.matrices { display: grid; grid-template-columns: fit-content(24em) minmax(0, 1fr); gap: 1.5em; align-items: start; }
+.matrices.many { grid-template-columns: minmax(0, 1fr); }
 .matrices h2 { margin-top: .3em; font-size: 1.15em; }
 @media (max-width: 1000px) { .matrices { grid-template-columns: minmax(0, 1fr); } }
-table.matrix { font-size: .8em; }
-table.matrix td.cell { text-align: center; padding: .15em .4em; white-space: nowrap;
+table.matrix { font-size: .8em; line-height: 1.25; }
+table.matrix td.cell { text-align: center; padding: .15em .25em; white-space: nowrap;
                        font-variant-numeric: tabular-nums; }
 table.matrix td.cell a { color: #1a1a1a; text-decoration: none; display: block; }
 table.matrix th.row { font-weight: 400; background: #fafafa; overflow-wrap: anywhere; }
 table.errors th.row { white-space: nowrap; overflow-wrap: normal; }
-table.errors th.model { height: 11em; vertical-align: bottom; padding: .2em 0; background: #fafafa; }
+table.errors th.model { height: 10.5em; vertical-align: bottom; padding: .2em 0; background: #fafafa; }
 table.errors th.model span { writing-mode: vertical-rl; transform: rotate(180deg); font-weight: 400;
-                             max-height: 11em; overflow: hidden; white-space: nowrap; text-overflow: ellipsis; }
+                             max-height: 10.5em; overflow: hidden; white-space: nowrap; text-overflow: ellipsis; }
 p.legend { font-size: .8em; color: #333; margin: .4em 0; line-height: 1.5; }
 .key { display: inline-block; width: 1em; height: .9em; border: 1px solid #999; margin: 0 .3em -.1em 0; }
 .bar { display: inline-block; width: 9em; height: .9em; border: 1px solid #999; margin: 0 .3em -.1em .3em; }
@@ -184,11 +185,11 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
     )
     body = [
         "<h1>koenig-check report</h1>",
-        '<p class="lead">Kinetic energy of every moving segment of each model, computed by each engine and by each '
+        '<p class="lead">The kinetic energy of every moving segment of each model from each engine, and from each '
         "formula under test (Yu. Alyushin, <em>Correction of the Koenig formula for the kinetic energy of a rotating "
-        "solid</em>) from each engine's segment states in the same joint positions and rates. "
-        f"Tolerance: relative {_e(f'{rtol:g}')}. Numbers below {_e(f'{ROUNDOFF:g}')} are rounding and are "
-        "printed as 0. Each cell of the matrices links to its model's section.</p>",
+        f"solid</em>) on each engine's segment states. Tolerance: relative {_e(f'{rtol:g}')}; numbers below "
+        f"{_e(f'{ROUNDOFF:g}')} are rounding, printed as 0. Each cell of the matrices links to its model's "
+        "section.</p>",
         matrices_html(check),
         "<nav><p>Models: "
         + ", ".join(f'<a href="#{model_anchor(c.model, k)}">{_e(c.model)}</a>' for k, c in enumerate(check.comparisons))

@@ -47,6 +47,8 @@ STOPS = (
     (1.0, "#800026"),
 )
 SCALE = (STOPS[0][0], STOPS[-1][0])
+#: Up to this many runs, the two matrices stand side by side (the first screen at 1280 px); beyond, one under the other.
+SIDE_BY_SIDE = 12
 #: The colour of an error within the tolerance (exact to it), and of a formula refused for a model.
 EXACT_COLOUR, REFUSED_COLOUR = "#e3f2e5", "#ffffff"
 
@@ -278,7 +280,8 @@ def matrices_html(check: CrossCheck) -> str:
     from koenig_check.engines.registry import label
 
     engines, rows = engine_matrix(check)
-    out = ['<section id="matrices" class="matrices"><div>', "<h2>Do the engines agree?</h2>"]
+    layout = "matrices" if len(check.comparisons) <= SIDE_BY_SIDE else "matrices many"
+    out = [f'<section id="matrices" class="{layout}"><div>', "<h2>Do the engines agree?</h2>"]
     out.append('<table class="matrix engines"><thead><tr><th>model</th>')
     out += [f"<th>{_e(label(e))}</th>" for e in engines]
     out.append("</tr></thead><tbody>")
