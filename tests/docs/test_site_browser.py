@@ -1,6 +1,6 @@
 """The built site in headless Chromium at 1280 px, opened from ``site/index.html`` (file://, no server).
 
-Each page fits the window (no horizontal scroll) and the search finds a page, offline.
+Each page fits the window (no horizontal scroll), its figures load, and the search finds a page, offline.
 """
 
 from __future__ import annotations
@@ -21,7 +21,8 @@ _MEASURE = """
 window.addEventListener("load", () => {
   const root = document.documentElement;
   const out = {scrollWidth: root.scrollWidth, clientWidth: root.clientWidth, innerWidth: window.innerWidth,
-               outside: [], results: []};
+               outside: [], results: [],
+               images: [...document.images].map(i => [i.getAttribute("src"), i.naturalWidth])};
   for (const el of document.body.querySelectorAll("*")) {
     const box = el.getBoundingClientRect();
     if (box.width > 0 && box.right > root.clientWidth + 0.5 && !el.closest(".md-search, .md-sidebar")) {
@@ -61,3 +62,6 @@ def test_page_fits_1280_px_and_search_works_offline(site: Path, page: str) -> No
     assert measured["scrollWidth"] <= measured["clientWidth"] <= WINDOW
     assert measured["outside"] == []
     assert any("engines.html" in href for href in measured["results"]), measured["results"]
+    assert all(width > 0 for _, width in measured["images"]), measured["images"]  # every figure loads from file://
+    if page == "paper.html":  # the paper's figures, taken from comparisons/ at build time
+        assert sum("comparisons/paper_claims_" in src for src, _ in measured["images"]) == 8
