@@ -306,7 +306,10 @@ def test_a_subpackage_is_listed_in_report_order(fourth_engine: str) -> None:
 
 
 def test_without_the_subpackage_it_is_unknown() -> None:
+    from koenig_check.causes import catalogue
+
     assert "gpu" not in registry.names()
+    assert not [c for c in catalogue() if c.engine == "gpu"]  # its causes come and go with it (the catalogue too)
     from koenig_check.engines.load_options import parse_engines
 
     with pytest.raises(ValueError, match="unknown"):
