@@ -85,8 +85,10 @@ def cause(cause_id: str) -> Cause:
 
 
 def fixture_path(c: Cause) -> Path:
-    """The cause's minimal model file, shipped with the package: in its engine's subpackage
-    (``engines/<name>/fixtures/``) when there, else in ``koenig_check/causes/fixtures/``.
+    """The cause's minimal model file, shipped with the package.
+
+    In its engine's subpackage (``engines/<name>/fixtures/``) when there, else in
+    ``koenig_check/causes/fixtures/``.
 
     Parameters
     ----------
