@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines.errors import EngineUnavailableError
-from koenig_check.engines.specs import EngineSpec, names, spec, specs
+from koenig_check.engines.specs import EngineSpec, names, reference, spec, specs
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
@@ -42,6 +42,7 @@ __all__ = [  # and ENGINE_NAMES, REQUIRED, OPTIONAL (module __getattr__)
     "names",
     "not_used",
     "optional",
+    "reference",
     "required",
     "spec",
     "specs",
