@@ -43,7 +43,7 @@ def chunk_size(n_segments: int) -> int:
 class WorkerModel:
     """How a worker process gets the model of its chunks: the model file or name, and how it is loaded.
 
-    Hashable: a process loads each once (:func:`koenig_check.run.pipeline.loaded`).  Not where a model file comes
+    Hashable: a worker process loads each once (:mod:`koenig_check.run.pipeline`).  Not where a model file comes
     from: that is :class:`koenig_check.sources.catalogue.ModelSource`.
 
     Attributes
