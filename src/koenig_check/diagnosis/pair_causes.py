@@ -207,7 +207,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
                 affects_energy=True,
                 root_cause=True,
                 segments=segments,
-                cause="pinocchio.mjcf.class-geom-mass" if attr == "mass" else "",
+                cause=f"pinocchio.mjcf.class-{tag}-{'mass' if attr == 'mass' else 'pos'}",
             )
         )
     return out
@@ -278,6 +278,7 @@ def compiler_causes(pair: Any) -> list[Finding]:
                     root_cause=True,
                     segments=tuple(pair.mujoco.segment_names),
                     hint="",
+                    cause="pinocchio.mjcf.settotalmass",
                 )
             )
     return out
@@ -343,6 +344,7 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
+            cause="pinocchio.mjcf.mesh-mass",
         )
     ]
 

@@ -79,9 +79,27 @@ def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocc
                 segments=moved or fr.joints,
                 hint="give the bodies and geoms inside it the frame's pose and remove the <frame> "
                 "(MuJoCo resolves it at compile time)",
+                cause=frame_cause(engine),
             )
         )
     return out
+
+
+def frame_cause(engine: str) -> str:
+    """The id of the cause "``<frame>`` not read by this engine's MJCF parser", or empty when none is declared.
+
+    Parameters
+    ----------
+    engine : str
+
+    Returns
+    -------
+    str
+    """
+    from koenig_check.engines.catalogue import catalogue
+
+    cause_id = f"{engine}.mjcf.frame"
+    return cause_id if any(c.id == cause_id for c in catalogue()) else ""
 
 
 def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = None) -> list[Finding]:
@@ -139,6 +157,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 root_cause=True,
                 segments=moved or inc.joints,
                 hint="load a file without <include> (e.g. the robot's own file)" if inc.bodies else "",
+                cause="pinocchio.mjcf.include",
             )
         )
     out += frame_causes(root, seg_of)
@@ -157,6 +176,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 affects_energy=bool(joints),
                 root_cause=True,
                 segments=joints,
+                cause="pinocchio.mjcf.root-bodies",
             )
         )
     return out
@@ -281,6 +301,7 @@ def planar_cause(joint: str, axis: tuple[float, ...] = (1.0, 0.0, 0.0)) -> Findi
         root_cause=True,
         segments=parts,
         hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
+        cause="pinocchio.urdf.planar-axis",
     )
 
 

@@ -101,6 +101,7 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
                 affects_energy=True,
                 root_cause=True,
                 segments=tuple(extension),
+                cause="drake.any.reflected-inertia",
             )
         )
     joints = [j for j in joints if j not in extension]
@@ -121,5 +122,6 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
             affects_energy=True,
             root_cause=True,
             segments=tuple(joints),
+            cause="drake.mjcf.unactuated-armature",
         ),
     ]

@@ -136,6 +136,7 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
                 affects_energy=True,
                 root_cause=True,
                 segments=(last,),
+                cause="drake.mjcf.multi-joint-anchor" if several else "",
             )
         )
     return out
