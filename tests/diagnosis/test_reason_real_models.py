@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import koenig_check
+from koenig_check.causes import cause
 from koenig_check.cli import main
 from koenig_check.diagnosis.reason import REASON_WIDTH
 from koenig_check.report.terminal import WIDTH, terminal_table
@@ -191,7 +192,9 @@ def test_a_file_with_one_cause_counts_no_more() -> None:
     assert total is not None
     check = koenig_check.compare(path, **ONE)
     line = check.reason()
-    assert f"root cause: compiler settotalmass: settotalmass={total}" in line, line
+    (option,) = [f for f in check.comparisons[0].findings if f.cause == "pinocchio.mjcf.settotalmass"]
+    assert option.values["mujoco"] == pytest.approx(float(total), rel=1e-12)  # MuJoCo's total mass: the file's
+    assert f"root cause: compiler settotalmass: {cause('pinocchio.mjcf.settotalmass').brief}" in line, line
     assert "more" not in line and not line.endswith(" and 2 more"), line
     _one_sentence(line)
 
@@ -209,7 +212,10 @@ def test_two_massless_feet_are_one_cause() -> None:
                 feet.append(link.get("name"))
     assert len(feet) == 2
     line = refused.reason()
-    assert f"root cause: links {', '.join(feet)}: fusestatic dropped the rotational inertia" in line, line
+    assert f"root cause: links {', '.join(feet)}: {cause('mujoco.any.fusestatic-massless-inertia').brief}" in line
+    assert {
+        f.element for f in refused.comparisons[0].findings if f.cause == "mujoco.any.fusestatic-massless-inertia"
+    } == {f"link {foot}" for foot in feet}
     engines = {"drake"} & {f.engine for f in refused.comparisons[0].findings}
     assert _more(line) <= len(engines) and " and 5 more" not in line, line
     _one_sentence(line)

@@ -112,6 +112,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
                 affects_energy=True,
                 root_cause=not set(names) <= explained,
                 segments=tuple(names),
+                brief=f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'}",
             )
         )
     return out

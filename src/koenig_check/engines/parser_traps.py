@@ -232,6 +232,7 @@ def nothing_moves(path: str | os.PathLike[str], has_body: bool = True, advice: s
         values={"file": str(path)},
         root_cause=True,
         hint=(advice or "--floating (floating=True) gives the root body a free joint") if has_body else "",
+        brief="no joint: nothing moves, so there is no kinetic energy to compare",
     )
 
 
