@@ -117,7 +117,7 @@ CAUSES: tuple[Cause, ...] = (
         "axisangle= with an axis of other than unit length",
         "does not normalize the axis: the rotation it builds is distorted",
         ("inertia", "kinematics"),
-        "axisangle axis left unnormalized by Pinocchio",
+        "axisangle axis not normalized",
         "write a unit axis",
         "axisangle_length.xml",
     ),
