@@ -56,8 +56,12 @@ def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocc
     Returns
     -------
     list of Finding
-        One ``IGNORED_CONSTRUCT`` root cause per outermost frame that holds a body or a geom.
+        One ``IGNORED_CONSTRUCT`` root cause per outermost frame that holds a body or a geom, an instance of
+        :func:`frame_cause`; none for an engine the catalogue does not say skips ``<frame>``.
     """
+    cause_id = frame_cause(engine)
+    if not cause_id:
+        return []
     parser = f"{label(engine)}'s"
     out = []
     for fr in frames(root):
@@ -79,7 +83,7 @@ def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocc
                 segments=moved or fr.joints,
                 hint="give the bodies and geoms inside it the frame's pose and remove the <frame> "
                 "(MuJoCo resolves it at compile time)",
-                cause=frame_cause(engine),
+                cause=cause_id,
             )
         )
     return out

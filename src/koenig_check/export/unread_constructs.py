@@ -26,18 +26,18 @@ def unread_frames(path: str | os.PathLike[str], mj_model: Any, engine: str) -> l
     mj_model : mujoco.MjModel
         MuJoCo's model of the file.
     engine : str
-        ``"pinocchio"`` or ``"drake"``.
+        An engine whose ``<frame>`` cause the catalogue declares (``<engine>.mjcf.frame``); any other gives none.
 
     Returns
     -------
     list of Finding
-        ``IGNORED_CONSTRUCT`` root causes, one per outermost frame holding joints.
+        ``IGNORED_CONSTRUCT`` root causes (that cause), one per outermost frame holding joints.
     """
     from koenig_check.engines.canonical import segment_of_body
     from koenig_check.engines.parser_traps import frame_causes
     from koenig_check.modelfile.mjcf import read_mjcf
 
-    if engine not in ("pinocchio", "drake") or not Path(path).is_file():
+    if not Path(path).is_file():
         return []
     root = read_mjcf(Path(path))
     if root is None:
