@@ -15,6 +15,7 @@ import pytest
 
 import koenig_check
 from koenig_check.causes import catalogue, fixture_path
+from koenig_check.diagnosis.cause_groups import cause_groups
 from koenig_check.diagnosis.reason import root_cause_groups
 from koenig_check.engines import load_model
 from koenig_check.exceptions import KoenigCheckError
@@ -46,7 +47,9 @@ def _outcome(path: Path) -> dict[str, Any]:
         try:
             load_model(path)
         except KoenigCheckError as err:
-            out["refusal causes"] = [(f.cause, f.kind.value, f.engine, f.element) for f in err.causes]
+            groups = cause_groups(err.causes)
+            out["refusal causes"] = [[(f.cause, f.kind.value, f.engine, f.element) for f in g.findings] for g in groups]
+            out["refusal lost"] = [g.lost_joints() for g in groups]
     return out
 
 
