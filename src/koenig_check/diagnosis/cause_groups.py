@@ -156,7 +156,9 @@ class CauseGroup:
         """The cause in full: engine, elements, summary, the values the elements share, and the hint.
 
         One finding gives its own :meth:`Finding.message`; several give the values equal on all of them (the
-        values of each are in ``koenig-check parity`` and the report).
+        values of each are in ``koenig-check parity`` and the report), and the cause's brief form (:func:`brief_form`)
+        for a catalogued cause (its findings may say it of different elements: two default classes), else the
+        summary they share.  The hint is theirs when they share it, else the cause's.
 
         Returns
         -------
@@ -165,7 +167,7 @@ class CauseGroup:
         first = self.findings[0]
         if len(self.findings) == 1:
             return first.message()
-        text = f"{first.engine}: {self.elements()}: {first.summary}"
+        text = f"{first.engine}: {self.elements()}: {brief_form(first) if first.cause else first.summary}"
         shared = {k: v for k, v in first.values.items() if all(f.values.get(k) == v for f in self.findings)}
         texts = {k: value_text(v) for k, v in shared.items()}
         shown = {k: t for k, t in texts.items() if t}
@@ -174,9 +176,16 @@ class CauseGroup:
         lost = self.lost_joints()
         if lost:
             text += f"; lacks joints {shown_names(lost, SHOWN_JOINTS)}"
-        if first.hint:
-            text += f"; {first.hint}"
+        hint = first.hint if all(f.hint == first.hint for f in self.findings) else _cause_hint(first)
+        if hint:
+            text += f"; {hint}"
         return text
+
+
+def _cause_hint(f: Finding) -> str:
+    from koenig_check.engines.catalogue import cause
+
+    return cause(f.cause).hint if f.cause else f.hint
 
 
 def _key(f: Finding) -> tuple[str, ...]:
