@@ -98,6 +98,10 @@ class Finding:
         What the user can do about it (an option, a file to load instead), or empty.
     cause : str
         The id of the catalogued cause it is an instance of (:func:`koenig_check.causes.cause`), or empty.
+    brief : str
+        For a finding without a cause: its few words in a one-line reason (``"inertia changed so that MuJoCo
+        accepts it"``); empty: the summary.  A cause's brief form is its declaration's
+        (:attr:`koenig_check.causes.Cause.brief`).  Not a record's key (the summary says it whole).
     """
 
     kind: Kind
@@ -110,6 +114,7 @@ class Finding:
     segments: tuple[str, ...] = ()
     hint: str = ""
     cause: str = ""
+    brief: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.kind, Kind):

@@ -15,6 +15,7 @@ import pytest
 
 import koenig_check
 from independent_energy import engines_agree
+from koenig_check.causes import cause as catalogued
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.reason import short_cause
 from koenig_check.engines import load_model
@@ -297,6 +298,7 @@ def test_an_include_in_a_body_and_further_root_bodies_are_both_named() -> None:
     found = {c.element: c for c in err.causes}
     assert set(found) == {"include arm_part_mujocoinclude.xml", "body kettle"}, [c.message() for c in err.causes]
     include = found["include arm_part_mujocoinclude.xml"]
+    assert (include.cause, found["body kettle"].cause) == ("pinocchio.mjcf.include", "pinocchio.mjcf.root-bodies")
     assert include.values["joints"] == ("elbow",) and include.values["bodies"] == ("forearm",)
     assert include.root_cause and include.affects_energy
     assert found["body kettle"].values["joints"] == ("lid",)
@@ -306,6 +308,6 @@ def test_an_include_in_a_body_and_further_root_bodies_are_both_named() -> None:
     assert "first root body, unnamed, with joint 'shoulder'" in found["body kettle"].message()
     check = _compare("include_and_roots.xml")
     # the first cause in a few words, the other counted as a root cause (never a name without its cause)
-    include_short = f"{include.element}: <include> ignored by Pinocchio's MJCF parser"
+    include_short = f"{include.element}: {catalogued('pinocchio.mjcf.include').brief}"
     assert not check.ok and include_short in check.reason() and "; and 1 more root cause" in check.reason()
     assert all(c.message() in check.failures[0][1] for c in err.causes)

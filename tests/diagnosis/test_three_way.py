@@ -216,6 +216,9 @@ def test_a_construct_both_other_engines_skip_is_named_not_blamed_on_mujoco(engin
     check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=engines)
     drake = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.IGNORED_CONSTRUCT]
     assert drake and not _verdicts(check) and not check.ok  # Drake used (its finding), and no vote
+    assert [f.cause for f in drake] == ["drake.mjcf.frame"]
+    frames = [f.engine for f in check.comparisons[0].findings if f.cause.endswith(".mjcf.frame")]
+    assert sorted(frames) == ["drake", "pinocchio"]
     reason = check.reason()
     assert reason.startswith("frame_geom.xml: root cause: frame #1 in body base: <frame> not read by Pinocchio's")
     assert "departs" not in reason and "engines differ" not in reason

@@ -85,5 +85,6 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
+            cause="pinocchio.mjcf.inertiagrouprange",
         )
     ]

@@ -112,6 +112,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
                 affects_energy=True,
                 root_cause=not set(names) <= explained,
                 segments=tuple(names),
+                brief=f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'}",
             )
         )
     return out
@@ -207,7 +208,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
                 affects_energy=True,
                 root_cause=True,
                 segments=segments,
-                cause="pinocchio.mjcf.class-geom-mass" if attr == "mass" else "",
+                cause=f"pinocchio.mjcf.class-{tag}-{'mass' if attr == 'mass' else 'pos'}",
             )
         )
     return out
@@ -278,6 +279,7 @@ def compiler_causes(pair: Any) -> list[Finding]:
                     root_cause=True,
                     segments=tuple(pair.mujoco.segment_names),
                     hint="",
+                    cause="pinocchio.mjcf.settotalmass",
                 )
             )
     return out
@@ -343,6 +345,7 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
+            cause="pinocchio.mjcf.mesh-mass",
         )
     ]
 

@@ -302,7 +302,7 @@ class ParityReport:
         """One line: root causes that change the energy first, then symptoms no root cause explains.
 
         A symptom is a differing segment or dof, or a segment one engine lacks or gives no mass.  ``brief``
-        names each root cause in a few words (its element and first clause), for a view that lists them whole.
+        names each root cause in a few words (its element and brief form), for a view that lists them whole.
         """
         from koenig_check.diagnosis.reason import short_cause
 

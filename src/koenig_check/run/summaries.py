@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.diagnosis.reason import disagreement_cause, rounding_hint
+from koenig_check.diagnosis.reason import disagreement_cause, ordered_causes, rounding_hint
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL, ModelStats
@@ -153,7 +153,8 @@ class EngineAgreement:
     ``reason`` says in full why they do not agree (with the cause's values); ``gap`` says it in a few words, for
     the one-line reason (:func:`koenig_check.diagnosis.reason.short_reason`).  ``reason`` is built from
     ``symptoms`` (each way the engines differ, one sentence each) and ``cause`` (the known cause, or empty):
-    read those, never ``reason`` cut apart.
+    read those, never ``reason`` cut apart.  ``causes`` holds the ids of the catalogued causes among them
+    (:func:`koenig_check.causes.cause`), the most important first.
     """
 
     model: str
@@ -166,6 +167,7 @@ class EngineAgreement:
     gap: str = ""
     symptoms: tuple[str, ...] = ()
     cause: str = ""
+    causes: tuple[str, ...] = ()
 
 
 def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> EngineAgreement:
@@ -213,6 +215,7 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
         gap,
         tuple(reasons),
         cause,
+        tuple(dict.fromkeys(f.cause for f in ordered_causes(comparison.findings) if f.cause)) if reasons else (),
     )
 
 
