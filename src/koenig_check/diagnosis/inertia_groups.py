@@ -16,6 +16,7 @@ import numpy as np
 
 from koenig_check.diagnosis.segment_masses import compiled, mujoco_segment_masses, pinocchio_segment_masses
 from koenig_check.engines.canonical import segment_of_body
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind, shown_names
 
 #: Relative mass difference under which two masses are the same.
@@ -72,7 +73,7 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
     return [
         Finding(
             Kind.COMPILER,
-            "pinocchio",
+            reference(),  # the engine that applies the option (Pinocchio and Drake count every geom)
             "compiler inertiagrouprange",
             f"MuJoCo counts only geoms of groups {low} to {high} (geoms {shown_names(left_out)} left out), "
             "Pinocchio counts every geom",

@@ -271,9 +271,8 @@ def compiler_causes(pair: Any) -> list[Finding]:
         scale = max(m_mj, m_pin, 1e-300)
         if abs(m_mj - option.values["settotalmass"]) <= RTOL * scale and abs(m_mj - m_pin) > RTOL * scale:
             out.append(
-                replace(
+                replace(  # MuJoCo's (the engine that applies it), as the option's record says
                     option,
-                    engine="pinocchio",
                     summary=f"{option_text(option)}: {option.summary}, Pinocchio does not",
                     values={"mujoco": m_mj, "pinocchio": m_pin},
                     root_cause=True,

@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.engines.registry import label, names
 from koenig_check.findings import Finding, Kind
 
@@ -70,10 +71,10 @@ def _listed(engines: Sequence[str]) -> str:
 def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence[str] = ()) -> Finding | None:
     """The known construct responsible for an engine's departure, from the model's findings.
 
-    Root causes that change the energy, about that engine, first those that explain the given segments;
-    for MuJoCo, first a compiler option (``compiler settotalmass``), which the two-engine parity may have
-    recorded against Pinocchio ("Pinocchio does not rescale"): with three engines, MuJoCo is the one that
-    applies it alone.
+    Root causes that change the energy, about that engine (each cause is built against the engine it concerns:
+    a compiler option only MuJoCo applies is MuJoCo's), first those that explain the given segments, ranked as
+    the reason ranks them (:func:`koenig_check.diagnosis.cause_effect.by_effect`: the largest measured effect
+    first, the others in their place).
 
     Parameters
     ----------
@@ -88,15 +89,11 @@ def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence
     """
     own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
     roots = [f for f in own if f.root_cause] or [f for f in own if f.kind in (Kind.COMPILER, Kind.IGNORED_CONSTRUCT)]
-    if engine == "mujoco":  # a compiler option only MuJoCo applies, whichever engine the pair's finding blamed
-        options = [
-            f for f in findings if f.kind is Kind.COMPILER and f.affects_energy and f.element.startswith("compiler ")
-        ]
-        roots = options + [f for f in roots if f not in options]
     if segments:
         hit = [f for f in roots if set(f.segments) & set(segments)]
         roots = hit or roots
-    return roots[0] if roots else None
+    ranked = by_effect(roots)
+    return ranked[0] if ranked else None
 
 
 def _shared_cause(engines: Sequence[str], findings: Sequence[Finding], segments: Sequence[str]) -> Finding | None:
@@ -110,9 +107,8 @@ def _shared_cause(engines: Sequence[str], findings: Sequence[Finding], segments:
 
 def _construct(cause: Finding) -> str:
     """The construct a cause names: ``compiler settotalmass`` rather than the body it altered."""
-    if cause.kind is Kind.COMPILER and cause.engine == "mujoco":
-        if float(cause.values.get("settotalmass", -1) or -1) > 0:
-            return "compiler settotalmass"
+    if cause.kind is Kind.COMPILER and float(cause.values.get("settotalmass", -1) or -1) > 0:
+        return "compiler settotalmass"
     return cause.element
 
 
