@@ -87,5 +87,6 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
             root_cause=True,
             segments=tuple(segments),
             cause="pinocchio.mjcf.inertiagrouprange",
+            tag="compiler",
         )
     ]

@@ -113,6 +113,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
                 root_cause=not set(names) <= explained,
                 segments=tuple(names),
                 brief=f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'}",
+                tag="segment",
             )
         )
     return out
@@ -209,6 +210,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
                 root_cause=True,
                 segments=segments,
                 cause=f"pinocchio.mjcf.class-{tag}-{'mass' if attr == 'mass' else 'pos'}",
+                tag=tag,
             )
         )
     return out
@@ -345,6 +347,7 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
             root_cause=True,
             segments=tuple(segments),
             cause="pinocchio.mjcf.mesh-mass",
+            tag="geom",
         )
     ]
 

@@ -118,6 +118,7 @@ def root_frame_offset(pair: Any, atol: float = 1e-9) -> tuple[FrameOffset | None
         root_cause=True,
         segments=tuple(pair.pinocchio.segment_names),
         cause="pinocchio.mjcf.root-pose",
+        tag="body",
     )
     return offset, finding
 

@@ -95,5 +95,6 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
             root_cause=True,
             segments=tuple(segments),
             cause="pinocchio.mjcf.visual-geoms",
+            tag="geom",
         )
     ]

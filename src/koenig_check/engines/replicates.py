@@ -74,6 +74,7 @@ def replicate_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                         segments=moved or tuple(joints),
                         hint="koenig-check export MODEL --to mjcf writes the copies out (no <replicate>, no <frame>)",
                         cause="pinocchio.mjcf.replicate",
+                        tag="replicate",
                     )
                 )
             elif child.tag == "body":

@@ -90,6 +90,7 @@ def axisangle_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                             root_cause=True,
                             segments=segments,
                             cause="pinocchio.mjcf.axisangle-length",
+                            tag=child.tag if child.tag in ("body", "inertial") else "geom",
                         )
                     )
             if child.tag == "body":

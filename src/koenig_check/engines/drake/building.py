@@ -53,8 +53,7 @@ def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:
         from koenig_check.engines.drake.inertia import replaced_inertias
 
         # a parser warning names its link only when Drake's message is about an inertia (loader.warning_findings)
-        elements = [f.element.partition(" ") for f in findings if f.kind is Kind.LOAD]
-        warned = [name for tag, _, name in elements if tag == "link"]
+        warned = [f.name for f in findings if f.kind is Kind.LOAD and f.tag == "link"]
         engine.findings += replaced_inertias(plant, Path(source.path), warned, engine.segment_of_body())
     return engine
 
@@ -137,6 +136,7 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
                 root_cause=True,
                 segments=(last,),
                 cause="drake.mjcf.multi-joint-anchor" if several else "",
+                tag="joint",
             )
         )
     return out

@@ -93,4 +93,5 @@ def ignored_geom_finding(path: Path, name: str, warning: str, lines: list[int]) 
         affects_energy=mass is None or mass > 0,
         root_cause=mass is None or mass > 0,
         cause="drake.mjcf.ignored-geom",
+        tag="geom",
     )
