@@ -227,13 +227,10 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     # sites): MuJoCo's reading is the reference (canonical layout, compiler options, the records' default source,
     # the other side of an engine's finding) and MuJoCo/Pinocchio are the import-parity pair whose causes the
     # diagnosis builds outside their subpackages.  No optional engine is named anywhere outside its subpackage.
-    "diagnosis/diagnose.py": frozenset({"pinocchio"}),
     "diagnosis/import_parity.py": frozenset({"mujoco", "pinocchio"}),
     "diagnosis/inertia_groups.py": frozenset({"mujoco", "pinocchio"}),
     "diagnosis/pair_causes.py": frozenset({"mujoco", "pinocchio"}),
     "diagnosis/parity_report.py": frozenset({"mujoco", "pinocchio"}),
-    "diagnosis/root_frame.py": frozenset({"pinocchio"}),
-    "diagnosis/three_way.py": frozenset({"mujoco", "pinocchio"}),
     "diagnosis/visual_geoms.py": frozenset({"mujoco", "pinocchio"}),
     "engines/bare_bodies.py": frozenset({"mujoco", "pinocchio"}),
     "engines/drake/building.py": frozenset({"mujoco"}),

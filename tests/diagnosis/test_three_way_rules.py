@@ -85,3 +85,25 @@ def test_the_construct_named_is_the_cause_of_largest_effect_not_the_first_found(
     assert departure_cause([light, heavy], "pinocchio", ("ja",)) == light  # the only one on body a's segment
     (energy,) = [f for f in findings if f.kind is Kind.VERDICT and f.element == "rigid-body energy"]
     assert energy.engine == "pinocchio" and energy.summary.endswith("construct responsible: geom box")
+
+
+def test_where_all_differ_each_engine_is_named_with_its_own_construct() -> None:
+    """all_differ.xml: MuJoCo alone rescales to settotalmass=3, Pinocchio alone ignores the pole's class mass.
+
+    By hand: the pole's class gives it 0.1 kg (Drake); MuJoCo rescales 1 + 0.1 kg to 3 kg (0.1 x 3 / 1.1); Pinocchio
+    weighs the capsule (radius 0.045, length 1) at density 1000: 1000 (pi r^2 + 4/3 pi r^3).  The settotalmass cause
+    is MuJoCo's, built so; it was once moved to the engine a verdict named after the verdicts, so that Pinocchio too
+    was said to depart through settotalmass.
+    """
+    pytest.importorskip("pydrake")
+    import koenig_check
+
+    path = Path(__file__).resolve().parents[1] / "models" / "tiebreak" / "all_differ.xml"
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=("mujoco", "pinocchio", "drake"))
+    verdicts = {f.element: f for f in check.comparisons[0].findings if f.kind is Kind.VERDICT}
+    pole = verdicts["body pole (joint hinge) mass"]
+    r = 0.045
+    expected = {"mujoco": 0.1 * 3 / 1.1, "pinocchio": 1000 * (np.pi * r**2 + 4 / 3 * np.pi * r**3), "drake": 0.1}
+    assert dict(pole.values) == pytest.approx(expected, rel=1e-9)
+    assert pole.engine == "all"
+    assert pole.summary.endswith("MuJoCo: compiler settotalmass (compiler); Pinocchio: geom pole (mass)")

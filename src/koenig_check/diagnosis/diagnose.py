@@ -140,7 +140,8 @@ def _verdicts(
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in engines.items()}
     if parity.frame_offset is not None:  # Pinocchio dropped a jointless root body's pose: compare in MuJoCo's world
-        states["pinocchio"] = parity.frame_offset.segment_states(states["pinocchio"])
+        dropped = parity.frame_offset.engine
+        states[dropped] = parity.frame_offset.segment_states(states[dropped])
     return out + three_way.import_verdicts(states, findings, rtol, parity.segment_labels)
 
 

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.diagnosis.cause_effect import by_effect
-from koenig_check.engines.registry import label, names
+from koenig_check.engines.registry import label, names, reference, required
 from koenig_check.findings import Finding, Kind
 
 #: Default relative tolerance under which two engines "agree".
@@ -200,8 +200,8 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
     Parameters
     ----------
     runs : dict of str to EngineRun
-        Each engine's energies (``rigid``, ``armature``): needs ``"mujoco"`` and at least two others;
-        otherwise nothing is said.
+        Each engine's energies (``rigid``, ``armature``): needs the reference engine's
+        (:func:`~koenig_check.engines.registry.reference`) and at least two others; otherwise nothing is said.
     findings : sequence of Finding
         The model's findings (causes are looked up there).
     rtol : float
@@ -212,7 +212,8 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
         Per quantity, one per departing engine (or one saying no majority agrees), with the values at the pose
         of largest spread.
     """
-    if len(runs) < 3 or "mujoco" not in runs:
+    ref = reference()
+    if len(runs) < 3 or ref not in runs:
         return []
     engines = _ordered(runs)
     out = []
@@ -222,7 +223,7 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
         k = int(np.argmax(np.ptp(np.stack(list(rigid.values())), axis=0)))
         out += _verdicts("rigid-body energy", departing, {e: float(v[k]) for e, v in rigid.items()}, findings)
     arm = {e: np.asarray(runs[e].armature, dtype=float) for e in engines}
-    scale = np.abs(rigid["mujoco"]) + np.abs(arm["mujoco"])
+    scale = np.abs(rigid[ref]) + np.abs(arm[ref])  # the reference's whole energy
     departing = _departing(arm, rtol, scale)
     if departing is not None:
         k = int(np.argmax(np.ptp(np.stack(list(arm.values())), axis=0)))
@@ -244,8 +245,9 @@ def import_verdicts(
     Parameters
     ----------
     states : dict of str to SegmentStates
-        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``): needs
-        ``"mujoco"``, ``"pinocchio"`` and at least one other; otherwise nothing is said.
+        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``): needs the
+        required engines' (:func:`~koenig_check.engines.registry.required`) and at least one other; otherwise
+        nothing is said.
     findings : sequence of Finding
     rtol : float
     labels : mapping of str to str, optional
@@ -256,10 +258,11 @@ def import_verdicts(
     list of Finding
         One per quantity and departing engine (segments grouped), with the worst segment's values.
     """
-    if len(states) < 3 or not {"mujoco", "pinocchio"} <= set(states):
+    ref = reference()
+    if len(states) < 3 or not {ref, *required()} <= set(states):
         return []
     engines = _ordered(states)
-    common = [n for n in states["mujoco"].names if all(n in states[e].names for e in engines)]
+    common = [n for n in states[ref].names if all(n in states[e].names for e in engines)]
     if not common:
         return []
     sel = {e: states[e].select(segments=common) for e in engines}
@@ -271,7 +274,7 @@ def import_verdicts(
         "COM": ({e: s.com[0] for e, s in sel.items()}, "length"),
         "inertia": (world_inertia, "inertia"),
     }
-    size = max(float(np.abs(sel["mujoco"].com[0]).max()), 1.0)
+    size = max(float(np.abs(sel[ref].com[0]).max()), 1.0)
     about = {e: s.inertia_about_anchor() for e, s in sel.items()}
     grouped: dict[tuple[str, tuple[str, ...]], list[tuple[str, dict[str, Any]]]] = {}
     for quantity, (vals, kind) in quantities.items():
