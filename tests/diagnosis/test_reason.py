@@ -9,12 +9,12 @@ import pytest
 
 import koenig_check
 from koenig_check.cli import main
+from koenig_check.diagnosis.model_reason import short_reason
 from koenig_check.diagnosis.reason import (
     REASON_WIDTH,
     ROUNDING_LEVEL,
     ordered_causes,
     root_cause_groups,
-    short_reason,
 )
 from koenig_check.findings import Finding, Kind
 from koenig_check.testing import assert_energy_parity
@@ -155,7 +155,8 @@ def _departs() -> Finding:
 
 def test_a_reason_is_built_once_and_shown_whole_or_within_a_line() -> None:
     """One Reason: the row shows the check not made whole, the line cuts only it, at a word, within the width."""
-    from koenig_check.diagnosis.reason import REASON_WIDTH, model_reason
+    from koenig_check.diagnosis.model_reason import model_reason
+    from koenig_check.diagnosis.reason import REASON_WIDTH
 
     long = "its parser " + " ".join(f"word{k}" for k in range(60))  # an engine's own reason, 400 characters
     why = model_reason("m.xml", [_departs(), _unable(long)], "MuJoCo and Pinocchio differ by 1 relative (pose p)")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from koenig_check.diagnosis import reason
+from koenig_check.diagnosis import model_reason, reason
 from koenig_check.run import summaries
 from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
@@ -112,7 +112,7 @@ class CrossCheck(ResultLookup):
 
     def model_reason(
         self, comparison: ModelComparison, agreement: EngineAgreement, cli: bool = False
-    ) -> reason.Reason | None:
+    ) -> model_reason.Reason | None:
         """Why one model fails (None when it does not): the one reason both :meth:`reasons` and the verdict table show.
 
         Parameters
@@ -125,12 +125,12 @@ class CrossCheck(ResultLookup):
 
         Returns
         -------
-        koenig_check.diagnosis.reason.Reason or None
+        koenig_check.diagnosis.model_reason.Reason or None
         """
         if not reason.lead_line(comparison.findings) and agreement.agrees:
             return None
         gap = summaries.gap_words(comparison, self.rtol, cli) if not agreement.agrees else ""
-        return reason.model_reason(agreement.model, comparison.findings, gap)
+        return model_reason.model_reason(agreement.model, comparison.findings, gap)
 
     def reason(self) -> str:
         """One line saying why :attr:`ok` is False (empty when it is True): :meth:`reasons` joined."""

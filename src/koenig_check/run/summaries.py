@@ -151,7 +151,7 @@ class EngineAgreement:
     """Engine-versus-engine and engine-versus-exact agreement of one model.
 
     ``reason`` says in full why they do not agree (with the cause's values); ``gap`` says it in a few words, for
-    the one-line reason (:func:`koenig_check.diagnosis.reason.short_reason`).  ``reason`` is built from
+    the one-line reason (:func:`koenig_check.diagnosis.model_reason.short_reason`).  ``reason`` is built from
     ``symptoms`` (each way the engines differ, one sentence each) and ``cause`` (the known cause, or empty):
     read those, never ``reason`` cut apart.  ``causes`` holds the ids of the catalogued causes among them
     (:func:`koenig_check.causes.cause`), the most important first.
