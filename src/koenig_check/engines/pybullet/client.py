@@ -1,23 +1,18 @@
 """A PyBullet client of koenig-check's own: DIRECT, its C-level printing captured, the URDF loaded as users load it.
 
-PyBullet 3.2.7 prints from C to the process's standard output and error (``pybullet build time: ...`` when
-imported, its parser's warnings and errors while loading): left alone, that text would be mixed into the command line's
-output.  Every call here that may print runs with file descriptor 1 pointed at a temporary file; what PyBullet
-printed is kept, and on a refusal it is the engine's own reason.
+PyBullet 3.2.7 prints from C (``pybullet build time: ...`` to the standard error when imported, its parser's
+warnings and errors while loading): left alone, that text would be mixed into the command line's output.  Every
+call here that may print runs inside :func:`~koenig_check.engines.captured.captured_output`; what PyBullet printed
+is kept, and on a refusal it is the engine's own reason.
 """
 
 from __future__ import annotations
 
-import ctypes
-import io
-import os
 import sys
-import tempfile
-from collections.abc import Iterator
-from contextlib import contextmanager, redirect_stdout
 from pathlib import Path
 from typing import Any
 
+from koenig_check.engines.captured import captured_output
 from koenig_check.exceptions import ModelLoadError
 
 #: The flag its users pass to read the file's ``<inertial>`` (without it PyBullet computes inertia from
@@ -27,35 +22,6 @@ INERTIA_FROM_FILE = "URDF_USE_INERTIA_FROM_FILE"
 
 class PyBulletLoadError(ModelLoadError):
     """PyBullet refuses a file, or its joints cannot be paired with MuJoCo's (one line naming the file)."""
-
-
-@contextmanager
-def captured_output(out: list[str]) -> Iterator[None]:
-    """Run a block with the C-level standard output and error sent to a temporary file; append what was printed.
-
-    Parameters
-    ----------
-    out : list of str
-        Extended with the printed text (one string) when the block ends, normally or not.
-    """
-    sys.stdout.flush()
-    sys.stderr.flush()
-    libc = ctypes.CDLL(None)
-    saved = [os.dup(1), os.dup(2)]
-    python_level = io.StringIO()  # what PyBullet writes through Python's sys.stdout
-    with tempfile.TemporaryFile() as tmp:
-        os.dup2(tmp.fileno(), 1)
-        os.dup2(tmp.fileno(), 2)
-        try:
-            with redirect_stdout(python_level):
-                yield
-        finally:
-            libc.fflush(None)
-            for fd, kept in zip((1, 2), saved, strict=True):
-                os.dup2(kept, fd)
-                os.close(kept)
-            tmp.seek(0)
-            out.append(python_level.getvalue() + tmp.read().decode("utf-8", "replace"))
 
 
 def pybullet_module() -> Any:
