@@ -10,5 +10,7 @@ SPEC = EngineSpec(
     extra="idyntree",
     attach="koenig_check.engines.idyntree.attach:attach",
     load_alone="koenig_check.engines.idyntree.attach:load_alone",
+    formats=("urdf",),
+    precision=1e-12,  # double precision throughout
     color="tab:olive",
 )

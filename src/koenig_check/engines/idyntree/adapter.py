@@ -99,7 +99,12 @@ class IDynTreeEngine(Engine):
         massless = [name_of[h] for h in name_of if h not in members]
         if massless:
             self.findings.append(
-                Finding(Kind.SEGMENTS, "idyntree", "segments " + ", ".join(massless), "massless: left out (no kinetic energy)")
+                Finding(
+                    Kind.SEGMENTS,
+                    "idyntree",
+                    "segments " + ", ".join(massless),
+                    "massless: left out (no kinetic energy)",
+                )
             )
         self.segment_names = tuple(name_of[h] for h in heads)
         self._heads = np.array(heads, dtype=int)

@@ -3,20 +3,18 @@
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from koenig_check.engines.base import Engine
+from koenig_check.engines.idyntree import SPEC
 from koenig_check.engines.registry import not_used
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
-#: The file formats iDynTree's parser reads (``ModelLoader``: URDF; it has no MJCF reader).
-FORMATS = ("urdf",)
-#: Relative round-off of iDynTree's readings (double precision throughout; measured 1e-15 against MuJoCo).
-PRECISION = 1e-12
 #: Why iDynTree does not check an MJCF file.
 MJCF_REFUSAL = "iDynTree reads URDF only: its ModelLoader has no MJCF reader (it returns a model of 0 links)"
 
@@ -33,7 +31,7 @@ def _root_link(path: Path) -> str:
 
 
 def _frame(model: Any, name: str) -> int:
-    """iDynTree's frame (link or additional frame) of that name, or -1 (without iDynTree printing an error)."""
+    """The frame (link or additional frame) of that name in iDynTree's model, or -1 (without it printing an error)."""
     names = [model.getFrameName(k) for k in range(model.getNrOfFrames())]
     return names.index(name) if name in names else -1
 
@@ -62,7 +60,7 @@ def load_alone(source: Any, mj_model: Any) -> Engine:
     from koenig_check.engines.mujoco.loader import root_free_joint
 
     path = Path(source.path)
-    if source.format not in FORMATS:
+    if source.format not in SPEC.formats:
         raise IDynTreeLoadError(f"{path}: {MJCF_REFUSAL}")
     model = load_idyntree(path, tuple(source.package_dirs))
     floating = root_free_joint(mj_model) is not None
@@ -102,7 +100,10 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
     try:
         engine = load_alone(model.source, model.mujoco.model)
     except IDynTreeLoadError as err:
-        return None, [not_used("idyntree", one_line(err).removeprefix(f"{model.source.path}: "))]
+        refusal = not_used("idyntree", one_line(err).removeprefix(f"{model.source.path}: "))
+        if model.source.format not in SPEC.formats:
+            refusal = replace(refusal, cause="idyntree.mjcf.no-mjcf-reader")
+        return None, [refusal]
     except ImportError as err:
         return None, [not_used("idyntree", f"idyntree cannot be imported: {one_line(err)}")]
     return engine, list(engine.findings)

@@ -24,7 +24,7 @@ class IDynTreeLoadError(ModelLoadError):
 
 
 def _said(printed: list[str]) -> str:
-    """iDynTree's printed lines, each indented under the first line of a message."""
+    """The lines iDynTree printed, each indented under the first line of a message."""
     lines = [line.strip() for line in "".join(printed).splitlines() if line.strip()]
     return "".join("\n    " + line for line in lines)
 
@@ -54,7 +54,7 @@ def load_idyntree(path: Path, package_dirs: tuple[Path, ...] = ()) -> Any:
     with captured_output(printed):
         ok = loader.loadModelFromFile(str(path), "urdf", [str(d) for d in package_dirs])
         model = loader.model().copy() if ok else None
-    if not ok:
+    if model is None:
         raise IDynTreeLoadError(f"{path}: iDynTree's ModelLoader refuses the file" + _said(printed))
     if model.getNrOfLinks() == 0:
         raise IDynTreeLoadError(f"{path}: iDynTree's ModelLoader read no link from the file" + _said(printed))

@@ -161,7 +161,7 @@ class IDynTreeStateMap(VelocityMapped):
         return R, qpos[:, a : a + 3]
 
     def base_pose(self, qpos: np.ndarray) -> np.ndarray:
-        """iDynTree's ``world_H_base`` per pose, shape (P, 4, 4).
+        """The base pose ``world_H_base`` iDynTree takes, per pose, shape (P, 4, 4).
 
         Parameters
         ----------
@@ -179,7 +179,7 @@ class IDynTreeStateMap(VelocityMapped):
         return H
 
     def joint_positions(self, qpos: np.ndarray) -> np.ndarray:
-        """iDynTree's ``s`` (its DOF order), shape (P, n_dofs).
+        """The joint positions ``s`` iDynTree takes (its DOF order), shape (P, n_dofs).
 
         Parameters
         ----------

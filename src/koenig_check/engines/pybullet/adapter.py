@@ -95,7 +95,12 @@ class PyBulletEngine(Engine):
         massless = [name_of[h] for h in name_of if h not in members]
         if massless:
             self.findings.append(
-                Finding(Kind.SEGMENTS, "pybullet", "segments " + ", ".join(massless), "massless: left out (no kinetic energy)")
+                Finding(
+                    Kind.SEGMENTS,
+                    "pybullet",
+                    "segments " + ", ".join(massless),
+                    "massless: left out (no kinetic energy)",
+                )
             )
         self.segment_names = tuple(name_of[h] for h in heads)
         self._heads = np.array(heads, dtype=int)
@@ -201,7 +206,9 @@ class PyBulletEngine(Engine):
         links = self._read(qpos, qvel)
         m, D = self.tree.mass, self.tree.principal
         w_axes = np.einsum("plji,plj->pli", links["R_com"], links["omega"])  # ω in each link's principal axes
-        rigid = 0.5 * (np.einsum("l,pli,pli->p", m, links["v"], links["v"]) + np.einsum("li,pli,pli->p", D, w_axes, w_axes))
+        rigid = 0.5 * (
+            np.einsum("l,pli,pli->p", m, links["v"], links["v"]) + np.einsum("li,pli,pli->p", D, w_axes, w_axes)
+        )
         return EnergyParts(rigid=rigid, armature=np.zeros_like(rigid), reported=rigid.copy())
 
     def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:

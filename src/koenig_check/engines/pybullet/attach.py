@@ -2,20 +2,18 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from koenig_check.engines.base import Engine
+from koenig_check.engines.pybullet import SPEC
 from koenig_check.engines.registry import not_used
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
-#: The file formats PyBullet's parser reads as its users load a robot for dynamics (``loadURDF``).
-FORMATS = ("urdf",)
-#: Relative round-off of PyBullet's readings: it diagonalizes every inertia (up to 6.3e-8 lost per link).
-PRECISION = 1e-7
 #: Why PyBullet does not check an MJCF file (its ``loadMJCF`` is not a reader of MuJoCo's model: measured on 3.2.7).
 MJCF_REFUSAL = (
     "PyBullet reads URDF only: its loadMJCF ignores fullinertia, armature, default classes and freejoint and "
@@ -48,7 +46,7 @@ def load_alone(source: Any, mj_model: Any) -> Engine:
     from koenig_check.engines.pybullet.tree import read_tree
 
     path = Path(source.path)
-    if source.format not in FORMATS:
+    if source.format not in SPEC.formats:
         raise PyBulletLoadError(f"{path}: {MJCF_REFUSAL}")
     floating = root_free_joint(mj_model) is not None
     client = Client(source.package_dirs[0] if source.package_dirs else None)
@@ -78,13 +76,25 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         PyBullet's load findings, or one ``ENGINE_NOT_USED`` finding with its whole reason.
     """
     from koenig_check.engines.pybullet.client import PyBulletLoadError
+    from koenig_check.engines.pybullet.traps import inertial_findings, missing_meshes, option_findings
 
+    source = model.source
     if model.options.pinocchio_model is not None:
         return None, [not_used("pybullet", "Pinocchio was given another file (--pinocchio-model)")]
     try:
-        engine = load_alone(model.source, model.mujoco.model)
+        engine = load_alone(source, model.mujoco.model)
     except PyBulletLoadError as err:
-        return None, [not_used("pybullet", one_line(err).removeprefix(f"{model.source.path}: "))]
+        refusal = not_used("pybullet", one_line(err).removeprefix(f"{source.path}: "))
+        if source.format not in SPEC.formats:
+            return None, [replace(refusal, cause="pybullet.mjcf.load-mjcf")]
+        missing = missing_meshes(Path(source.path), tuple(source.package_dirs))
+        if missing:
+            refusal = replace(
+                refusal, values={**refusal.values, "missing meshes": missing}, cause="pybullet.urdf.missing-mesh"
+            )
+        return None, [refusal]
     except ImportError as err:
         return None, [not_used("pybullet", f"pybullet cannot be imported: {one_line(err)}")]
-    return engine, list(engine.findings)
+    path = Path(source.path)
+    traps = inertial_findings(engine, path) + option_findings(engine, source, model.mujoco.model)
+    return engine, list(engine.findings) + traps

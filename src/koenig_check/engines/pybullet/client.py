@@ -8,6 +8,7 @@ is kept, and on a refusal it is the engine's own reason.
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 from typing import Any
@@ -38,8 +39,12 @@ def pybullet_module() -> Any:
     return pybullet
 
 
+#: The source location PyBullet prefixes each message with (``b3Warning[examples/.../File.cpp,126]:``).
+_LOCATION = re.compile(r"b3(?:Warning|Error|Printf)\[[^\]]*\]:")
+
+
 def engine_text(printed: str) -> str:
-    """What PyBullet printed, its lines that say something kept (warnings, errors), one per line.
+    """What PyBullet printed, one message part a line, without its source locations and its banner.
 
     Parameters
     ----------
@@ -49,7 +54,7 @@ def engine_text(printed: str) -> str:
     -------
     str
     """
-    lines = [line.strip() for line in printed.splitlines()]
+    lines = [line.strip() for line in _LOCATION.sub("\n", printed).splitlines()]
     return "\n".join(line for line in lines if line and not line.startswith("pybullet build time"))
 
 
@@ -112,9 +117,7 @@ class Client:
         printed: list[str] = []
         try:
             with captured_output(printed):
-                body = self.p.loadURDF(
-                    str(path), useFixedBase=not floating, flags=value, physicsClientId=self.id
-                )
+                body = self.p.loadURDF(str(path), useFixedBase=not floating, flags=value, physicsClientId=self.id)
         except self.p.error as err:
             said = engine_text(printed[0] if printed else "") or str(err)
             text = "\n".join("    " + line for line in [str(err), *said.splitlines()] if line)
@@ -130,5 +133,5 @@ class Client:
     def __del__(self) -> None:
         try:
             self.close()
-        except Exception:  # noqa: BLE001 - interpreter shutdown: the module may be gone
+        except Exception:  # interpreter shutdown: the module may be gone
             pass

@@ -85,7 +85,12 @@ def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: b
         kind = _MJ_KIND[int(mj_model.jnt_type[j])]
         qadr, vadr = int(mj_model.jnt_qposadr[j]), int(mj_model.jnt_dofadr[j])
         body = int(mj_model.jnt_bodyid[j])
-        if kind == "free" and floating and mj_model.body_parentid[body] == 0 and mj_model.body(body).name == tree.link_names[0]:
+        if (
+            kind == "free"
+            and floating
+            and mj_model.body_parentid[body] == 0
+            and mj_model.body(body).name == tree.link_names[0]
+        ):
             pairs.append(JointPair(name, kind, 0, qadr, vadr, -1))
             continue
         row = rows.get(name)
