@@ -96,7 +96,8 @@ def against_mujoco_and_pinocchio(pair, name: str, n_poses: int = 6, seed: int = 
     out = {}
     for ref_name in ("mujoco", "pinocchio"):
         ref = pair.engines[ref_name]
-        out[f"energy vs {ref_name}"] = _rel(engine.kinetic_energy(qpos, qvel).total, ref.kinetic_energy(qpos, qvel).total)
+        energies = (e.kinetic_energy(qpos, qvel).total for e in (engine, ref))
+        out[f"energy vs {ref_name}"] = _rel(*energies)
         out[f"M vs {ref_name}"] = _rel(engine.mass_matrix(qpos), ref.mass_matrix(qpos))
         out[f"inverse dynamics vs {ref_name}"] = _rel(
             engine.inverse_dynamics(qpos, qvel, qacc), ref.inverse_dynamics(qpos, qvel, qacc)
