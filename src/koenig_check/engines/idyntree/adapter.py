@@ -92,8 +92,9 @@ class IDynTreeEngine(Engine):
                     head = -1
                     break
                 head = traversal.getParentLinkFromLinkIndex(head).getIndex()
-            if head >= 0 and self._link_mass[link] > 0:
-                members.setdefault(head, []).append(link)
+            if head >= 0 and (self._link_mass[link] > 0 or self._link_inertia[link].any()):
+                members.setdefault(head, []).append(link)  # a massless link's inertia counts
+        members = {h: links for h, links in members.items() if self._link_mass[links].sum() > 0}
         order = {p.name: k for k, p in enumerate(self.state_map.pairs)}
         heads = sorted(members, key=lambda h: order[name_of[h]])
         massless = [name_of[h] for h in name_of if h not in members]

@@ -88,8 +88,9 @@ class PyBulletEngine(Engine):
         members: dict[int, list[int]] = {}
         for row in range(len(tree.link_names)):
             head = self._carrier(row)
-            if head >= 0 and tree.mass[row] > 0:
+            if head >= 0 and (tree.mass[row] > 0 or tree.principal[row].any()):  # a massless link's inertia counts
                 members.setdefault(head, []).append(row)
+        members = {h: rows for h, rows in members.items() if tree.mass[rows].sum() > 0}
         order = {p.name: k for k, p in enumerate(self.state_map.pairs)}
         heads = sorted(members, key=lambda h: order[name_of[h]])
         massless = [name_of[h] for h in name_of if h not in members]
