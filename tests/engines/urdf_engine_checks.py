@@ -128,3 +128,33 @@ def precision(name: str) -> float:
     float
     """
     return spec(name).precision
+
+
+#: A moving arm with a massless foot that has a moment of inertia (example-robot-data's bolt has four).
+MASSLESS_FOOT = """<robot name="massless_foot">
+  <link name="base"/>
+  <link name="leg"><inertial><origin xyz="0 0 -0.1"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.002" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="foot"><inertial><mass value="0"/>
+    <inertia ixx="0.004" iyy="0.005" izz="0.003" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="hip" type="revolute"><parent link="base"/><child link="leg"/><axis xyz="1 0 0"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="ankle" type="fixed"><parent link="leg"/><child link="foot"/><origin xyz="0 0 -0.3"/></joint>
+</robot>
+"""
+
+
+def exact_energy(states) -> np.ndarray:
+    """``Σ ½ m v_C² + ½ ω·I_C ω`` of segment states (world inertia from the segment's own), shape (P,).
+
+    Parameters
+    ----------
+    states : SegmentStates
+
+    Returns
+    -------
+    ndarray, shape (P,)
+    """
+    w_body = np.einsum("pbji,pbj->pbi", states.rotation, states.omega)
+    rot = np.einsum("pbi,bij,pbj->p", w_body, states.inertia_body, w_body)
+    return 0.5 * (np.einsum("b,pbi,pbi->p", states.mass, states.v_com, states.v_com) + rot)

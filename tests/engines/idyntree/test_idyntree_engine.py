@@ -54,3 +54,20 @@ def test_an_mjcf_is_a_refusal_not_an_empty_robot() -> None:
     assert pair.attach(ENGINE) is None
     refusal = pair.refusal(ENGINE)
     assert refusal is not None and refusal.cause == "idyntree.mjcf.no-mjcf-reader"
+
+
+def test_a_massless_leaf_link_is_a_frame_its_inertia_dropped(tmp_path: Path) -> None:
+    """iDynTree makes a massless link fixed to one other a frame (as MuJoCo drops its inertia): by hand."""
+    from urdf_engine_checks import MASSLESS_FOOT, exact_energy
+
+    from koenig_check.engines import random_states
+
+    path = tmp_path / "massless_foot.urdf"
+    path.write_text(MASSLESS_FOOT)
+    pair = load_model(str(path))
+    engine = pair.attach(ENGINE)
+    qpos, qvel = random_states(pair.mujoco.model, 4, seed=2)
+    own = engine.kinetic_energy(qpos, qvel).total
+    assert np.abs(exact_energy(engine.segment_states(qpos, qvel)) - own).max() <= 1e-12 * own.max()
+    M = engine.mass_matrix(qpos[:1])[0, 0, 0]
+    assert M == pytest.approx(0.01 + 0.1**2, rel=precision(ENGINE))

@@ -57,3 +57,22 @@ def test_its_printing_does_not_reach_the_output(capfd: pytest.CaptureFixture[str
     assert pair.attach(ENGINE) is not None
     out, err = capfd.readouterr()
     assert "No inertial data" not in out + err and "b3Warning" not in out + err
+
+
+def test_a_massless_links_inertia_is_in_its_segment_as_pybullet_counts_it(tmp_path: Path) -> None:
+    """PyBullet keeps the inertia of a link of mass 0 (as Pinocchio does): its segments must too, or the states'
+    energy would not be PyBullet's own."""
+    from urdf_engine_checks import MASSLESS_FOOT, exact_energy
+
+    from koenig_check.engines import random_states
+
+    path = tmp_path / "massless_foot.urdf"
+    path.write_text(MASSLESS_FOOT)
+    pair = load_model(str(path))
+    engine = pair.attach(ENGINE)
+    qpos, qvel = random_states(pair.mujoco.model, 4, seed=2)
+    own = engine.kinetic_energy(qpos, qvel).total
+    assert np.abs(exact_energy(engine.segment_states(qpos, qvel)) - own).max() <= 1e-12 * own.max()
+    leg_about_hip = 0.01 + 0.1**2  # the leg's moment about the hip axis (x): by hand
+    M = engine.mass_matrix(qpos[:1])[0, 0, 0]
+    assert M == pytest.approx(leg_about_hip + 0.004, rel=precision(ENGINE))  # the foot's ixx, no mass, counted
