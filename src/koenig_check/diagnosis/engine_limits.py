@@ -20,7 +20,9 @@ The limits are read from the model's data: a Drake ``ANCHOR`` finding on a joint
 joints (Drake's parser drops the body's ``pos`` for the first of them, which moves them all), a Drake
 ``ARMATURE`` finding where Drake has none and MuJoCo has some, a Drake ``IGNORED_CONSTRUCT`` (a ``<frame>``,
 an ``<include>``), a Drake ``INERTIA`` finding on a link whose mass or inertia its URDF parser replaced (a
-massless link with a rotational inertia becomes a 1 kg body: Drake cannot re-express it about its COM).
+massless link with a rotational inertia becomes a 1 kg body: Drake cannot re-express it about its COM); and for
+any optional engine, a finding that carries a catalogued cause the engine itself reads differently
+(:mod:`koenig_check.engines.catalogue`: PyBullet's 1 kg for a link without ``<inertial>``).
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from koenig_check.engines.catalogue import cause
 from koenig_check.engines.registry import LABEL
 from koenig_check.findings import Finding, Kind
 
@@ -64,6 +67,16 @@ def _drake_has_none(finding: Finding) -> bool:
     )
 
 
+def _own_cause(finding: Finding) -> tuple[str, list[str]] | None:
+    """A catalogued cause of the finding's own engine that it reads differently: what, and the segments concerned."""
+    if not finding.cause:
+        return None
+    declared = cause(finding.cause)
+    if declared.engine != finding.engine or declared.reading(finding.engine).reads == "as written":
+        return None
+    return f"reads {declared.construct} differently: {declared.reading(finding.engine).how}", list(finding.segments)
+
+
 def parser_limit(finding: Finding, mj_model: Any) -> tuple[str, list[str]] | None:
     """What a finding shows the engine's MJCF parser does not read, and the joints concerned; ``None`` otherwise.
 
@@ -81,6 +94,9 @@ def parser_limit(finding: Finding, mj_model: Any) -> tuple[str, list[str]] | Non
         ``<frame>``), the element itself (``("ignores <frame>", ["frame f in body b"])``).
     """
     tag, _, name = finding.element.partition(" ")
+    own = _own_cause(finding)
+    if own is not None:
+        return own
     if finding.kind is Kind.ANCHOR and tag == "joint" and _of_several(mj_model, name):
         return LIMITS[Kind.ANCHOR], [name]
     if finding.kind is Kind.ARMATURE and _drake_has_none(finding):
@@ -184,5 +200,5 @@ def unable_finding(engine: str, limits: Sequence[tuple[str, list[str]]], parser:
         "model",
         f"{LABEL[engine]} cannot check this model: its {parser} parser " + "; ".join(parts),
         segments=tuple(name for names in by_limit.values() for name in names),
-        hint="without Drake: --engines mujoco,pinocchio",
+        hint=f"without {LABEL[engine]}: --engines mujoco,pinocchio",
     )

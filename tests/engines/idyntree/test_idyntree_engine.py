@@ -71,3 +71,24 @@ def test_a_massless_leaf_link_is_a_frame_its_inertia_dropped(tmp_path: Path) -> 
     assert np.abs(exact_energy(engine.segment_states(qpos, qvel)) - own).max() <= 1e-12 * own.max()
     M = engine.mass_matrix(qpos[:1])[0, 0, 0]
     assert M == pytest.approx(0.01 + 0.1**2, rel=precision(ENGINE))
+
+
+def test_a_massless_link_with_inertia_takes_idyntree_out_of_the_vote() -> None:
+    """The catalogued cause on its fixture: iDynTree drops the foot's inertia (a frame), MuJoCo's fusestatic too;
+    Pinocchio and PyBullet keep it.  Named, iDynTree could not check the model; MuJoCo departs."""
+    import koenig_check
+    from koenig_check.causes import cause, fixture_path
+    from koenig_check.findings import Kind
+
+    cause_id = "idyntree.urdf.massless-link-inertia"
+    path = str(fixture_path(cause(cause_id)))
+    engines = ("mujoco", "pinocchio", "pybullet", "idyntree")
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=engines)
+    findings = check.comparisons[0].findings
+    (root,) = [f for f in findings if f.cause == cause_id]
+    assert root.values["links"] == ["foot"] and root.segments == ("hip",) and root.root_cause
+    assert [f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE] == ["idyntree"] and not check.ok
+    pair = load_model(path)
+    M = {e: pair.engine(e).mass_matrix(np.zeros((1, 1)))[0, 0, 0] for e in ("idyntree", "pinocchio")}
+    assert M["idyntree"] == pytest.approx(0.01 + 0.1**2, rel=1e-12)  # by hand, the leg alone
+    assert M["pinocchio"] == pytest.approx(0.01 + 0.1**2 + 0.004, rel=1e-12)  # and the foot's ixx

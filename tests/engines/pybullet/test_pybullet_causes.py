@@ -55,15 +55,16 @@ def test_merging_fixed_links_is_sized_on_the_robot() -> None:
     assert found.values["M change"] > 0.1
 
 
-def test_a_link_without_inertial_is_named_as_pybullets_departure() -> None:
+def test_a_link_without_inertial_takes_pybullet_out_of_the_vote() -> None:
+    """PyBullet was given another robot (1 kg on the camera): named, it could not check the model; no verdict."""
     cause_id = "pybullet.urdf.link-without-inertial"
     check = koenig_check.compare(_fixture(cause_id), n_poses=3, formulas=["exact"], engines=ALL)
     findings = check.comparisons[0].findings
     root = _with_cause(findings, cause_id)
     assert root.root_cause and root.values["links"] == ["camera"] and root.segments == ("shoulder",)
-    verdicts = [f for f in findings if f.kind is Kind.VERDICT]
-    assert verdicts and {f.engine for f in verdicts} == {"pybullet"} and not check.ok
-    assert all(f.hint == root.summary for f in verdicts)  # each verdict names the catalogued construct
+    (unable,) = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
+    assert unable.engine == "pybullet" and cause(cause_id).construct in unable.summary and not check.ok
+    assert not [f for f in findings if f.kind is Kind.VERDICT]  # MuJoCo, Pinocchio and iDynTree agree
     # The effect by hand: 1 kg at 0.3 m with a unit moment adds 1 + 0.3² to the file's 0.008 + 0.15².
     pair = load_model(_fixture(cause_id))
     M = pair.attach("pybullet").mass_matrix(np.zeros((1, 1)))[0, 0, 0]
@@ -79,9 +80,12 @@ def test_a_root_without_inertial_departs_only_when_the_base_floats() -> None:
     findings = floating.comparisons[0].findings
     root = _with_cause(findings, cause_id)
     assert root.root_cause and root.segments == ("root_joint",) and not floating.ok
-    (mass,) = [f for f in findings if f.kind is Kind.VERDICT and f.element.endswith(" mass")]
-    assert mass.engine == "pybullet" and mass.values["pybullet"] == pytest.approx(5.0 + 1.0, rel=1e-12)
-    assert mass.values["mujoco"] == pytest.approx(5.0, rel=1e-12)
+    assert [f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE] == ["pybullet"]
+    pair = load_model(_fixture(cause_id), floating=True)
+    q0, zero = np.asarray(pair.mujoco.model.qpos0)[None], np.zeros((1, pair.mujoco.nv))
+    masses = {e: pair.engine(e).segment_states(q0, zero).mass[0] for e in ("mujoco", "pybullet")}
+    assert masses["mujoco"] == pytest.approx(5.0, rel=1e-12)  # the trunk, welded to base_link
+    assert masses["pybullet"] == pytest.approx(5.0 + 1.0, rel=1e-12)  # and PyBullet's 1 kg on base_link
 
 
 def test_a_missing_mesh_is_pybullets_refusal_with_its_own_text() -> None:
@@ -110,3 +114,26 @@ def test_options_that_change_nothing_are_not_said() -> None:
     assert pybullet is not None
     said = {f.cause for f in pair.optional_findings}
     assert "pybullet.urdf.merge-fixed-links" not in said
+
+
+UNBALANCED = """<robot name="unbalanced">
+  <link name="base"/>
+  <link name="arm"><inertial><origin xyz="0.2 0 0"/><mass value="2"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.25" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="swing" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="1 0 0"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_an_inertia_breaking_the_triangle_inequality_is_zeroed_and_pybullet_does_not_vote(tmp_path) -> None:
+    """0.1 + 0.1 < 0.25: PyBullet sets the moments to zero (MuJoCo refuses it unless asked to repair it)."""
+    path = tmp_path / "unbalanced.urdf"
+    path.write_text(UNBALANCED)
+    pair = load_model(str(path), repair_inertia=True)
+    pybullet = pair.attach("pybullet")
+    (zeroed,) = [f for f in pair.optional_findings if f.kind is Kind.INERTIA and f.engine == "pybullet"]
+    assert zeroed.values["moments in PyBullet"] == [0.0, 0.0, 0.0] and zeroed.segments == ("swing",)
+    assert pybullet.mass_matrix(np.zeros((1, 1)))[0, 0, 0] == 0.0  # the COM is on the axis: only Ixx was left
+    check = koenig_check.compare(str(path), n_poses=2, formulas=["exact"], engines=ALL, repair_inertia=True)
+    assert "pybullet" in [f.engine for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]

@@ -240,6 +240,15 @@ class IDynTreeEngine(Engine):
             tau[p, 6:] = self._torques.jointTorques().toNumPy()
         return sm.force_to_canonical(qpos, tau)
 
+    def segment_of_link(self) -> dict[int, str]:
+        """Link index (iDynTree's) -> the segment it moves with (links fixed to the world, massless segments left out).
+
+        Returns
+        -------
+        dict of int to str
+        """
+        return {int(k): self.segment_names[b] for b, links in enumerate(self._members) for k in links}
+
     def armature_per_dof(self) -> np.ndarray:
         """A URDF has no armature: zero on every canonical dof.
 

@@ -106,4 +106,6 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         return None, [refusal]
     except ImportError as err:
         return None, [not_used("idyntree", f"idyntree cannot be imported: {one_line(err)}")]
-    return engine, list(engine.findings)
+    from koenig_check.engines.idyntree.traps import frame_findings
+
+    return engine, list(engine.findings) + frame_findings(engine, Path(model.source.path))

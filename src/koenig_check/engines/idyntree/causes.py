@@ -1,4 +1,4 @@
-"""The files iDynTree cannot read (it read every URDF tried exactly), and iDynTree's reading of a fixture.
+"""What iDynTree reads differently (an MJCF; a massless link's inertia), and iDynTree's reading of a fixture.
 
 Each :class:`~koenig_check.causes.Cause` is measured on its fixture by the suite (``tests/causes/``) with
 :func:`measure`, iDynTree's own reading of a file: ``ModelLoader`` and ``getFreeFloatingMassMatrix`` at ``s = 0``.
@@ -35,6 +35,31 @@ CAUSES: tuple[Cause, ...] = (
         brief="iDynTree has no MJCF reader",
         hint="check the URDF of the robot with iDynTree, or leave iDynTree out (--engines)",
         fixture="urdf_only_mjcf.xml",
+    ),
+    Cause(
+        id="idyntree.urdf.massless-link-inertia",
+        construct="a massless <link> with a rotational inertia fixed to another link",
+        formats=("urdf",),
+        readings=(
+            Reading(
+                "mujoco",
+                "differently",
+                "fusestatic merges the link into its parent without its rotational inertia",
+                measured="4.0.0",
+            ),
+            Reading("pinocchio", "as written", measured="4.1.0"),
+            Reading("pybullet", "as written", measured="3.2.7"),
+            Reading(
+                "idyntree",
+                "differently",
+                "makes the link a frame of the link it is fixed to: its rotational inertia is dropped",
+                measured=MEASURED,
+            ),
+        ),
+        quantities=("inertia",),
+        brief="massless link's inertia dropped by iDynTree (the link made a frame)",
+        hint="give the link its mass, or fold its inertia into the link it is fixed to",
+        fixture="idyntree_massless_link_inertia.urdf",
     ),
 )
 

@@ -76,7 +76,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         PyBullet's load findings, or one ``ENGINE_NOT_USED`` finding with its whole reason.
     """
     from koenig_check.engines.pybullet.client import PyBulletLoadError
-    from koenig_check.engines.pybullet.traps import inertial_findings, missing_meshes, option_findings
+    from koenig_check.engines.pybullet.traps import inertial_findings, missing_meshes, option_findings, zeroed_findings
 
     source = model.source
     if model.options.pinocchio_model is not None:
@@ -96,5 +96,6 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
     except ImportError as err:
         return None, [not_used("pybullet", f"pybullet cannot be imported: {one_line(err)}")]
     path = Path(source.path)
-    traps = inertial_findings(engine, path) + option_findings(engine, source, model.mujoco.model)
+    traps = inertial_findings(engine, path) + zeroed_findings(engine, path)
+    traps += option_findings(engine, source, model.mujoco.model)
     return engine, list(engine.findings) + traps

@@ -5,7 +5,9 @@
 * the loading options users choose (``loadURDF`` without ``URDF_USE_INERTIA_FROM_FILE``, with
   ``URDF_MERGE_FIXED_LINKS``), each measured on this robot: the file loaded again with the option, its mass matrix
   at the reference pose against the one checked, the change said when it is above PyBullet's precision;
-* a refusal explained: an MJCF, a mesh file that does not exist.
+* a refusal explained: an MJCF, a mesh file that does not exist;
+* an inertia that breaks the triangle inequality, which PyBullet sets to zero (MuJoCo refuses such a file unless
+  asked to repair it: not a catalogued cause, whose fixture every engine must load as it is).
 """
 
 from __future__ import annotations
@@ -132,6 +134,69 @@ def inertial_findings(engine: Any, path: Path) -> list[Finding]:
     return out
 
 
+def _file_moments(link: ET.Element) -> np.ndarray | None:
+    """The principal moments of a URDF link's ``<inertia>`` as written (None without one)."""
+    inertia = link.find("inertial/inertia")
+    if inertia is None:
+        return None
+    value = {k: float(inertia.get(k, "0") or 0) for k in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")}
+    tensor = np.array(
+        [
+            [value["ixx"], value["ixy"], value["ixz"]],
+            [value["ixy"], value["iyy"], value["iyz"]],
+            [value["ixz"], value["iyz"], value["izz"]],
+        ]
+    )
+    return np.linalg.eigvalsh(tensor)
+
+
+def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
+    """Links whose inertia breaks the triangle inequality (A + B < C): PyBullet sets it to zero (measured on 3.2.7).
+
+    Such a link is another robot than the file's in PyBullet: the finding is the generic "inertia replaced" limit
+    (an ``INERTIA`` finding with PyBullet's mass), so that PyBullet casts no vote on the model.
+
+    Parameters
+    ----------
+    engine : PyBulletEngine
+    path : Path
+
+    Returns
+    -------
+    list of Finding
+    """
+    robot = _urdf(path)
+    if robot is None:
+        return []
+    tree = engine.tree
+    segment = {int(r): engine.segment_names[k] for k, rows in enumerate(engine._members) for r in rows}
+    rows = {name: r for r, name in enumerate(tree.link_names)}
+    out = []
+    for link in robot.findall("link"):
+        moments, row = _file_moments(link), rows.get(link.get("name", ""), -1)
+        if moments is None or row not in segment or tree.principal[row].any():
+            continue
+        if not moments[0] + moments[1] < moments[2]:  # sorted: A + B >= C holds, PyBullet keeps it
+            continue
+        out.append(
+            Finding(
+                Kind.INERTIA,
+                "pybullet",
+                f"link {tree.link_names[row]}",
+                "PyBullet sets an inertia that breaks the triangle inequality (A + B < C) to zero",
+                {
+                    "mass in PyBullet": float(tree.mass[row]),
+                    "moments in the file": np.round(moments, 12).tolist(),
+                    "moments in PyBullet": tree.principal[row].tolist(),
+                },
+                affects_energy=True,
+                root_cause=True,
+                segments=(segment[row],) if row in segment else (),
+            )
+        )
+    return out
+
+
 def option_findings(engine: Any, source: Any, mj_model: Any) -> list[Finding]:
     """Each loading option of :data:`OPTIONS` measured on this robot: its change of M at the reference pose.
 
@@ -170,7 +235,7 @@ def option_findings(engine: Any, source: Any, mj_model: Any) -> list[Finding]:
             continue  # the option cannot even load this robot: nothing to size
         finally:
             client.close()
-        change = float(np.abs(other - checked).max()) / max(scale, 1e-300)
+        change = float(np.abs(other - checked).max()) / max(scale, float(np.abs(other).max()), 1e-300)
         if change > SPEC.precision:
             words = "without URDF_USE_INERTIA_FROM_FILE" if not flags else "with URDF_MERGE_FIXED_LINKS"
             out.append(
