@@ -218,15 +218,19 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine (:func:`koenig_check.engines.registry.names`), each compared where it loads both
-        files.  Engines named here are asked for: one that cannot compare the files fails the proof.
+        Default: every engine whose parser reads the export's format (its spec's ``formats``), each compared where
+        it loads both files.  Engines named here are asked for: one that cannot compare the files fails the proof.
 
     Returns
     -------
     Proof
     """
     asked = () if engines is None else tuple(engines)
-    engines = registry.names() if engines is None else tuple(engines)
+    if engines is None:  # every engine whose parser reads the export's format (PyBullet, iDynTree: URDF only)
+        target = detect_format(Path(export))
+        engines = tuple(n for n in registry.names() if target in registry.spec(n).formats)
+    else:
+        engines = tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)
