@@ -138,7 +138,7 @@ def _bolt() -> Path:
         pytest.skip(f"bolt (example-robot-data) not found: {err}")
 
 
-def test_bolt_massless_feet_drake_replaces_make_it_unable_not_a_voter(drake_the_only_other_engine: None) -> None:
+def test_bolt_massless_feet_drake_replaces_make_it_unable_not_a_voter() -> None:
     """bolt's FL_FOOT and FR_FOOT: mass 0 and a rotational inertia.  Drake's URDF parser cannot re-express that
     about a COM and builds a 1 kg link instead: another robot, so Drake casts no vote ("all three engines differ,
     Drake departs" before); named, it could not check the model; the pair's cause (fusestatic) is the reason."""
@@ -191,9 +191,7 @@ LIMITED_AND_DISAGREEING = [
 @pytest.mark.parametrize(
     ("name", "path", "options"), LIMITED_AND_DISAGREEING, ids=[c[0] for c in LIMITED_AND_DISAGREEING]
 )
-def test_an_engine_that_cannot_check_a_model_makes_no_verdict(
-    name, path, options, engines, drake_the_only_other_engine
-) -> None:
+def test_an_engine_that_cannot_check_a_model_makes_no_verdict(name, path, options, engines) -> None:
     model = load_model(path, engines=NAMED, **options)
     model.attach("drake")
     poses = random_pose_range(model.mujoco.model, 0, 4, 0, 1.0)

@@ -21,6 +21,8 @@ import numpy as np
 from koenig_check.engines.pybullet import SPEC
 from koenig_check.findings import Finding, Kind
 
+#: The value a zeroed-inertia finding carries PyBullet's moments under (what its parser limit reads).
+MOMENTS_IN_PYBULLET = "moments in PyBullet"
 #: The loading options measured on each robot: cause id -> the flags its users pass.
 OPTIONS = {
     "pybullet.urdf.inertia-from-collision": (),
@@ -153,8 +155,8 @@ def _file_moments(link: ET.Element) -> np.ndarray | None:
 def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
     """Links whose inertia breaks the triangle inequality (A + B < C): PyBullet sets it to zero (measured on 3.2.7).
 
-    Such a link is another robot than the file's in PyBullet: the finding is the generic "inertia replaced" limit
-    (an ``INERTIA`` finding with PyBullet's mass), so that PyBullet casts no vote on the model.
+    Such a link is another robot than the file's in PyBullet: the finding shows one of its parser limits
+    (:mod:`koenig_check.engines.pybullet.limits`), so that PyBullet casts no vote on the model.
 
     Parameters
     ----------
@@ -187,7 +189,7 @@ def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
                 {
                     "mass in PyBullet": float(tree.mass[row]),
                     "moments in the file": np.round(moments, 12).tolist(),
-                    "moments in PyBullet": tree.principal[row].tolist(),
+                    MOMENTS_IN_PYBULLET: tree.principal[row].tolist(),
                 },
                 affects_energy=True,
                 root_cause=True,
