@@ -32,7 +32,7 @@ _MJ_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 
 
 @dataclass(frozen=True)
-class JointPair:
+class IDynTreeJointPair:
     """One MuJoCo joint and iDynTree's joint (or floating base) it maps to.
 
     Parameters
@@ -66,7 +66,9 @@ def joint_kind(joint: object) -> str:
     return "fixed" if joint.isFixedJoint() else "spherical"  # type: ignore[attr-defined]
 
 
-def pair_joints(mj_model: mujoco.MjModel, model: object, path: str, base: int, floating: bool) -> list[JointPair]:
+def pair_joints(
+    mj_model: mujoco.MjModel, model: object, path: str, base: int, floating: bool
+) -> list[IDynTreeJointPair]:
     """Pair every MuJoCo joint with iDynTree's joint of the same name (the free root with the floating base).
 
     Parameters
@@ -80,7 +82,7 @@ def pair_joints(mj_model: mujoco.MjModel, model: object, path: str, base: int, f
 
     Returns
     -------
-    list of JointPair
+    list of IDynTreeJointPair
 
     Raises
     ------
@@ -98,7 +100,7 @@ def pair_joints(mj_model: mujoco.MjModel, model: object, path: str, base: int, f
         kind = _MJ_KIND[int(mj_model.jnt_type[j])]
         qadr, vadr = int(mj_model.jnt_qposadr[j]), int(mj_model.jnt_dofadr[j])
         if kind == "free" and floating and mj_model.body_parentid[mj_model.jnt_bodyid[j]] == 0:
-            pairs.append(JointPair(name, kind, base, qadr, vadr, -1))
+            pairs.append(IDynTreeJointPair(name, kind, base, qadr, vadr, -1))
             continue
         joint = joints.get(name)
         if joint is None:
@@ -108,7 +110,9 @@ def pair_joints(mj_model: mujoco.MjModel, model: object, path: str, base: int, f
         if joint_kind(joint) != kind:
             mismatch.append(f"{name}: mujoco {kind} vs idyntree {joint_kind(joint)}")
             continue
-        pairs.append(JointPair(name, kind, int(joint.getSecondAttachedLink()), qadr, vadr, int(joint.getDOFsOffset())))
+        pairs.append(
+            IDynTreeJointPair(name, kind, int(joint.getSecondAttachedLink()), qadr, vadr, int(joint.getDOFsOffset()))
+        )
     only_idt = [n for n in joints if n not in used]
     if only_mj or only_idt or mismatch:
         parts = []
@@ -127,7 +131,7 @@ class IDynTreeStateMap(VelocityMapped):
 
     Parameters
     ----------
-    pairs : list of JointPair
+    pairs : list of IDynTreeJointPair
     n_dofs : int
         iDynTree's joint DOFs.
     nq, nv : int
@@ -139,7 +143,13 @@ class IDynTreeStateMap(VelocityMapped):
     """
 
     def __init__(
-        self, pairs: list[JointPair], n_dofs: int, nq: int, nv: int, root_to_base: np.ndarray, fixed_root: np.ndarray
+        self,
+        pairs: list[IDynTreeJointPair],
+        n_dofs: int,
+        nq: int,
+        nv: int,
+        root_to_base: np.ndarray,
+        fixed_root: np.ndarray,
     ) -> None:
         self.pairs = tuple(pairs)
         self.nq, self.nv, self.n_dofs = nq, nv, n_dofs

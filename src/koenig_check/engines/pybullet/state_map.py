@@ -33,7 +33,7 @@ _COMPATIBLE = {"hinge": "revolute", "slide": "prismatic"}
 
 
 @dataclass(frozen=True)
-class JointPair:
+class PyBulletJointPair:
     """One MuJoCo joint and PyBullet's joint (or floating base) it maps to.
 
     Parameters
@@ -58,7 +58,7 @@ class JointPair:
     u: int
 
 
-def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: bool) -> list[JointPair]:
+def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: bool) -> list[PyBulletJointPair]:
     """Pair every MuJoCo joint with PyBullet's joint of the same name (the free root with the floating base).
 
     Parameters
@@ -71,7 +71,7 @@ def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: b
 
     Returns
     -------
-    list of JointPair
+    list of PyBulletJointPair
 
     Raises
     ------
@@ -91,7 +91,7 @@ def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: b
             and mj_model.body_parentid[body] == 0
             and mj_model.body(body).name == tree.link_names[0]
         ):
-            pairs.append(JointPair(name, kind, 0, qadr, vadr, -1))
+            pairs.append(PyBulletJointPair(name, kind, 0, qadr, vadr, -1))
             continue
         row = rows.get(name)
         if row is None:
@@ -101,7 +101,7 @@ def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: b
         if _COMPATIBLE.get(kind) != tree.joint_types[row]:
             mismatch.append(f"{name}: mujoco {kind} vs pybullet {tree.joint_types[row]}")
             continue
-        pairs.append(JointPair(name, kind, row, qadr, vadr, int(tree.u_index[row])))
+        pairs.append(PyBulletJointPair(name, kind, row, qadr, vadr, int(tree.u_index[row])))
     only_pb = [n for n in rows if n not in used]
     if floating and not any(p.kind == "free" for p in pairs):
         only_pb.append(f"floating base {tree.link_names[0]}")
@@ -127,13 +127,13 @@ class PyBulletStateMap(VelocityMapped):
 
     Parameters
     ----------
-    pairs : list of JointPair
+    pairs : list of PyBulletJointPair
     tree : BodyTree
     nq, nv : int
         Canonical sizes.
     """
 
-    def __init__(self, pairs: list[JointPair], tree: BodyTree, nq: int, nv: int) -> None:
+    def __init__(self, pairs: list[PyBulletJointPair], tree: BodyTree, nq: int, nv: int) -> None:
         self.pairs = tuple(pairs)
         self.nq, self.nv = nq, nv
         self.base = next((p for p in pairs if p.kind == "free"), None)
