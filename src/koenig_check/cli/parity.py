@@ -16,7 +16,7 @@ from koenig_check.cli.parsing import add_command, check_models, load_options_of,
 from koenig_check.engines.load_options import add_load_arguments
 
 #: Random states on which a third engine's energies are compared by default (``compare``'s default poses; not
-#: :data:`koenig_check.api.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
+#: :data:`koenig_check.run.engine_runs.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
 DEFAULT_POSES = 20
 
 
@@ -81,7 +81,7 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: 
 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
-    from koenig_check.diagnosis.policy import asked_for
+    from koenig_check.diagnosis.policy import attach_engines
     from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, lead_line, rounding_hint, short_reason
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
@@ -93,8 +93,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     options = load_options_of(args)
     check_models(args, [args.model, *([options.pinocchio_model] if options.pinocchio_model else [])])
     model = load_model(args.model, options)
-    for name in asked_for(options.engines):
-        model.attach(name)
+    attach_engines(model)  # the engines the user named
     diagnosis = parity_diagnosis(model, args.rtol, args.poses, args.seed)
     report = diagnosis.parity
     assert report is not None

@@ -137,7 +137,7 @@ def _verdicts(
     if tuple(departing) == ("all",):
         causes = {e: departure_cause(findings, e, segments) for e in values}
         known = "; ".join(f"{label(e)}: {_construct(c)} ({c.kind.value})" for e, c in causes.items() if c is not None)
-        head = "all three engines differ" if len(values) == 3 else f"no majority of the {len(values)} engines agrees"
+        head = _no_majority(len(values))
         return [
             Finding(
                 Kind.VERDICT,
@@ -153,6 +153,29 @@ def _verdicts(
     return [_departure(what, odd, agreeing, values, findings, segments) for odd in departing]
 
 
+def _no_majority(voters: int) -> str:
+    return "all three engines differ" if voters == 3 else f"no majority of the {voters} engines agrees"
+
+
+def _departs(engine: str) -> str:
+    return f"{label(engine)} departs"
+
+
+def verdict_head(verdict: Finding) -> str:
+    """A ``VERDICT`` in a few words, from its engine and values: ``Pinocchio departs``, ``all three engines differ``.
+
+    Parameters
+    ----------
+    verdict : Finding
+        A finding of kind ``VERDICT`` (its values hold one entry per voting engine).
+
+    Returns
+    -------
+    str
+    """
+    return _no_majority(len(verdict.values)) if verdict.engine == "all" else _departs(verdict.engine)
+
+
 def _departure(
     what: str,
     odd: str,
@@ -164,7 +187,7 @@ def _departure(
     """One ``VERDICT`` finding: ``odd`` departs on ``what`` from the engines that agree, and why."""
     others = _listed(agreeing)
     cause = departure_cause(findings, odd, segments)
-    summary = f"{label(odd)} departs ({others} agree)"
+    summary = f"{_departs(odd)} ({others} agree)"
     if cause is not None:
         summary += f"; construct responsible: {_construct(cause)}"
     else:  # the engines that agree may skip the same construct: then the odd one reads the file as written
