@@ -230,10 +230,8 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     # the other side of an engine's finding) and MuJoCo/Pinocchio are the import-parity pair whose causes the
     # diagnosis builds outside their subpackages.  No optional engine is named anywhere outside its subpackage.
     "diagnosis/import_parity.py": frozenset({"mujoco", "pinocchio"}),
-    "diagnosis/inertia_groups.py": frozenset({"mujoco", "pinocchio"}),
     "diagnosis/pair_causes.py": frozenset({"mujoco", "pinocchio"}),
     "diagnosis/parity_report.py": frozenset({"mujoco", "pinocchio"}),
-    "diagnosis/visual_geoms.py": frozenset({"mujoco", "pinocchio"}),
     "engines/bare_bodies.py": frozenset({"mujoco", "pinocchio"}),
     "engines/drake/building.py": frozenset({"mujoco"}),
     "engines/drake/ignored_geoms.py": frozenset({"mujoco"}),
@@ -241,8 +239,6 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     "engines/loading.py": frozenset({"mujoco", "pinocchio"}),
     "engines/parser_traps.py": frozenset({"mujoco", "pinocchio"}),
     "engines/pinocchio/planar.py": frozenset({"mujoco"}),
-    "engines/replicates.py": frozenset({"pinocchio"}),
-    "engines/unit_axes.py": frozenset({"pinocchio"}),
     "export/engine_sides.py": frozenset({"mujoco"}),
     "export/proof.py": frozenset({"mujoco"}),
     "implied_dynamics/analysis.py": frozenset({"mujoco", "pinocchio"}),
