@@ -112,7 +112,7 @@ def compare_engine(
     if engine in export.refused:
         reason = refusal_with_frames(export.refused[engine], export.path, export.mj_model, engine)
         return EngineProof(engine, np.nan, np.nan, 0, False, f"cannot load the export: {reason}"), []
-    reference, b = original.adapters["mujoco"], export.adapters[engine]
+    reference, b = original.adapters[registry.reference()], export.adapters[engine]
     qx, vx = pairing.export_states(qpos, qvel, export.mj_model)
     dm, de, di = _differences(reference, b, pairing, states, (qx, vx))
     own = np.nan

@@ -11,6 +11,7 @@ import numpy as np
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.drake.adapter import DrakeEngine
 from koenig_check.engines.drake.state_map import DrakeStateMap
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind
 
 
@@ -131,7 +132,7 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
                     if several
                     else ""
                 ),
-                {"mujoco": np.round(anchor, 12).tolist(), "drake": np.round(where, 12).tolist()},
+                {reference(): np.round(anchor, 12).tolist(), "drake": np.round(where, 12).tolist()},
                 affects_energy=True,
                 root_cause=True,
                 segments=(last,),
