@@ -154,16 +154,17 @@ def _departs() -> Finding:
 
 
 def test_a_reason_is_built_once_and_shown_whole_or_within_a_line() -> None:
-    """One Reason: the row shows the check not made whole, the line cuts only it, at a word, within the width."""
+    """One Reason: the row shows every part whole, the line cuts the check not made at a word to fit."""
     from koenig_check.diagnosis.model_reason import model_reason
     from koenig_check.diagnosis.reason import REASON_WIDTH
 
     long = "its parser " + " ".join(f"word{k}" for k in range(60))  # an engine's own reason, 400 characters
-    why = model_reason("m.xml", [_departs(), _unable(long)], "MuJoCo and Pinocchio differ by 1 relative (pose p)")
-    assert why.whole().startswith(why.sentence) and why.whole().endswith(long)  # never cut in the row
+    gap = "MuJoCo and Pinocchio differ by 1 relative (pose p)"
+    why = model_reason("m.xml", [_departs(), _unable(long)], gap)
+    assert why.whole() == f"m.xml: Pinocchio departs; {gap}; Drake cannot check this model: {long}"  # never cut
     line = why.line()
-    assert len(line) <= REASON_WIDTH and line.endswith("…") and line.startswith(why.sentence)
-    assert line[len(why.sentence) :].lstrip("; ").startswith("Drake cannot check this model: its parser word0")
+    assert len(line) <= REASON_WIDTH and line.endswith("…")
+    assert line.startswith(f"m.xml: Pinocchio departs; {gap}; Drake cannot check this model: its parser word0")
     short = model_reason("m.xml", [_departs(), _unable("its parser ignores armature")])
     assert (
         short.line()
