@@ -5,7 +5,6 @@ The verdict table's row shows it whole, the command line's error within 200 char
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -63,13 +62,18 @@ class Reason:
     limit: int = 3
 
     def whole(self) -> str:
-        """The reason with every part whole (the verdict table's row, folded under its column).
+        """The verdict table's row: the sentence as :meth:`line` fits it, then the checks not made whole.
+
+        No room is kept in the sentence for the checks not made: the row holds them whole after it.
 
         Returns
         -------
         str
         """
-        return self.line(sys.maxsize)
+        if self.unmade and not self.head and not self.gap:  # the check not made is the whole reason
+            return f"{self.label}: {self.unmade}" + (f"; {self.hints}" if self.hints else "")
+        text = self._sentence(REASON_WIDTH, 0)
+        return f"{text}{'' if text.endswith(': ') else '; '}{self.unmade}" if self.unmade else text
 
     def line(self, width: int = REASON_WIDTH) -> str:
         """The reason in at most ``width`` characters, whole parts dropped to fit, cut at a word only at last.
@@ -87,27 +91,31 @@ class Reason:
         -------
         str
         """
-        label, unmade = self.label, self.unmade
+        unmade = self.unmade
         if unmade and not self.head and not self.gap:  # the check not made is the whole reason
-            text = f"{label}: {unmade}"
+            text = f"{self.label}: {unmade}"
             hinted = f"{text}; {self.hints}" if self.hints else text
             return hinted if len(hinted) <= width else closed_cut(text, width)
+        room = min(len(unmade) + 2, _UNMADE_ROOM) if unmade else 0  # kept for the check not made
+        return _closed(self._sentence(width, room), unmade, width)
+
+    def _sentence(self, width: int, room: int) -> str:
+        """The label, the engines that depart, the causes and the gap, within ``width`` less ``room``."""
         causes = [g.short() for g in self.groups]
         gap = self.gap
         gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
         if self.head or causes:  # the gap may go when something else says why (the verdict table shows it)
             gaps.append("")
-        room = min(len(unmade) + 2, _UNMADE_ROOM) if unmade else 0  # kept for the check not made
         tries = [(n, g, True) for n in range(min(self.limit, len(causes)), 0, -1) for g in gaps]
         tries += [(1, "", False)] if causes else [(0, g, False) for g in gaps]
         text = ""
         for n, g, counted in tries:
             said = "; ".join(causes[:n] + ([more_causes(self.groups[n:])] if counted and len(causes) > n else []))
             parts = [self.head, f"root cause: {said}" if n else "", g]
-            text = f"{label}: " + "; ".join(t for t in parts if t)
+            text = f"{self.label}: " + "; ".join(t for t in parts if t)
             if len(text) + room <= width:
-                return _closed(text, unmade, width)
-        return _closed(closed_cut(text, width - room), unmade, width)  # the first cause too long: cut at a word
+                return text
+        return closed_cut(text, width - room)  # the first cause too long: cut at a word
 
 
 def _closed(text: str, unmade: str, width: int) -> str:
