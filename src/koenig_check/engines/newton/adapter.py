@@ -10,14 +10,14 @@ Every Newton body has one joint.  A segment is a body moved by a joint with dofs
 it (fixed joints), keyed by the canonical name of the last MuJoCo joint the Newton joint carries; bodies welded to
 the world are not segments.  The lumped mass, COM and central inertia come from each body's ``body_mass``,
 ``body_com`` (body frame) and ``body_inertia`` (about the COM, body axes) and the bodies' poses at MuJoCo's
-``qpos0``, expressed in the segment body's frame.  Poses and velocities are ``eval_fk``'s ``body_q`` (position, quaternion
-``x y z w``) and ``body_qd`` (velocity of the body's COM and ω, world frame).  The pole is the origin of the joint's
+``qpos0``, expressed in the segment body's frame.  Poses and velocities are ``eval_fk``'s ``body_q`` (position,
+quaternion ``x y z w``) and ``body_qd`` (velocity of the body's COM and ω, world frame).  The pole is the origin of the joint's
 frame on the child body (``joint_X_c``).
 
 Energy and dynamics
 -------------------
-``eval_mass_matrix`` gives M with or without ``joint_armature`` on its diagonal; the rigid-body energy is
-``½ q̇ᵀ M_rigid q̇`` and the armature energy ``½ Σ a q̇²`` in Newton's coordinates.  Inverse dynamics is
+``eval_mass_matrix`` gives M with ``joint_armature`` on its diagonal (subtracted for the rigid part); the rigid-body
+energy is ``½ q̇ᵀ M_rigid q̇`` and the armature energy ``½ Σ a q̇²`` in Newton's coordinates.  Inverse dynamics is
 ``eval_inverse_dynamics_force`` with the Coriolis force of ``eval_inverse_dynamics_passive`` and no gravity.
 """
 
@@ -130,8 +130,10 @@ class NewtonEngine(Engine):
         out = np.zeros((P, n, n))
         for a, b in self._batches(P):
             model, state = self._fk(q[a:b], np.zeros((b - a, n)))
-            H = newton.eval_mass_matrix(model, state, include_armature=armature).numpy()
+            H = newton.eval_mass_matrix(model, state).numpy()  # joint_armature on the diagonal
             out[a:b] = self._assemble(H, b - a)
+        if not armature:
+            out -= np.diag(self._arm)
         return out
 
     def _assemble(self, H: np.ndarray, worlds: int) -> np.ndarray:

@@ -80,6 +80,7 @@ def build(
     floating: bool,
     package_dirs: tuple[Path, ...] = (),
     copies: int = 1,
+    finalize: dict[str, Any] | None = None,
     **options: Any,
 ) -> tuple[Any, list[str]]:
     """Parse a file with Newton's own parser and finalize it on the CPU, ``copies`` worlds of it.
@@ -96,6 +97,8 @@ def build(
         Directories of ROS packages for ``package://`` URIs (URDF).
     copies : int
         Worlds of the same robot (``ModelBuilder.replicate``), to evaluate that many poses per call.
+    finalize : dict, optional
+        Keyword arguments of ``finalize`` other than the device (``skip_validation_inertia=True``: the causes).
     **options
         Further keyword arguments of ``add_mjcf``/``add_urdf`` (``collapse_fixed_joints=True``: the causes).
 
@@ -114,10 +117,10 @@ def build(
 
     robot = newton.ModelBuilder()
     stage = "add_mjcf" if fmt == "mjcf" else "add_urdf"
-    kwargs: dict[str, Any] = {"floating": True if floating else None, **options}
+    kwargs: dict[str, Any] = {"floating": True if floating else None}
+    kwargs.update(options)
     if fmt == "urdf" and package_dirs:
         kwargs["package_dirs"] = [str(d) for d in package_dirs]
-    caught: list[warnings.WarningMessage] = []
     with warnings.catch_warnings(record=True) as caught, contextlib.redirect_stdout(io.StringIO()):
         warnings.simplefilter("always")
         try:
@@ -129,10 +132,10 @@ def build(
             builder = newton.ModelBuilder()
             builder.replicate(robot, copies)
         try:
-            model = builder.finalize(device="cpu")
+            model = builder.finalize(device="cpu", **(finalize or {}))
         except Exception as err:
             raise refusal(path, "finalize", err) from err
-    warned = list(dict.fromkeys(" ".join(str(w.message).split()) for w in caught))
+    warned = list(dict.fromkeys(" ".join(str(w.message).split()) for w in caught or []))
     return model, warned
 
 

@@ -8,8 +8,8 @@ Newton 1.8's conventions (verified against MuJoCo's kinematics, energy and mass 
   ``v_COM`` the velocity of the body's centre of mass; MuJoCo's ``qvel = (v_origin world, ω body)``.  So
   ``ω_W = R ω_B`` and ``v_COM = v_O − [R c]× R ω_B`` (``c`` the COM in the body frame), and the acceleration gains
   ``ω_W × (ω_W × R c)``.
-* ball: ``q`` = quaternion ``x y z w`` of the child relative to the parent, ``q̇`` = angular velocity in the child
-  frame, as MuJoCo's (its quaternion ``w x y z``).
+* ball: ``q`` = quaternion ``x y z w`` of the child relative to the parent (MuJoCo's ``w x y z``), ``q̇`` = angular
+  velocity in the parent's joint frame, ``R(q) ω_child`` (MuJoCo's is in the child frame); ``d/dt (R ω) = R ω̇``.
 * A body with several MJCF joints is one Newton D6 joint whose dofs are the MuJoCo joints in order.
 
 ``q̇_N = T(q) q̇`` with ``T`` a block matrix per joint; mass matrices convert with ``Tᵀ M T``, forces with ``Tᵀ τ``.
@@ -109,13 +109,17 @@ def match_joints(mj_model: mujoco.MjModel, model: Any, path: str, mjcf: bool) ->
     moving = [j for j in range(len(labels)) if qd_start[j + 1] > qd_start[j]]
     by_name = {labels[j]: j for j in moving}
     by_body = {bodies[child[j]]: j for j in moving}
-    pairs, missing, mismatch, used = [], [], [], set()
+    for body, j in _welded_below_free(model).items():  # a massless "world" link floated in place of base_link
+        by_body.setdefault(bodies[body], j)
+    pairs: list[NewtonJointPair] = []
+    missing: list[str] = []
+    mismatch: list[str] = []
+    used: set[int] = set()
     for k, name in enumerate(names):
         kind = _MJ_KIND[int(mj_model.jnt_type[k])]
         body = int(mj_model.jnt_bodyid[k])
-        j = by_name.get(name)
-        if j is None:
-            j = by_body.get(mj_model.body(body).name)
+        found = by_name.get(name)
+        j = by_body.get(mj_model.body(body).name) if found is None else found
         if j is None:
             missing.append(name)
             continue
@@ -151,6 +155,25 @@ def match_joints(mj_model: mujoco.MjModel, model: Any, path: str, mjcf: bool) ->
             parts.append(f"Newton has {int(model.joint_dof_count)} dofs, MuJoCo {mj_model.nv}")
         raise NewtonLoadError(f"{path}: Newton's joints cannot be paired with MuJoCo's ({' / '.join(parts)})")
     return pairs
+
+
+def _welded_below_free(model: Any) -> dict[int, int]:
+    """Body -> free joint, for the bodies welded at the identity (fixed joints, no offset) below a free joint's body.
+
+    Newton floats a URDF's root link; when that link is a massless ``world`` link welded to ``base_link``, MuJoCo
+    floats ``base_link``: the same motion, since the weld is the identity.
+    """
+    jtype, parent, child = model.joint_type.numpy(), model.joint_parent.numpy(), model.joint_child.numpy()
+    X_p, X_c = model.joint_X_p.numpy(), model.joint_X_c.numpy()
+    identity = np.array([0, 0, 0, 0, 0, 0, 1.0])
+    carrier = {int(child[j]): j for j in range(len(jtype)) if int(jtype[j]) == FREE}
+    out: dict[int, int] = {}
+    for j in range(len(jtype)):  # parents come before children
+        p = int(parent[j])
+        if int(jtype[j]) == FIXED and p in carrier and np.allclose(X_p[j], identity) and np.allclose(X_c[j], identity):
+            carrier[int(child[j])] = carrier[p]
+            out[int(child[j])] = carrier[p]
+    return out
 
 
 def _skew(v: np.ndarray) -> np.ndarray:
@@ -216,8 +239,8 @@ class NewtonStateMap:
         for p in self.pairs:
             if p.kind in ("hinge", "slide"):
                 T[:, p.nv, p.vadr] = 1.0
-            elif p.kind == "ball":
-                T[:, p.nv : p.nv + 3, p.vadr : p.vadr + 3] = np.eye(3)
+            elif p.kind == "ball":  # Newton's rate is in the parent's joint frame: R(q) ω_child
+                T[:, p.nv : p.nv + 3, p.vadr : p.vadr + 3] = _rotation_wxyz(qpos[:, p.qadr : p.qadr + 4])
             else:
                 R = _rotation_wxyz(qpos[:, p.qadr + 3 : p.qadr + 7])
                 r = R @ self._free_com[p.joint]
