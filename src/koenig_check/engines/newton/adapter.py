@@ -11,8 +11,8 @@ it (fixed joints), keyed by the canonical name of the last MuJoCo joint the Newt
 the world are not segments.  The lumped mass, COM and central inertia come from each body's ``body_mass``,
 ``body_com`` (body frame) and ``body_inertia`` (about the COM, body axes) and the bodies' poses at MuJoCo's
 ``qpos0``, expressed in the segment body's frame.  Poses and velocities are ``eval_fk``'s ``body_q`` (position,
-quaternion ``x y z w``) and ``body_qd`` (velocity of the body's COM and ω, world frame).  The pole is the origin of the joint's
-frame on the child body (``joint_X_c``).
+quaternion ``x y z w``) and ``body_qd`` (velocity of the body's COM and ω, world frame).  The pole is the origin of
+the joint's frame on the child body (``joint_X_c``).
 
 Energy and dynamics
 -------------------
