@@ -109,8 +109,8 @@ def match_joints(mj_model: mujoco.MjModel, model: Any, path: str, mjcf: bool) ->
     moving = [j for j in range(len(labels)) if qd_start[j + 1] > qd_start[j]]
     by_name = {labels[j]: j for j in moving}
     by_body = {bodies[child[j]]: j for j in moving}
-    for body, j in _welded_below_free(model).items():  # a massless "world" link floated in place of base_link
-        by_body.setdefault(bodies[body], j)
+    for welded, carrier in _welded_below_free(model).items():  # a massless "world" link floated in place of base_link
+        by_body.setdefault(bodies[welded], carrier)
     pairs: list[NewtonJointPair] = []
     missing: list[str] = []
     mismatch: list[str] = []
