@@ -184,5 +184,5 @@ def unable_finding(engine: str, limits: Sequence[tuple[str, list[str]]], parser:
         "model",
         f"{LABEL[engine]} cannot check this model: its {parser} parser " + "; ".join(parts),
         segments=tuple(name for names in by_limit.values() for name in names),
-        hint="without Drake: --engines mujoco,pinocchio",
+        hint=f"without {LABEL[engine]}: --engines mujoco,pinocchio",
     )

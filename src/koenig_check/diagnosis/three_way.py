@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.registry import label, names
+from koenig_check.engines.specs import tolerance
 from koenig_check.findings import Finding, Kind
 
 #: Default relative tolerance under which two engines "agree".
@@ -42,7 +43,8 @@ def _departing(values: dict[str, np.ndarray], rtol: float, scale: Any = None) ->
     """
     engines = list(values)
     agree: dict[frozenset[str], bool] = {
-        frozenset((a, b)): bool(np.all(_close(values[a], values[b], rtol, scale))) for a, b in combinations(engines, 2)
+        frozenset((a, b)): bool(np.all(_close(values[a], values[b], tolerance(rtol, a, b), scale)))
+        for a, b in combinations(engines, 2)
     }
     if all(agree.values()):
         return None

@@ -122,6 +122,27 @@ def specs() -> tuple[EngineSpec, ...]:
     return ordered
 
 
+def tolerance(rtol: float, *engines: str) -> float:
+    """The relative tolerance under which values of these engines agree: ``rtol``, or the coarsest declared precision.
+
+    An engine that computes in float32 (:attr:`EngineSpec.precision` about 1e-5) agrees with another within its
+    round-off, which is never called a difference; a difference above it always is.
+
+    Parameters
+    ----------
+    rtol : float
+        The tolerance asked for.
+    *engines : str
+        Engine names (names no spec declares, such as ``"all"``, count for nothing).
+
+    Returns
+    -------
+    float
+    """
+    declared = {s.name: s.precision for s in specs()}
+    return max([rtol, *(declared[e] for e in engines if e in declared)])
+
+
 def names() -> tuple[str, ...]:
     """Every engine's name, in report order.
 

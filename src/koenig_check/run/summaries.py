@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.diagnosis.reason import disagreement_cause, rounding_hint
+from koenig_check.engines.specs import tolerance
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL, ModelStats
@@ -84,7 +85,7 @@ def summaries_from_stats(model: str, stats: ModelStats) -> list[FormulaSummary]:
                 under_fraction=g.under / g.n,
                 worst_pose=g.worst.where,
                 worst_segment=seg.where if seg is not None and seg.value > 0 else None,
-                agrees=bool(g.worst.value <= stats.rtol),
+                agrees=bool(g.worst.value <= tolerance(stats.rtol, source, reference)),
             )
         )
     rank = {f: k for k, f in enumerate(dict.fromkeys(s.formula for s in out))}
@@ -140,7 +141,7 @@ def summarize_records(
                         under_fraction=float(np.mean(signed < -rtol * ref)),
                         worst_pose=str(rec["pose"][rows[int(np.argmax(rel))]]),
                         worst_segment=worst_segment,
-                        agrees=bool(rel.max() <= rtol),
+                        agrees=bool(rel.max() <= tolerance(rtol, str(source), str(reference))),
                     )
                 )
     return out
@@ -198,7 +199,7 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
             f"(MuJoCo {mj:.6g} J, Pinocchio {pn:.6g} J)"
         )
     for name, value in p.self_rel.items():
-        if value > rtol:
+        if value > tolerance(rtol, name):
             reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
     gap = _gap(p, rtol) if reasons else ""
     cause = disagreement_cause(comparison.findings) if reasons else ""
@@ -240,7 +241,11 @@ def _gap(p: Any, rtol: float, cli: bool = False) -> str:
         parts.append(f"MuJoCo and Pinocchio differ by {p.rigid.value:.2g} relative (pose {p.rigid.where})")
     if p.armature_scaled > rtol:
         parts.append(f"their armature energies by {p.armature.value:.2g} J")
-    parts += [f"{name}'s exact differs from its own energy by {v:.2g}" for name, v in p.self_rel.items() if v > rtol]
+    parts += [
+        f"{name}'s exact differs from its own energy by {v:.2g}"
+        for name, v in p.self_rel.items()
+        if v > tolerance(rtol, name)
+    ]
     hint = rounding_hint(float(p.rigid.value), rtol, cli=cli) if len(parts) == 1 else ""
     return hint or ", ".join(parts)  # within a written file's rounding, the hint says the gap and what to do
 

@@ -2,10 +2,8 @@
 
 from koenig_check.engines.specs import EngineSpec
 
-#: The formats Newton's own parsers read (``ModelBuilder.add_mjcf``, ``add_urdf``).
-FORMATS = ("mjcf", "urdf")
-#: Newton computes in float32: its round-off relative to a quantity's scale is about 1e-6 (measured on the
-#: project's models), so two engines agree with Newton within 1e-5 relative; a real difference is larger.
+#: Newton computes in float32: its round-off relative to a quantity's scale is up to about 5e-6 (measured on the
+#: project's models and example-robot-data robots), so two engines agree with Newton within 1e-5 relative.
 PRECISION = 1e-5
 
 #: Newton's facts (:mod:`koenig_check.engines.specs`): optional, attached to a model loaded in MuJoCo and Pinocchio.
@@ -17,4 +15,6 @@ SPEC = EngineSpec(
     attach="koenig_check.engines.newton.attach:attach",
     load_alone="koenig_check.engines.newton.attach:load_alone",
     color="tab:olive",
+    formats=("mjcf", "urdf"),
+    precision=PRECISION,
 )

@@ -12,7 +12,7 @@ from koenig_check.engines.base import Engine
 from koenig_check.findings import Finding
 
 
-def load_newton_engine(source: Any, mj_model: Any, floating: bool = False) -> Engine:
+def load_newton_engine(source: Any, mj_model: Any, floating: bool = False, causes: bool = False) -> Engine:
     """Load a model file into Newton, pair its joints with MuJoCo's and build the adapter.
 
     Parameters
@@ -22,6 +22,8 @@ def load_newton_engine(source: Any, mj_model: Any, floating: bool = False) -> En
         The MuJoCo model of the same file (canonical layout and reference configuration).
     floating : bool
         A free-floating base asked for (Newton's ``floating=True``).
+    causes : bool
+        Also look for the catalogued causes that apply to the file, each sized on this robot (a few more loads).
 
     Returns
     -------
@@ -54,6 +56,10 @@ def load_newton_engine(source: Any, mj_model: Any, floating: bool = False) -> En
         np.asarray(mj_model.qpos0),
         warning_findings(warned),
     )
+    if causes:
+        from koenig_check.engines.newton.file_causes import attach_causes
+
+        engine.findings += attach_causes(path, source.format, load, model, engine.segment_of_body())
     return engine
 
 
@@ -72,15 +78,19 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         Newton's load findings and the catalogued causes that apply to this file; or one ``ENGINE_NOT_USED``
         finding with Newton's whole reason.
     """
+    from dataclasses import replace
+
+    from koenig_check.engines.newton.file_causes import refusal_cause
     from koenig_check.engines.newton.loader import NewtonLoadError
     from koenig_check.engines.registry import not_used
 
     if model.options.pinocchio_model is not None:
         return None, [not_used("newton", "Pinocchio was given another file (--pinocchio-model)")]
     try:
-        engine = load_newton_engine(model.source, model.mujoco.model, bool(model.options.floating))
+        engine = load_newton_engine(model.source, model.mujoco.model, bool(model.options.floating), causes=True)
     except NewtonLoadError as err:  # Newton's reason, whole; the model's row already names the file
-        return None, [not_used("newton", str(err).removeprefix(f"{model.source.path}: "))]
+        refused = not_used("newton", str(err).removeprefix(f"{model.source.path}: "))
+        return None, [replace(refused, cause=refusal_cause(Path(model.source.path), model.source.format))]
     except ImportError as err:  # installed but not importable
         return None, [not_used("newton", f"newton cannot be imported: {err}")]
     return engine, list(engine.findings)

@@ -81,7 +81,7 @@ def build(
     package_dirs: tuple[Path, ...] = (),
     copies: int = 1,
     finalize: dict[str, Any] | None = None,
-    **options: Any,
+    options: dict[str, Any] | None = None,
 ) -> tuple[Any, list[str]]:
     """Parse a file with Newton's own parser and finalize it on the CPU, ``copies`` worlds of it.
 
@@ -99,8 +99,9 @@ def build(
         Worlds of the same robot (``ModelBuilder.replicate``), to evaluate that many poses per call.
     finalize : dict, optional
         Keyword arguments of ``finalize`` other than the device (``skip_validation_inertia=True``: the causes).
-    **options
-        Further keyword arguments of ``add_mjcf``/``add_urdf`` (``collapse_fixed_joints=True``: the causes).
+    options : dict, optional
+        Further keyword arguments of ``add_mjcf``/``add_urdf`` (``collapse_fixed_joints=True``,
+        ``floating=False``: the causes).
 
     Returns
     -------
@@ -118,7 +119,7 @@ def build(
     robot = newton.ModelBuilder()
     stage = "add_mjcf" if fmt == "mjcf" else "add_urdf"
     kwargs: dict[str, Any] = {"floating": True if floating else None}
-    kwargs.update(options)
+    kwargs.update(options or {})
     if fmt == "urdf" and package_dirs:
         kwargs["package_dirs"] = [str(d) for d in package_dirs]
     with warnings.catch_warnings(record=True) as caught, contextlib.redirect_stdout(io.StringIO()):
