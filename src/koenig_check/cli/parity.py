@@ -110,15 +110,19 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     third = [as_note(f) for f in diagnosis.findings if f.kind is Kind.VERDICT]
     unable = {f.engine for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE}  # its reason said once, there
     third += [f.message() for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE]
-    third += [
-        f.message()
+    named = set(options.engines or optional())  # engines the user left out are not reported on
+    shown_findings = [
+        f
         for f in diagnosis.findings
         if f in diagnosis.optional_findings
         and f.kind is not Kind.ENGINE_UNABLE
-        and not (f.kind is Kind.ENGINE_NOT_USED and f.engine in unable)
+        and not (f.kind is Kind.ENGINE_NOT_USED and (f.engine in unable or f.engine not in named))
     ]
+    third += [f.message() for f in shown_findings]
     if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
-        names = ", ".join(engine_label(e) for e in optional())
+        taking_part = {f.engine for f in diagnosis.findings if f.kind in (Kind.VERDICT, Kind.ENGINE_UNABLE)}
+        taking_part |= {f.engine for f in shown_findings} | set(diagnosis.engines)
+        names = ", ".join(engine_label(e) for e in optional() if e in taking_part)
         print(f"\nThe third engine ({names}): verdicts and what its parser said")
         print("\n".join(shown(f"  {line}") for line in third))
     lead = lead_line(diagnosis.findings)

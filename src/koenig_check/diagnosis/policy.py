@@ -62,6 +62,8 @@ def to_consult(name: str, engines: Sequence[str] | None, disagree: bool) -> Find
         return not_used(name, "not asked for (engines: " + ", ".join(engines) + ")")
     if not registry.installed(name):
         return not_used(name, f"not installed ({install_hint(name)})")
+    if engines is None and not registry.spec(name).by_default:
+        return not_used(name, "used only where named (--engines)")
     if engines is None and not disagree:
         return not_used(name, "not needed, MuJoCo and Pinocchio agree")
     return None

@@ -56,6 +56,9 @@ class EngineSpec:
     precision : float
         The relative round-off of what it reads and computes (float32 engines about 1e-5): a difference below it
         is never called a difference.
+    by_default : bool
+        An optional engine used without being named when it is installed: as tie-breaker where the required
+        engines disagree, and in the export's proof.  False: only where the user names it (``--engines``).
     """
 
     name: str
@@ -69,6 +72,7 @@ class EngineSpec:
     distribution: str = ""
     formats: tuple[str, ...] = ("mjcf", "urdf")
     precision: float = 1e-12
+    by_default: bool = True
 
     def __post_init__(self) -> None:
         if not self.distribution:
@@ -141,6 +145,16 @@ def tolerance(rtol: float, *engines: str) -> float:
     """
     declared = {s.name: s.precision for s in specs()}
     return max([rtol, *(declared[e] for e in engines if e in declared)])
+
+
+def by_default() -> tuple[str, ...]:
+    """The engines used without being named (when installed), in report order.
+
+    Returns
+    -------
+    tuple of str
+    """
+    return tuple(s.name for s in specs() if s.required or s.by_default)
 
 
 def names() -> tuple[str, ...]:

@@ -19,12 +19,12 @@ from pathlib import Path
 
 import numpy as np
 
-from koenig_check.engines import registry
 from koenig_check.engines.base import Engine
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
 from koenig_check.engines.sampling import random_states
+from koenig_check.engines.specs import by_default, tolerance
 from koenig_check.export.engine_sides import EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
@@ -118,9 +118,11 @@ def compare_engine(
     own = np.nan
     if engine in original.adapters:  # the engine's reading of the original against MuJoCo's, as compare measures
         own = _energy_difference(reference, original.adapters[engine], states)
-    ok = max(dm, de, di) <= rtol
+    ok = max(dm, de, di) <= tolerance(rtol, engine)  # a float32 engine's own round-off is not a difference
     proof = EngineProof(engine, dm, de, int(qpos.shape[0]), ok, own_reading=own, inverse_dynamics=di)
-    segments = _segments(engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, rtol)
+    segments = _segments(
+        engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, tolerance(rtol, engine)
+    )
     return proof, segments
 
 
@@ -217,15 +219,15 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine (:func:`koenig_check.engines.registry.names`), each compared where it loads both
-        files.  Engines named here are asked for: one that cannot compare the files fails the proof.
+        Default: every engine used by default (:func:`koenig_check.engines.specs.by_default`), each compared where
+        it loads both files.  Engines named here are asked for: one that cannot compare the files fails the proof.
 
     Returns
     -------
     Proof
     """
     asked = () if engines is None else tuple(engines)
-    engines = registry.names() if engines is None else tuple(engines)
+    engines = by_default() if engines is None else tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)
