@@ -112,3 +112,33 @@ def test_the_fixtures_measured_mass_matrices_are_newtons() -> None:
     assert np.isclose(
         measure(fixture_path(cause(ids.VALIDATION))).mass_matrix[("knee", "knee")], 3.6e-4 + 1.0001e-6, rtol=PRECISION
     )
+
+
+def test_multi_joint_body_turns_about_the_first_joints_pos() -> None:
+    # The foot: ankle_y at z = 0.08, ankle_x at z = 0.04 (body frame); COM (0.05, 0, -0.02), 0.5 kg, Ixx 0.001.
+    # About ankle_x (x axis through z = 0.04): 0.001 + 0.5·0.06² = 0.0028; Newton turns it about z = 0.08:
+    # 0.001 + 0.5·0.1² = 0.006.
+    finding = _named(ids.MULTI_JOINT_POS)
+    assert finding.element == "joint ankle_x" and finding.kind is Kind.ANCHOR
+    assert finding.values["mujoco"] == pytest.approx([0, 0, 0.04]) and finding.values["newton"] == pytest.approx(
+        [0, 0, 0.08], abs=1e-7
+    )
+    from koenig_check.engines.newton.causes import measure
+
+    measured = measure(fixture_path(cause(ids.MULTI_JOINT_POS))).mass_matrix
+    assert measured[("ankle_x", "ankle_x")] == pytest.approx(0.006, rel=PRECISION)
+    ok, findings = _findings(ids.MULTI_JOINT_POS)
+    assert not ok and any(f.kind is Kind.ENGINE_UNABLE and f.engine == "newton" for f in findings)
+
+
+def test_a_change_within_newtons_precision_is_no_departure(tmp_path) -> None:
+    """A 1e-4 kg point-mass gripper on a 2 kg arm: the validation's 1e-6 kg·m² is below 1e-5 of every M entry."""
+    text = fixture_path(cause(ids.VALIDATION)).read_text()
+    text = text.replace('<mass value="0.1"/>', '<mass value="2.0"/>').replace('ixx="0.00001"', 'ixx="0.5"')
+    text = text.replace('iyy="0.00001"', 'iyy="0.5"').replace('izz="0.00001"', 'izz="0.5"')
+    path = tmp_path / "heavy_arm.urdf"
+    path.write_text(text)
+    check = koenig_check.compare(str(path), n_poses=3, engines=ENGINES)
+    found = [f for comp in check.comparisons for f in comp.findings if f.cause == ids.VALIDATION]
+    assert check.ok and found and found[0].kind is Kind.LOAD and not found[0].affects_energy
+    assert 0 < found[0].values["M change"] <= PRECISION

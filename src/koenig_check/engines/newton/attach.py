@@ -57,10 +57,24 @@ def load_newton_engine(source: Any, mj_model: Any, floating: bool = False, cause
         warning_findings(warned),
     )
     if causes:
-        from koenig_check.engines.newton.file_causes import attach_causes
+        from koenig_check.engines.newton.file_causes import anchor_findings, attach_causes
 
+        segment_of_joint = _segments_of_joints(mj_model)
+        engine.findings += anchor_findings(mj_model, model, pairs, segment_of_joint)
         engine.findings += attach_causes(path, source.format, load, model, engine.segment_of_body())
     return engine
+
+
+def _segments_of_joints(mj_model: Any) -> dict[str, str]:
+    """MuJoCo joint -> the segment it moves (named after its body's last joint)."""
+    from koenig_check.engines.canonical import mujoco_joint_names
+
+    names = mujoco_joint_names(mj_model)
+    out = {}
+    for k, name in enumerate(names):
+        body = int(mj_model.jnt_bodyid[k])
+        out[name] = names[int(mj_model.body_jntadr[body] + mj_model.body_jntnum[body] - 1)]
+    return out
 
 
 def attach(model: Any) -> tuple[Engine | None, list[Finding]]:

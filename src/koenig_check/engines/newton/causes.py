@@ -26,6 +26,7 @@ MIMIC_FIXED = "newton.urdf.mimic-fixed-joint"
 SOLVER_PGS = "newton.mjcf.solver-pgs"
 BOX_FROMTO = "newton.mjcf.box-fromto"
 FLOATING_FALSE = "newton.mjcf.floating-false"
+MULTI_JOINT_POS = "newton.mjcf.multi-joint-pos"
 
 
 def _as_written(*engines: tuple[str, str]) -> tuple[Reading, ...]:
@@ -151,6 +152,25 @@ CAUSES: tuple[Cause, ...] = (
         fixture="newton_floating_false.xml",
         loses_joints=True,
     ),
+    Cause(
+        id=MULTI_JOINT_POS,
+        construct="a body with several joints at different pos",
+        formats=("mjcf",),
+        readings=(
+            *_as_written(("mujoco", _MUJOCO), ("pinocchio", _PINOCCHIO)),
+            Reading("drake", "differently", "drops the body's pos for the first joint", measured=_DRAKE),
+            Reading(
+                "newton",
+                "differently",
+                "merges them into one D6 joint anchored at the first joint's pos: the others turn about it",
+                measured=MEASURED,
+            ),
+        ),
+        quantities=("kinematics",),
+        brief="Newton turns every joint of a multi-joint body about the first joint's pos",
+        hint="give the joints of one body the same pos, or split the body with a massless child body per joint",
+        fixture="newton_multi_joint_pos.xml",
+    ),
 )
 
 #: The loading option under which a cause's fixture shows it (Newton's users pass them), by fixture.
@@ -196,15 +216,36 @@ def measure(path: Path) -> Measurement:
         if int(jtype[j]) == FIXED and (parent[j] < 0 or int(parent[j]) in welded_to_world):
             welded_to_world.add(int(child[j]))
     mass = model.body_mass.numpy()
+    named = _dof_names(path, model) if fmt == "mjcf" else {}
     one_dof = {labels[j]: int(qds[j]) for j in moving if qds[j + 1] - qds[j] == 1}
+    for j, dofs in named.items():  # a D6 joint's dofs, by the MJCF joints they are
+        one_dof.update({name: int(qds[j]) + k for k, name in enumerate(dofs)})
+        labels[j] = ""
     zero = np.zeros((1, int(model.joint_coord_count)))
     zero[0, :] = model.joint_q.numpy()  # a free joint's identity quaternion; every other coordinate is 0
     full = mass_matrices(model, zero)[0]
     arm = model.joint_armature.numpy()
     return Measurement(
-        joints=tuple(sorted(labels[j] for j in moving)),
+        joints=tuple(sorted([labels[j] for j in moving if labels[j]] + [n for d in named.values() for n in d])),
         mass=float(sum(mass[b] for b in range(len(mass)) if b not in welded_to_world)),
         mass_matrix={(a, b): float(full[i, k]) for a, i in one_dof.items() for b, k in one_dof.items()},
         gravity=tuple(float(g) for g in np.asarray(model.gravity.numpy()).reshape(-1, 3)[0]),
         armature={j: float(arm[i]) for j, i in one_dof.items() if arm[i]},
     )
+
+
+def _dof_names(path: Path, model: Any) -> dict[int, list[str]]:
+    """Newton joint index -> the names of the MJCF joints its dofs are, for a D6 joint merging a body's joints."""
+    from koenig_check.engines.newton.state_map import D6, short_name
+    from koenig_check.modelfile.validate import parse_xml
+
+    joints_of = {
+        b.get("name"): [j.get("name") for j in b.findall("joint")] for b in parse_xml(path).getroot().iter("body")
+    }
+    qds, jtype, child = model.joint_qd_start.numpy(), model.joint_type.numpy(), model.joint_child.numpy()
+    out = {}
+    for j in range(len(jtype)):
+        names = joints_of.get(short_name(model.body_label[child[j]]), [])
+        if int(jtype[j]) == D6 and len(names) == qds[j + 1] - qds[j] and all(names):
+            out[j] = [str(n) for n in names]
+    return out

@@ -49,6 +49,40 @@ def _changed_bodies(cause: str, changes: list[BodyChange], segment_of: dict[str,
     )
 
 
+def anchor_findings(mj_model: Any, model: Any, pairs: list[Any], segment_of_joint: dict[str, str]) -> list[Finding]:
+    """One ``ANCHOR`` root cause per MuJoCo joint that Newton turns about another point (a multi-joint body's D6).
+
+    Parameters
+    ----------
+    mj_model : mujoco.MjModel
+    model : newton.Model
+    pairs : list of NewtonJointPair
+    segment_of_joint : dict of str to str
+        MuJoCo joint -> the segment it moves.
+
+    Returns
+    -------
+    list of Finding
+    """
+    from koenig_check.engines.newton.departures import moved_anchors
+
+    return [
+        Finding(
+            Kind.ANCHOR,
+            "newton",
+            f"joint {name}",
+            "Newton turns the joint about another point than MuJoCo (one D6 joint for the body's joints, anchored "
+            "at the first joint's pos)",
+            {"mujoco": mine, "newton": theirs},
+            affects_energy=True,
+            root_cause=True,
+            segments=(segment_of_joint.get(name, name),),
+            cause=ids.MULTI_JOINT_POS,
+        )
+        for name, mine, theirs in moved_anchors(mj_model, model, pairs)
+    ]
+
+
 def attach_causes(
     path: Path, fmt: str, load: Callable[..., Any], model: Any, segment_of: dict[str, str]
 ) -> list[Finding]:
@@ -80,6 +114,8 @@ def attach_causes(
     if changed:
         raw, _ = load(finalize={"skip_validation_inertia": True})
         out.append(_changed_bodies(ids.VALIDATION, changed, segment_of, option_effect(raw, model)))
+    # a change within Newton's round-off is not a difference: said, as a loading fact, not a departure
+    out = [f if f.values.get("M change", 1.0) > PRECISION else _below_precision(f) for f in out]
     welded = welded_massive_bodies(model)
     if welded:
         collapsed, _ = load(options={"collapse_fixed_joints": True})
@@ -125,6 +161,13 @@ def _effect_without(load: Callable[..., Any], model: Any, links: list[str]) -> f
     other.body_mass.assign(mass)
     other.body_inertia.assign(inertia)
     return option_effect(other, model) if np.any(mass > 0) else float("nan")
+
+
+def _below_precision(finding: Finding) -> Finding:
+    """A change of Newton's within its precision: kept as a loading fact (kind ``LOAD``), not a root cause."""
+    from dataclasses import replace
+
+    return replace(finding, kind=Kind.LOAD, affects_energy=False, root_cause=False)
 
 
 def refusal_cause(path: Path, fmt: str) -> str:
