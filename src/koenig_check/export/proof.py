@@ -24,7 +24,7 @@ from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
 from koenig_check.engines.sampling import random_states
-from koenig_check.engines.specs import by_default, tolerance
+from koenig_check.engines.specs import consulted, tolerance
 from koenig_check.export.engine_sides import EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
@@ -219,15 +219,15 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine used by default (:func:`koenig_check.engines.specs.by_default`), each compared where
-        it loads both files.  Engines named here are asked for: one that cannot compare the files fails the proof.
+        Default: every engine consulted without being named (:func:`koenig_check.engines.specs.consulted`), each
+        compared where it loads both files.  Engines named here are asked for: one that cannot compare the files fails the proof.
 
     Returns
     -------
     Proof
     """
     asked = () if engines is None else tuple(engines)
-    engines = by_default() if engines is None else tuple(engines)
+    engines = consulted() if engines is None else tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)

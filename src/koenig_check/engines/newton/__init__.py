@@ -17,5 +17,4 @@ SPEC = EngineSpec(
     color="tab:olive",
     formats=("mjcf", "urdf"),
     precision=PRECISION,
-    by_default=False,  # float32, and seconds of loading: used where the user names it (--engines ...,newton)
 )
