@@ -159,16 +159,6 @@ def tolerance(rtol: float, *engines: str) -> float:
     return max([rtol, *(declared[e] for e in engines if e in declared)])
 
 
-def consulted() -> tuple[str, ...]:
-    """The engines used without being named, in report order: the required ones and the tie-breakers.
-
-    Returns
-    -------
-    tuple of str
-    """
-    return tuple(s.name for s in specs() if s.required or s.tie_breaker)
-
-
 def names() -> tuple[str, ...]:
     """Every engine's name, in report order.
 

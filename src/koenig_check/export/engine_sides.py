@@ -12,15 +12,14 @@ from koenig_check.engines import registry
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.adapter import MujocoEngine
 from koenig_check.engines.mujoco.loader import load_mujoco
-from koenig_check.engines.specs import consulted
 from koenig_check.exceptions import one_line
 from koenig_check.sources.catalogue import resolve_model
 
 
 def __getattr__(name: str) -> tuple[str, ...]:
-    """``PROOF_ENGINES``, the engines a proof compares by default: every engine consulted without being named."""
+    """``PROOF_ENGINES``, the engines a proof compares by default: every engine, in report order, read when asked."""
     if name == "PROOF_ENGINES":
-        return consulted()
+        return registry.names()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -76,7 +75,7 @@ def load_side(path: str | os.PathLike[str], options: LoadOptions, engines: tuple
     )
     side = EngineSide(str(source.path), mj_model)
     side.adapters["mujoco"] = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
-    for name in consulted() if engines is None else engines:
+    for name in registry.names() if engines is None else engines:
         if name == "mujoco":
             continue
         if not registry.installed(name):

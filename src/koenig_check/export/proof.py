@@ -19,12 +19,13 @@ from pathlib import Path
 
 import numpy as np
 
+from koenig_check.engines import registry
 from koenig_check.engines.base import Engine
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
 from koenig_check.engines.sampling import random_states
-from koenig_check.engines.specs import consulted, tolerance
+from koenig_check.engines.specs import tolerance
 from koenig_check.export.engine_sides import EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
@@ -219,15 +220,18 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine consulted without being named (:func:`koenig_check.engines.specs.consulted`), each
-        compared where it loads both files.  Engines named here are asked for: one that cannot compare the files fails the proof.
+        Default: every engine (:func:`koenig_check.engines.registry.names`) whose declared precision is finer than
+        ``rtol``, each compared where it loads both files (a float32 engine where it is named).  Engines named
+        here are asked for: one that cannot compare the files fails the proof.
 
     Returns
     -------
     Proof
     """
     asked = () if engines is None else tuple(engines)
-    engines = consulted() if engines is None else tuple(engines)
+    if engines is None:  # an engine whose round-off reaches the tolerance cannot prove it: compared where named
+        engines = tuple(e for e in registry.names() if registry.spec(e).precision < rtol)
+    engines = tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)

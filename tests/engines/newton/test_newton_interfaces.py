@@ -80,3 +80,12 @@ def test_pytest_plugin_with_newton(pytester: pytest.Pytester) -> None:
     result = pytester.runpytest_subprocess("--koenig-check", "-v", "-p", "no:cacheprovider")
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(["*serial7.urdf PASSED*", "*Newton cannot check this model*foot*"])
+
+
+def test_export_proof_with_newton_named(tmp_path: Path) -> None:
+    """Named, Newton proves the export within its precision; by default (tolerance 1e-9) it is not asked to."""
+    result = koenig_check.export("serial7.xml", to="urdf", out=tmp_path / "serial7.urdf", engines=ENGINES)
+    proofs = {p.engine: p for p in result.proof.engines}
+    assert proofs["newton"].equivalent and 0 < proofs["newton"].mass_matrix <= 1e-5
+    default = koenig_check.export("serial7.xml", to="urdf", out=tmp_path / "default.urdf")
+    assert "newton" not in {p.engine for p in default.proof.engines}
