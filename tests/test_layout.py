@@ -173,6 +173,7 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     "export/portable_mjcf.py": frozenset({"mujoco"}),
     # A cause's readings name each engine it was measured in: declared data, one Reading per engine.
     "engines/pinocchio/causes.py": frozenset({"mujoco", "drake"}),
+    "engines/newton/causes.py": frozenset({"mujoco", "pinocchio", "drake"}),
     # The required pair, still by name (debt, listed so that it only shrinks; issue 26 items 2 and 5 move these
     # sites): MuJoCo's reading is the reference (canonical layout, compiler options, the records' default source,
     # the other side of an engine's finding) and MuJoCo/Pinocchio are the import-parity pair whose causes the

@@ -65,6 +65,7 @@ def anchor_findings(mj_model: Any, model: Any, pairs: list[Any], segment_of_join
     list of Finding
     """
     from koenig_check.engines.newton.departures import moved_anchors
+    from koenig_check.engines.specs import reference
 
     return [
         Finding(
@@ -73,7 +74,7 @@ def anchor_findings(mj_model: Any, model: Any, pairs: list[Any], segment_of_join
             f"joint {name}",
             "Newton turns the joint about another point than MuJoCo (one D6 joint for the body's joints, anchored "
             "at the first joint's pos)",
-            {"mujoco": mine, "newton": theirs},
+            {reference(): mine, "newton": theirs},
             affects_energy=True,
             root_cause=True,
             segments=(segment_of_joint.get(name, name),),
