@@ -16,7 +16,7 @@ from koenig_check.cli.parsing import add_command, check_models, load_options_of,
 from koenig_check.engines.load_options import add_load_arguments
 
 #: Random states on which a third engine's energies are compared by default (``compare``'s default poses; not
-#: :data:`koenig_check.api.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
+#: :data:`koenig_check.run.engine_runs.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
 DEFAULT_POSES = 20
 
 
@@ -81,7 +81,7 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: 
 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
-    from koenig_check.diagnosis.policy import asked_for
+    from koenig_check.diagnosis.policy import attach_engines
     from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, lead_line, rounding_hint, short_reason
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
@@ -93,8 +93,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     options = load_options_of(args)
     check_models(args, [args.model, *([options.pinocchio_model] if options.pinocchio_model else [])])
     model = load_model(args.model, options)
-    for name in asked_for(options.engines):
-        model.attach(name)
+    attach_engines(model)  # the engines the user named
     diagnosis = parity_diagnosis(model, args.rtol, args.poses, args.seed)
     report = diagnosis.parity
     assert report is not None
@@ -110,20 +109,18 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     third = [as_note(f) for f in diagnosis.findings if f.kind is Kind.VERDICT]
     unable = {f.engine for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE}  # its reason said once, there
     third += [f.message() for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE]
-    named = set(options.engines or optional())  # engines the user left out are not reported on
-    shown_findings = [
-        f
+    third += [
+        f.message()
         for f in diagnosis.findings
         if f in diagnosis.optional_findings
         and f.kind is not Kind.ENGINE_UNABLE
-        and not (f.kind is Kind.ENGINE_NOT_USED and (f.engine in unable or f.engine not in named))
+        and not (f.kind is Kind.ENGINE_NOT_USED and f.engine in unable)
     ]
-    third += [f.message() for f in shown_findings]
     if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
-        taking_part = {f.engine for f in diagnosis.findings if f.kind in (Kind.VERDICT, Kind.ENGINE_UNABLE)}
-        taking_part |= {f.engine for f in shown_findings} | set(diagnosis.engines)
-        names = ", ".join(engine_label(e) for e in optional() if e in taking_part)
-        print(f"\nThe third engine ({names}): verdicts and what its parser said")
+        used = [e for e in optional() if e in model.engines or model.refusal(e) is not None] or list(optional())
+        names = ", ".join(engine_label(e) for e in used)
+        head = "The third engine" if len(used) == 1 else "The other engines"
+        print(f"\n{head} ({names}): verdicts and what {'its parser' if len(used) == 1 else 'their parsers'} said")
         print("\n".join(shown(f"  {line}") for line in third))
     lead = lead_line(diagnosis.findings)
     if report.clean and not lead:

@@ -65,9 +65,6 @@ class EngineSpec:
     mjcf_meshes : tuple of str
         The mesh file suffixes its MJCF parser reads (``(".obj",)``); empty: every format MuJoCo reads.  The
         export writes only these for a proof that includes the engine.
-    skips_mjcf : tuple of str
-        The MJCF elements its parser skips with everything inside (``("frame",)``): the joints they hold are
-        missing from its reading, which explains a refusal of the export's proof.
     """
 
     name: str
@@ -84,7 +81,6 @@ class EngineSpec:
     tie_breaker: bool = False
     reference: bool = False
     mjcf_meshes: tuple[str, ...] = ()
-    skips_mjcf: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.distribution:
@@ -136,27 +132,6 @@ def specs() -> tuple[EngineSpec, ...]:
     ordered = tuple(sorted(found, key=lambda s: (not s.required, s.name)))
     _found = (path, ordered)
     return ordered
-
-
-def tolerance(rtol: float, *engines: str) -> float:
-    """The relative tolerance under which values of these engines agree: ``rtol``, or the coarsest declared precision.
-
-    An engine that computes in float32 (:attr:`EngineSpec.precision` about 1e-5) agrees with another within its
-    round-off, which is never called a difference; a difference above it always is.
-
-    Parameters
-    ----------
-    rtol : float
-        The tolerance asked for.
-    *engines : str
-        Engine names (names no spec declares, such as ``"all"``, count for nothing).
-
-    Returns
-    -------
-    float
-    """
-    declared = {s.name: s.precision for s in specs()}
-    return max([rtol, *(declared[e] for e in engines if e in declared)])
 
 
 def names() -> tuple[str, ...]:

@@ -25,7 +25,6 @@ from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
 from koenig_check.engines.sampling import random_states
-from koenig_check.engines.specs import tolerance
 from koenig_check.export.engine_sides import EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
@@ -119,11 +118,10 @@ def compare_engine(
     own = np.nan
     if engine in original.adapters:  # the engine's reading of the original against MuJoCo's, as compare measures
         own = _energy_difference(reference, original.adapters[engine], states)
-    ok = max(dm, de, di) <= tolerance(rtol, engine)  # a float32 engine's own round-off is not a difference
+    tolerance = max(rtol, registry.spec(engine).precision)  # an engine's declared round-off is no difference
+    ok = max(dm, de, di) <= tolerance
     proof = EngineProof(engine, dm, de, int(qpos.shape[0]), ok, own_reading=own, inverse_dynamics=di)
-    segments = _segments(
-        engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, tolerance(rtol, engine)
-    )
+    segments = _segments(engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, tolerance)
     return proof, segments
 
 
@@ -220,18 +218,22 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine (:func:`koenig_check.engines.registry.names`) whose declared precision is finer than
-        ``rtol``, each compared where it loads both files (a float32 engine where it is named).  Engines named
-        here are asked for: one that cannot compare the files fails the proof.
+        Default: every engine whose parser reads the export's format (its spec's ``formats``) and whose declared
+        precision is finer than ``rtol`` (a float32 engine where it is named), each compared where it loads both
+        files.  Engines named here are asked for: one that cannot compare the files fails the proof.
 
     Returns
     -------
     Proof
     """
     asked = () if engines is None else tuple(engines)
-    if engines is None:  # an engine whose round-off reaches the tolerance cannot prove it: compared where named
-        engines = tuple(e for e in registry.names() if registry.spec(e).precision < rtol)
-    engines = tuple(engines)
+    if engines is None:  # every engine whose parser reads the export's format (PyBullet, iDynTree: URDF only)
+        target = detect_format(Path(export))  # and whose round-off is below the tolerance (Newton's float32: named)
+        engines = tuple(
+            n for n in registry.names() if target in registry.spec(n).formats and registry.spec(n).precision < rtol
+        )
+    else:
+        engines = tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)
