@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from koenig_check.engines import ModelPair, load_model, random_states
+from koenig_check.engines import LoadedModel, load_model, random_states
 
 pytest.importorskip("newton", reason="Newton (the optional extra [newton]) is not installed: its tests are skipped")
 
@@ -43,7 +43,7 @@ NEWTON_CASES = [
 
 
 @cache
-def _load(model: str, floating: bool) -> tuple[ModelPair, object]:
+def _load(model: str, floating: bool) -> tuple[LoadedModel, object]:
     pair = load_model(str(ROOT / model) if model.startswith("tests/") else model, floating=floating, check=False)
     return pair, load_newton_engine(pair.source, pair.mujoco.model, floating)
 
