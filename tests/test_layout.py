@@ -223,6 +223,7 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     "modelfile/compiler.py": frozenset({"mujoco"}),
     # A cause's readings name each engine it was measured in: declared data, one Reading per engine.
     "engines/pinocchio/causes.py": frozenset({"mujoco", "drake"}),
+    "engines/newton/causes.py": frozenset({"mujoco", "pinocchio", "drake"}),
     "engines/pybullet/causes.py": frozenset({"mujoco", "pinocchio", "idyntree"}),
     "engines/idyntree/causes.py": frozenset({"mujoco", "pinocchio", "pybullet"}),
     "engines/drake/causes.py": frozenset({"mujoco", "pinocchio"}),
