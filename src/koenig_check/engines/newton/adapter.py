@@ -106,8 +106,8 @@ class NewtonEngine(Engine):
         n = q.shape[0]
         model = self._world_model(n)
         state = model.state()
-        jq = wp.array(q.reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")
-        jqd = wp.array(qd.reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")
+        jq = wp.array(q.reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")  # type: ignore[var-annotated]  # Warp's array types
+        jqd = wp.array(qd.reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")  # type: ignore[var-annotated]  # Warp's array types
         newton.eval_fk(model, jq, jqd, state)
         state.joint_q, state.joint_qd = jq, jqd
         return model, state
@@ -130,7 +130,7 @@ class NewtonEngine(Engine):
         out = np.zeros((P, n, n))
         for a, b in self._batches(P):
             model, state = self._fk(q[a:b], np.zeros((b - a, n)))
-            H = newton.eval_mass_matrix(model, state).numpy()  # joint_armature on the diagonal
+            H = newton.eval_mass_matrix(model, state).numpy()  # type: ignore[union-attr]  # armature on the diagonal
             out[a:b] = self._assemble(H, b - a)
         if not armature:
             out -= np.diag(self._arm)
@@ -317,12 +317,12 @@ class NewtonEngine(Engine):
             model, state = self._fk(q[a:b], qd[a:b])
             H = wp.zeros((model.articulation_count, *self._max_dofs(model)), dtype=wp.float32, device="cpu")
             coriolis = wp.zeros(model.joint_dof_count, dtype=wp.float32, device="cpu")
-            newton.eval_inverse_dynamics_passive(model, state, mass_matrix=H, coriolis_force=coriolis)
+            newton.eval_inverse_dynamics_passive(model, state, mass_matrix=H, coriolis_force=coriolis)  # type: ignore[arg-type]  # Warp's array types
             out = wp.zeros(model.joint_dof_count, dtype=wp.float32, device="cpu")
             newton.eval_inverse_dynamics_force(
                 model,
                 state,
-                mass_matrix=H,
+                mass_matrix=H,  # type: ignore[arg-type]  # Warp's array types
                 joint_qdd=wp.array(qdd[a:b].reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu"),
                 coriolis_force=coriolis,
                 gravity_force=wp.zeros(model.joint_dof_count, dtype=wp.float32, device="cpu"),

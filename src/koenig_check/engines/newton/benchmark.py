@@ -37,9 +37,9 @@ def bare_loop(engine: Any, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
         b = min(a + BATCH, q.shape[0])
         model = engine._world_model(b - a)
         state = model.state()
-        jq = wp.array(q[a:b].reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")
-        jqd = wp.array(qd[a:b].reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")
+        jq = wp.array(q[a:b].reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")  # type: ignore[var-annotated]  # Warp's array types
+        jqd = wp.array(qd[a:b].reshape(-1).astype(np.float32), dtype=wp.float32, device="cpu")  # type: ignore[var-annotated]  # Warp's array types
         newton.eval_fk(model, jq, jqd, state)
-        H = engine._assemble(newton.eval_mass_matrix(model, state).numpy(), b - a)
+        H = engine._assemble(newton.eval_mass_matrix(model, state).numpy(), b - a)  # type: ignore[union-attr]  # Warp's array types
         out[a:b] = 0.5 * np.einsum("pi,pij,pj->p", qd[a:b], H, qd[a:b])
     return out

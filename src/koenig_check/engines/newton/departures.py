@@ -203,7 +203,7 @@ def mass_matrices(model: Any, joint_q: np.ndarray) -> np.ndarray:
     for p, q in enumerate(joint_q):
         state = model.state()
         newton.eval_fk(model, wp.array(q.astype(np.float32), dtype=wp.float32, device="cpu"), model.joint_qd, state)
-        H = newton.eval_mass_matrix(model, state).numpy()
+        H = newton.eval_mass_matrix(model, state).numpy()  # type: ignore[union-attr]  # Warp's array types
         for k, (lo, hi) in enumerate(blocks):
             out[p, lo:hi, lo:hi] = H[k, : hi - lo, : hi - lo]
     return out

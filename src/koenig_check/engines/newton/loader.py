@@ -49,7 +49,7 @@ def _quiet_warp() -> Any:
     """Warp, imported with its messages below errors off (its banner and module loads go to stdout otherwise)."""
     import warp as wp
 
-    wp.config.quiet = True
+    wp.config.quiet = True  # type: ignore[attr-defined]  # Warp's array types
     if hasattr(wp, "LOG_ERROR"):  # Warp 1.19 logs through a level
         wp.config.log_level = wp.LOG_ERROR
     _init_without_cuda_warning(wp)
