@@ -78,6 +78,8 @@ class Kind(str, Enum):
     VERDICT = "verdict"
     # Nothing to compare.
     NOTHING_MOVES = "nothing_moves"
+    # The engines' gravity terms: the gravity vector read from the file, g(q), potential-energy differences.
+    GRAVITY = "gravity"
 
 
 @dataclass(frozen=True)
@@ -106,6 +108,8 @@ class Finding:
         Segments whose symptoms it explains (empty when none or unknown).
     hint : str
         What the user can do about it (an option, a file to load instead), or empty.
+    cause : str
+        The id of the catalogued cause it is (``"pinocchio.mjcf.option-gravity"``), or empty.
     """
 
     kind: Kind
@@ -117,6 +121,7 @@ class Finding:
     root_cause: bool = False
     segments: tuple[str, ...] = ()
     hint: str = ""
+    cause: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.kind, Kind):
@@ -162,6 +167,7 @@ class Finding:
             "root_cause": self.root_cause,
             "segments": list(self.segments),
             "hint": self.hint,
+            "cause": self.cause,
         }
 
 
