@@ -148,6 +148,7 @@ def compare_model(
     sample = _verdict_sample(loaded, pose_set, random)
     diagnosis = diagnose(loaded, disagree=disagree, qpos=sample.qpos, qvel=sample.qvel, rtol=rtol)
     comp.findings = diagnosis.findings
+    comp.gravity = diagnosis.gravity
     comp.segment_labels = diagnosis.parity.segment_labels if diagnosis.parity is not None else {}
     comp.notes = (
         [reason.as_note(f) for f in diagnosis.verdicts]

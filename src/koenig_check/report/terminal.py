@@ -233,6 +233,7 @@ def terminal_table(check: CrossCheck) -> str:
         lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
+    lines += gravity_rows(check, mw)
     if not check.summaries:
         return "\n".join(lines)
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})
@@ -256,6 +257,31 @@ def terminal_table(check: CrossCheck) -> str:
         "over/under: share of poses where the formula over- / under-estimates the engine's energy.",
     ]
     return "\n".join(lines)
+
+
+def gravity_rows(check: CrossCheck, mw: int) -> list[str]:
+    """The gravity verdict beside the kinetic one: one row per model with each engine's vector and the causes.
+
+    Parameters
+    ----------
+    check : CrossCheck
+    mw : int
+        Width of the model column.
+
+    Returns
+    -------
+    list of str
+    """
+    from koenig_check.gravity.words import verdict_text
+
+    rows = [(c.model, c.gravity) for c in check.comparisons if c.gravity is not None]
+    if not rows:
+        return []
+    lines = ["", "Gravity: g(q) and V(q)-V(q_ref) of every engine against MuJoCo's, each vector as read from the file"]
+    for model, parity in rows:
+        status = "agree" if parity.agrees else "DIFFER"
+        lines += _row(model, mw, f"{status:8s}  ", verdict_text(parity))
+    return lines
 
 
 #: The former name of :func:`terminal_table` ("verdict" now means only the three-engine ``Kind.VERDICT``).

@@ -6,6 +6,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from koenig_check.diagnosis import reason
+from koenig_check.gravity.words import reason_words
+from koenig_check.line_width import closed_cut
 from koenig_check.run import summaries
 from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
@@ -54,10 +56,12 @@ class CrossCheck(ResultLookup):
         """True when every model loaded and the engines agree with each other and with ``exact``.
 
         With Drake consulted, an engine that departs from the other two (a ``VERDICT`` finding) counts, and so does
-        an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made).
+        an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made),
+        and so does a gravity difference (the same robot in the same world: :mod:`koenig_check.gravity`).
         """
         verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
-        return not self.failures and all(p.agrees for p in self.parities) and not verdicts
+        gravity = all(c.gravity is None or c.gravity.agrees for c in self.comparisons)
+        return not self.failures and all(p.agrees for p in self.parities) and not verdicts and gravity
 
     def add(self, comparison: ModelComparison) -> EngineParity:
         """Record one model's comparison with its summaries and engine parity.
@@ -105,6 +109,8 @@ class CrossCheck(ResultLookup):
                 if not lead and unused and len(text) + len(unused) + 2 <= reason.REASON_WIDTH:
                     text += f"; {unused}"
                 parts.append(text)
+            if comparison.gravity is not None and not comparison.gravity.agrees:
+                parts.append(closed_cut(f"{agreement.model}: {reason_words(comparison.gravity)}", reason.REASON_WIDTH))
         return parts
 
     def reason(self) -> str:

@@ -46,7 +46,7 @@ CAUSES = (
             Reading("drake", "as written", "welds the body at its pose", measured=_MEASURED),
         ),
         quantities=("gravity",),
-        brief="pose of a welded root body dropped: robot tilted against gravity",
+        brief="pose of a welded root body dropped: tilted against gravity",
         hint="add a free joint to the root body or rotate Pinocchio's gravity into the body's frame",
         fixture="welded_mount_tilted.xml",
     ),
