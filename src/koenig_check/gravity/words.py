@@ -58,7 +58,8 @@ def verdict_text(parity: GravityParity) -> str:
     if parity.agrees:
         return f"g(q) and V(q)-V(q_ref) within {parity.rtol:g}, largest {fmt(worst.relative)} relative; {vectors}"
     where = f"pose {worst.pose}" + (f", dof {worst.dof}" if worst.dof >= 0 else "")
-    head = f"{worst.engine} {_QUANTITY[worst.quantity]} off by {fmt(worst.relative)} relative ({worst.absolute:+.4g} at {where})"
+    size = f"off by {fmt(worst.relative)} relative ({worst.absolute:+.4g} at {where})"
+    head = f"{worst.engine} {_QUANTITY[worst.quantity]} {size}"
     named = [cause_words(f) for f in causes(parity)]
     return head + (f"; {'; '.join(named)}" if named else "") + f"; {vectors}"
 

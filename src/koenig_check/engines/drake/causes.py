@@ -12,9 +12,11 @@ CAUSES = (
         construct='<option><flag gravity="disable"/>',
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", "no gravity (opt.gravity kept, the flag bit set)", measured=_MEASURED),
-            Reading("pinocchio", "differently", "ignores all of <option>: gravity (0, 0, -9.81)", measured=_MEASURED),
-            Reading("drake", "differently", "ignores the flag (with a warning): the file's gravity", measured=_MEASURED),
+            Reading("mujoco", "as written", "no gravity (opt.gravity kept, the flag bit set)", "", _MEASURED),
+            Reading("pinocchio", "differently", "ignores all of <option>: gravity (0, 0, -9.81)", "", _MEASURED),
+            Reading(
+                "drake", "differently", "ignores the flag (with a warning): the file's gravity", measured=_MEASURED
+            ),
         ),
         quantities=("gravity",),
         brief='<flag gravity="disable"/> ignored: the file\'s gravity applied',
@@ -26,9 +28,11 @@ CAUSES = (
         construct="<joint> default inherited through a <default> class with no <joint> of its own",
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", "inherits the parent class's joint attributes", measured=_MEASURED),
-            Reading("pinocchio", "as written", "inherits the parent class's joint attributes", measured=_MEASURED),
-            Reading("drake", "differently", "loses them: the joint gets Drake's defaults (axis 0 0 1)", measured=_MEASURED),
+            Reading("mujoco", "as written", "inherits the parent class's joint attributes", "", _MEASURED),
+            Reading("pinocchio", "as written", "inherits the parent class's joint attributes", "", _MEASURED),
+            Reading(
+                "drake", "differently", "loses them: the joint gets Drake's defaults (axis 0 0 1)", measured=_MEASURED
+            ),
         ),
         quantities=("kinematics", "joints"),
         brief="joint default inherited through a class without <joint> lost: wrong joint axis",

@@ -13,9 +13,9 @@ CAUSES = (
         construct="<option gravity>",
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", "uses the file's gravity", measured=_MEASURED),
-            Reading("pinocchio", "differently", _OPTION_IGNORED, measured=_MEASURED),
-            Reading("drake", "as written", "uses the file's gravity", measured=_MEASURED),
+            Reading("mujoco", "as written", "uses the file's gravity", "", _MEASURED),
+            Reading("pinocchio", "differently", _OPTION_IGNORED, "", _MEASURED),
+            Reading("drake", "as written", "uses the file's gravity", "", _MEASURED),
         ),
         quantities=("gravity",),
         brief="<option gravity> ignored: gravity (0, 0, -9.81)",
@@ -27,9 +27,11 @@ CAUSES = (
         construct='<option><flag gravity="disable"/>',
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", "no gravity (opt.gravity kept, the flag bit set)", measured=_MEASURED),
-            Reading("pinocchio", "differently", _OPTION_IGNORED, measured=_MEASURED),
-            Reading("drake", "differently", "ignores the flag (with a warning): the file's gravity", measured=_MEASURED),
+            Reading("mujoco", "as written", "no gravity (opt.gravity kept, the flag bit set)", "", _MEASURED),
+            Reading("pinocchio", "differently", _OPTION_IGNORED, "", _MEASURED),
+            Reading(
+                "drake", "differently", "ignores the flag (with a warning): the file's gravity", measured=_MEASURED
+            ),
         ),
         quantities=("gravity",),
         brief='<flag gravity="disable"/> ignored: gravity (0, 0, -9.81)',
@@ -41,9 +43,11 @@ CAUSES = (
         construct="pose of a top-level <body> without a joint",
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", "places the body, and all it carries, at its pose", measured=_MEASURED),
-            Reading("pinocchio", "differently", "drops the pose: the robot is rotated against gravity", measured=_MEASURED),
-            Reading("drake", "as written", "welds the body at its pose", measured=_MEASURED),
+            Reading("mujoco", "as written", "places the body, and all it carries, at its pose", "", _MEASURED),
+            Reading(
+                "pinocchio", "differently", "drops the pose: the robot is rotated against gravity", measured=_MEASURED
+            ),
+            Reading("drake", "as written", "welds the body at its pose", "", _MEASURED),
         ),
         quantities=("gravity",),
         brief="pose of a welded root body dropped: tilted against gravity",
