@@ -15,7 +15,7 @@ from koenig_check.engines.potential import PotentialParts
 
 
 class PinocchioGravity:
-    """The gravity methods of :class:`~koenig_check.engines.pinocchio.adapter.PinocchioEngine` (``Engine``'s contract)."""
+    """The gravity methods of :class:`~koenig_check.engines.pinocchio.adapter.PinocchioEngine` (contract: Engine's)."""
 
     model: pin.Model
     state_map: StateMap
