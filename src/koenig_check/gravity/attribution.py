@@ -37,6 +37,11 @@ DEFAULT_GRAVITY = np.array([0.0, 0.0, -9.81])
 _EXPLAINING = (Kind.MASS, Kind.COM, Kind.SEGMENTS, Kind.AXIS, Kind.ANCHOR, Kind.COMPILER, Kind.IGNORED_CONSTRUCT)
 
 
+def _default(vector: np.ndarray) -> bool:
+    """Whether a gravity vector is MuJoCo's default, to round-off."""
+    return bool(np.abs(vector - DEFAULT_GRAVITY).max() <= ROUNDOFF)
+
+
 def _vec(x: np.ndarray) -> tuple[float, ...]:
     return tuple(round(float(v), 12) + 0.0 for v in np.ravel(x))
 
@@ -80,7 +85,7 @@ def gravity_findings(parity: GravityParity, mj_model: Any, fmt: str, known: list
         if not np.allclose(vector, ref, rtol=parity.rtol, atol=parity.rtol * max(np.abs(ref).max(), 1.0)):
             if fmt == "mjcf" and gravity_disabled(mj_model) and np.any(vector):
                 key, element = f"{engine}.mjcf.flag-gravity-disable", "flag gravity"
-            elif fmt == "mjcf" and np.allclose(vector, DEFAULT_GRAVITY) and not np.allclose(ref, DEFAULT_GRAVITY):
+            elif fmt == "mjcf" and _default(vector) and not _default(ref):
                 key, element = f"{engine}.mjcf.option-gravity", "option gravity"
             else:
                 key, element = "", "option gravity"
