@@ -92,6 +92,9 @@ def diagnose(
     parity = import_parity(model, rtol=rtol)
     if disagree is None:
         disagree = not parity.clean
+    at = qpos if qpos is not None else np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
+    if not disagree:  # a gravity difference also calls for the optional engines' votes
+        disagree = not gravity_parity(model, at, [], rtol, ["mujoco", "pinocchio"]).agrees
     engines = model.options.engines
     optional: list[Finding] = []
     for name in registry.optional():
@@ -112,7 +115,6 @@ def diagnose(
     parser = "URDF" if Path(model.path).suffix.lower() == ".urdf" else "MJCF"
     unmade = unable_findings(limits, policy.asked_for(engines), parser) + policy.unmade_checks(optional, engines)
     findings, parity = _blamed_as_verdicts_say(verdicts, findings, parity)
-    at = qpos if qpos is not None else np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     gravity = gravity_parity(model, at, findings, rtol, voters)  # engines given another robot do not vote
     findings += gravity.findings
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines), gravity)

@@ -9,8 +9,9 @@ Rules, engine by engine, for an engine whose ``g(q)`` or ``dV`` differs:
    with both vectors and no id.
 2. The vectors agree and the engine dropped a welded root body's pose (a ``FRAME`` root cause of that engine):
    ``<engine>.mjcf.welded-root-pose``, which only gravity sees.
-3. The vectors agree and a root cause already found for that engine changes its masses, COMs or kinematics: that
-   cause explains ``g(q)``; the gravity finding refers to it by id and is no root cause itself (named once).
+3. The vectors agree and a root cause already found for that engine changes its masses, COMs or kinematics (or,
+   without one, an import difference of those): that cause explains ``g(q)``; the gravity finding refers to it
+   (its element, its id) and is no root cause itself (named once).
 4. Otherwise the difference is reported without a cause.
 
 URDF carries no gravity: a note says every engine applied its default.  Springs are never gravity: an engine
@@ -126,9 +127,8 @@ def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: 
             hint=entry.hint,
             cause=entry.id,
         )
-    explaining = [
-        f for f in known if f.root_cause and f.affects_energy and f.kind in _EXPLAINING and f.engine in (engine, "both")
-    ]
+    concerning = [f for f in known if f.affects_energy and f.kind in _EXPLAINING and f.engine in (engine, "both")]
+    explaining = [f for f in concerning if f.root_cause] or concerning  # a root cause, else the symptom found
     if explaining:
         by = explaining[0]
         return Finding(

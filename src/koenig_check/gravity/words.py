@@ -93,6 +93,7 @@ def reason_words(parity: GravityParity) -> str:
     if parity.agrees or worst is None:
         return ""
     found = causes(parity)
+    found = [f for f in found if f.engine == worst.engine] + [f for f in found if f.engine != worst.engine]
     first = found[0] if found else None
     named = f": {first.summary}" + (f" [{first.cause}]" if first.cause else "") if first else ""
     if first is not None and first.engine != worst.engine:

@@ -87,7 +87,8 @@ class CrossCheck(ResultLookup):
         A model that could not be checked gives its error and at most three root causes (:attr:`failure_lines`;
         the engine's whole reason is in :attr:`failures`); a disagreeing model gives the check asked for and not
         made or the engine that departs, the gap, and at most three root causes, the most important first,
-        within 200 characters (the details are in ``koenig-check parity``, ``summary.md`` and the report).
+        or, where only gravity differs, the gravity gap and its cause, within 200 characters (the details are in
+        ``koenig-check parity``, ``summary.md`` and the report).
 
         Parameters
         ----------
@@ -109,7 +110,7 @@ class CrossCheck(ResultLookup):
                 if not lead and unused and len(text) + len(unused) + 2 <= reason.REASON_WIDTH:
                     text += f"; {unused}"
                 parts.append(text)
-            if comparison.gravity is not None and not comparison.gravity.agrees:
+            elif comparison.gravity is not None and not comparison.gravity.agrees:  # else said in the details
                 parts.append(closed_cut(f"{agreement.model}: {reason_words(comparison.gravity)}", reason.REASON_WIDTH))
         return parts
 
