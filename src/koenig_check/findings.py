@@ -109,7 +109,7 @@ class Finding:
     hint : str
         What the user can do about it (an option, a file to load instead), or empty.
     cause : str
-        The id of the catalogued cause it is (``"pinocchio.mjcf.option-gravity"``), or empty.
+        The id of the catalogued cause it is an instance of (:func:`koenig_check.causes.cause`), or empty.
     """
 
     kind: Kind
@@ -132,6 +132,10 @@ class Finding:
             raise ValueError("Finding needs an element and a summary")
         object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
         object.__setattr__(self, "segments", tuple(self.segments))
+        if self.cause:
+            from koenig_check.engines.catalogue import cause  # it reads the engines, which read findings
+
+            cause(self.cause)  # an unknown id is a programming error: KeyError names the closest ids
 
     def message(self) -> str:
         """One line for people: engine, element, summary, values and hint.

@@ -8,13 +8,14 @@ import numpy as np
 import pytest
 from gravity_arm import arm_xml, engines_of
 
-from koenig_check.causes import FIXTURES
+import koenig_check.causes
 from koenig_check.diagnosis.diagnose import diagnose
 from koenig_check.engines import random_states
 from koenig_check.engines.registry import installed
 from koenig_check.findings import Kind
 
 ROOT = Path(__file__).resolve().parents[2]
+FIXTURES = Path(koenig_check.causes.__file__).parent / "fixtures"
 DRAKE = installed("drake")
 
 #: fixture -> the cause id each departing engine's gravity finding must carry (Drake's only where installed).

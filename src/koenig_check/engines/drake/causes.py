@@ -1,22 +1,24 @@
-"""The constructs Drake's parsers read differently from the file: its entries in the catalogue of causes."""
+"""The constructs Drake's parsers read differently from the file, and Drake's own reading of a fixture."""
 
 from __future__ import annotations
 
-from koenig_check.causes import Cause, Reading
+from pathlib import Path
 
-_MEASURED = "mujoco 4.0.0, pin 4.1.0, drake 1.51.1"
+from koenig_check.engines.cause import Cause, Reading
+from koenig_check.engines.measurement import Measurement
 
-CAUSES = (
+#: The Drake release these readings were measured on.
+MEASURED = "1.51.1"
+
+CAUSES: tuple[Cause, ...] = (
     Cause(
         id="drake.mjcf.flag-gravity-disable",
         construct='<option><flag gravity="disable"/>',
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", "no gravity (opt.gravity kept, the flag bit set)", "", _MEASURED),
-            Reading("pinocchio", "differently", "ignores all of <option>: gravity (0, 0, -9.81)", "", _MEASURED),
-            Reading(
-                "drake", "differently", "ignores the flag (with a warning): the file's gravity", measured=_MEASURED
-            ),
+            Reading("mujoco", "as written", measured="4.0.0"),
+            Reading("pinocchio", "differently", "ignores all of <option>: gravity (0, 0, -9.81)", measured="4.1.0"),
+            Reading("drake", "differently", "ignores the flag (with a warning): the file's gravity", measured=MEASURED),
         ),
         quantities=("gravity",),
         brief='<flag gravity="disable"/> ignored: the file\'s gravity applied',
@@ -28,15 +30,61 @@ CAUSES = (
         construct="<joint> default inherited through a <default> class with no <joint> of its own",
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", "inherits the parent class's joint attributes", "", _MEASURED),
-            Reading("pinocchio", "as written", "inherits the parent class's joint attributes", "", _MEASURED),
+            Reading("mujoco", "as written", measured="4.0.0"),
+            Reading("pinocchio", "as written", measured="4.1.0"),
             Reading(
-                "drake", "differently", "loses them: the joint gets Drake's defaults (axis 0 0 1)", measured=_MEASURED
+                "drake", "differently", "loses them: the joint gets Drake's defaults (axis 0 0 1)", measured=MEASURED
             ),
         ),
-        quantities=("kinematics", "joints"),
+        quantities=("kinematics", "gravity"),  # a planar arm's M cannot see the axis, g(q) does
         brief="joint default inherited through a class without <joint> lost: wrong joint axis",
         hint="write the <joint> attributes in the class the body uses",
         fixture="class_joint_inherited.xml",
     ),
 )
+
+
+def measure(path: Path) -> Measurement:
+    """Drake's reading of a model file: ``Parser.AddModels``, ``CalcMassMatrix`` at the default context.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+
+    Returns
+    -------
+    Measurement
+
+    Raises
+    ------
+    Exception
+        Drake refuses the file (its own exception).
+    """
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import MultibodyPlant
+    from pydrake.multibody.tree import BodyIndex
+
+    plant = MultibodyPlant(0.0)
+    Parser(plant).AddModels(path)
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    full = plant.CalcMassMatrix(context)
+    applied = -plant.CalcGravityGeneralizedForces(context)  # Drake's is the force gravity exerts
+    joints = [plant.get_joint(i) for i in plant.GetJointIndices()]
+    moving = [j for j in joints if j.num_velocities() > 0]
+    one_dof = {j.name(): j.velocity_start() for j in moving if j.num_velocities() == 1}
+    welded = {b.index() for b in plant.GetBodiesWeldedTo(plant.world_body())}
+    bodies = [plant.get_body(BodyIndex(i)) for i in range(plant.num_bodies())]
+    armature: dict[str, float] = {}
+    for a in (plant.get_joint_actuator(i) for i in plant.GetJointActuatorIndices()):
+        reflected = float(a.default_reflected_inertia())
+        if reflected and a.joint().name() in one_dof:
+            armature[a.joint().name()] = reflected
+    return Measurement(
+        joints=tuple(sorted(j.name() for j in moving)),
+        mass=float(sum(b.default_mass() for b in bodies if b.index() not in welded)),
+        mass_matrix={(a, b): float(full[i, k]) for a, i in one_dof.items() for b, k in one_dof.items()},
+        gravity=tuple(float(g) for g in plant.gravity_field().gravity_vector()),
+        gravity_forces={j: float(applied[i]) for j, i in one_dof.items()},
+        armature=armature,
+    )
