@@ -8,7 +8,8 @@ Rules, engine by engine, for an engine whose ``g(q)`` or ``dV`` differs:
    The cause's id, brief and hint come from the catalogue; a reading no entry describes is still a root cause,
    with both vectors and no id.
 2. The vectors agree and the engine dropped a welded root body's pose (a ``FRAME`` root cause of that engine):
-   ``<engine>.mjcf.welded-root-pose``, which only gravity sees.
+   ``<engine>.mjcf.welded-root-pose``, which only gravity sees; or the file has joints whose defaults come through
+   a class without ``<joint>`` and the engine declares ``<engine>.mjcf.class-joint-default`` (a lost joint axis).
 3. The vectors agree and a root cause already found for that engine changes its masses, COMs or kinematics (or,
    without one, an import difference of those): that cause explains ``g(q)``; the gravity finding refers to it
    (its element, its id) and is no root cause itself (named once).
@@ -47,7 +48,7 @@ def _vec(x: np.ndarray) -> tuple[float, ...]:
     return tuple(round(float(v), 12) + 0.0 for v in np.ravel(x))
 
 
-def gravity_findings(parity: GravityParity, mj_model: Any, fmt: str, known: list[Finding]) -> list[Finding]:
+def gravity_findings(parity: GravityParity, mj_model: Any, path: str, fmt: str, known: list[Finding]) -> list[Finding]:
     """The findings that explain (or note) the gravity verdict of one model.
 
     Parameters
@@ -56,6 +57,8 @@ def gravity_findings(parity: GravityParity, mj_model: Any, fmt: str, known: list
         Readings and gaps (its ``findings`` are not read).
     mj_model : mujoco.MjModel
         MuJoCo's model (its ``opt.gravity`` and disable flag are the file's as written).
+    path : str
+        The model file (its default classes are read for the joint-default cause).
     fmt : {"mjcf", "urdf"}
     known : list of Finding
         What is already known about the model.
@@ -105,13 +108,15 @@ def gravity_findings(parity: GravityParity, mj_model: Any, fmt: str, known: list
                 )
             )
             continue
-        out.append(_same_vector(engine, parity, known, ids))
+        out.append(_same_vector(engine, parity, known, ids, path if fmt == "mjcf" else ""))
     out += _springs(parity)
     return out
 
 
-def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: dict[str, Any]) -> Finding:
+def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: dict[str, Any], path: str) -> Finding:
     """The finding for an engine whose g(q) differs under the same gravity vector."""
+    from koenig_check.modelfile.joint_classes import inherited_through_jointless_class
+
     gaps = {g.quantity: g for g in parity.gaps if g.engine == engine}
     values = {"g(q) relative": gaps["g(q)"].relative, "dV relative": gaps["dV"].relative, "pose": gaps["g(q)"].pose}
     frame = [f for f in known if f.kind is Kind.FRAME and f.root_cause and f.engine == engine]
@@ -123,6 +128,19 @@ def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: 
             frame[0].element,
             entry.brief,
             {**values, **frame[0].values},
+            root_cause=True,
+            hint=entry.hint,
+            cause=entry.id,
+        )
+    entry = ids.get(f"{engine}.mjcf.class-joint-default")
+    joints = inherited_through_jointless_class(path) if entry is not None and path else ()
+    if joints:
+        return Finding(
+            Kind.GRAVITY,
+            engine,
+            f"joint {joints[0]}",
+            entry.brief,
+            {**values, "joints": joints},
             root_cause=True,
             hint=entry.hint,
             cause=entry.id,

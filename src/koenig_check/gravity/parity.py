@@ -163,5 +163,5 @@ def gravity_parity(
             gaps += [gap(name, "g(q)", ref.g, r.g), gap(name, "dV", ref.dv_gravity, r.dv_gravity)]
     parity = GravityParity(readings, gaps, rtol=rtol, left_out=left_out)
     fmt = "urdf" if Path(loaded.path).suffix.lower() == ".urdf" else "mjcf"
-    parity.findings = gravity_findings(parity, loaded.mujoco.model, fmt, findings)
+    parity.findings = gravity_findings(parity, loaded.mujoco.model, str(loaded.path), fmt, findings)
     return parity
