@@ -11,6 +11,7 @@ import numpy as np
 from koenig_check.findings import Finding
 from koenig_check.gravity.attribution import gravity_findings
 from koenig_check.gravity.readings import GravityReading, read_gravity
+from koenig_check.roundoff import ROUNDOFF
 
 #: The engine every other is compared with (the one every model is loaded in, reading MJCF as written).
 REFERENCE = "mujoco"
@@ -27,7 +28,8 @@ class Gap:
         ``g(q)`` or the potential-energy difference ``V(q) - V(q_ref)`` of gravity.
     relative : float
         ``|difference|`` at the worst entry over the reference's largest magnitude (the engine's, when the
-        reference's is zero; 0 when both are zero).
+        reference's is zero); 0 when the difference is round-off (at most ``ROUNDOFF`` times that magnitude, or
+        ``ROUNDOFF`` itself below 1: a horizontal motion, where g(q) and dV are zero).
     absolute : float
         The signed difference (engine minus reference) at the worst entry.
     pose : int
@@ -63,7 +65,9 @@ def gap(engine: str, quantity: str, reference: np.ndarray, value: np.ndarray) ->
         return Gap(engine, quantity, 0.0, 0.0, 0)
     pose, dof = np.unravel_index(int(np.argmax(np.abs(diff))), diff.shape)
     scale = float(np.abs(ref).max()) or float(np.abs(val).max())
-    relative = abs(float(diff[pose, dof])) / scale if scale > 0 else 0.0
+    size = abs(float(diff[pose, dof]))
+    rounding = size <= ROUNDOFF * max(1.0, scale)  # the project's round-off (1e-12): a motion gravity cannot see
+    relative = size / scale if scale > 0 and not rounding else 0.0
     return Gap(engine, quantity, relative, float(diff[pose, dof]), int(pose), int(dof) if ref.shape[1] > 1 else -1)
 
 

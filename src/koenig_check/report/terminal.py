@@ -233,9 +233,8 @@ def terminal_table(check: CrossCheck) -> str:
         lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
-    lines += gravity_rows(check, mw)
     if not check.summaries:
-        return "\n".join(lines)
+        return "\n".join(lines + gravity_rows(check, mw))
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})
     refused = {r["formula"] for c in check.comparisons for r in c.refusals}
     fw = max(len(f) for f in [*rows, *refused, "formula"])
@@ -256,7 +255,7 @@ def terminal_table(check: CrossCheck) -> str:
         f"=: every pose within {rtol:g}; ≠: beyond. exact: models where every pose is within tolerance.",
         "over/under: share of poses where the formula over- / under-estimates the engine's energy.",
     ]
-    return "\n".join(lines)
+    return "\n".join(lines + gravity_rows(check, mw))
 
 
 def gravity_rows(check: CrossCheck, mw: int) -> list[str]:
