@@ -134,7 +134,7 @@ def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: 
         )
     entry = ids.get(f"{engine}.mjcf.class-joint-default")
     joints = inherited_through_jointless_class(path) if entry is not None and path else ()
-    if joints:
+    if entry is not None and joints:
         return Finding(
             Kind.GRAVITY,
             engine,

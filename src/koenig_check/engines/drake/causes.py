@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from koenig_check.engines.cause import Cause, Reading
 from koenig_check.engines.measurement import Measurement
 
@@ -69,7 +71,7 @@ def measure(path: Path) -> Measurement:
     plant.Finalize()
     context = plant.CreateDefaultContext()
     full = plant.CalcMassMatrix(context)
-    applied = -plant.CalcGravityGeneralizedForces(context)  # Drake's is the force gravity exerts
+    applied = -np.asarray(plant.CalcGravityGeneralizedForces(context))  # Drake's is the force gravity exerts
     joints = [plant.get_joint(i) for i in plant.GetJointIndices()]
     moving = [j for j in joints if j.num_velocities() > 0]
     one_dof = {j.name(): j.velocity_start() for j in moving if j.num_velocities() == 1}
