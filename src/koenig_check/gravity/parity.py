@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.findings import Finding
-from koenig_check.gravity.attribution import gravity_findings
+from koenig_check.gravity.attribution import gravity_findings, springs
 from koenig_check.gravity.readings import GravityReading, read_gravity
 from koenig_check.roundoff import ROUNDOFF
 
@@ -83,6 +83,8 @@ class GravityParity:
     findings : list of Finding
         Why they differ (catalogued causes with ids, or a mass cause named once), and notes (URDF's
         default gravity, springs kept apart).
+    explanations : list of Finding
+        Those of :attr:`findings` that say why an engine differs, one per engine beyond tolerance.
     rtol : float
     left_out : dict of str to str
         Engines that could not report their gravity terms, and why.
@@ -91,6 +93,7 @@ class GravityParity:
     readings: dict[str, GravityReading]
     gaps: list[Gap] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
+    explanations: list[Finding] = field(default_factory=list)
     rtol: float = 1e-9
     left_out: dict[str, str] = field(default_factory=dict)
 
@@ -167,5 +170,7 @@ def gravity_parity(
             gaps += [gap(name, "g(q)", ref.g, r.g), gap(name, "dV", ref.dv_gravity, r.dv_gravity)]
     parity = GravityParity(readings, gaps, rtol=rtol, left_out=left_out)
     fmt = "urdf" if Path(loaded.path).suffix.lower() == ".urdf" else "mjcf"
-    parity.findings = gravity_findings(parity, loaded.mujoco.model, str(loaded.path), fmt, findings)
+    found = gravity_findings(parity, loaded.mujoco.model, str(loaded.path), fmt, findings)
+    parity.explanations = [f for f in found if f.engine != "file"]  # URDF's note explains nothing
+    parity.findings = found + springs(parity)
     return parity

@@ -20,13 +20,11 @@ def causes(parity: GravityParity) -> list[Finding]:
     -------
     list of Finding
     """
-    explaining = [f for f in parity.findings if f.root_cause or f.cause]
-    unexplained = [f for f in parity.findings if not (f.root_cause or f.cause) and f.element == "model"]
-    return sorted(explaining, key=lambda f: not f.root_cause) + [f for f in unexplained if f.engine != "file"]
+    return sorted(parity.explanations, key=lambda f: not f.root_cause)
 
 
 def cause_words(finding: Finding) -> str:
-    """One cause as the short form reads it: ``pinocchio: <brief> [id]``.
+    """One cause as the short form reads it: ``pinocchio: <element>: <brief> [id]``.
 
     Parameters
     ----------
@@ -37,7 +35,7 @@ def cause_words(finding: Finding) -> str:
     str
     """
     tail = f" [{finding.cause}]" if finding.cause else ""
-    return f"{finding.engine}: {finding.summary}{tail}"
+    return f"{finding.engine}: {finding.element}: {finding.summary}{tail}"
 
 
 def verdict_text(parity: GravityParity) -> str:
@@ -95,7 +93,7 @@ def reason_words(parity: GravityParity) -> str:
     found = causes(parity)
     found = [f for f in found if f.engine == worst.engine] + [f for f in found if f.engine != worst.engine]
     first = found[0] if found else None
-    named = f": {first.summary}" + (f" [{first.cause}]" if first.cause else "") if first else ""
+    named = f": {first.element}: {first.summary}" + (f" [{first.cause}]" if first.cause else "") if first else ""
     if first is not None and first.engine != worst.engine:
         named = f"; {cause_words(first)}"
     more = f" (+{len(found) - 1} more)" if len(found) > 1 else ""
