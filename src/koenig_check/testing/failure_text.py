@@ -35,7 +35,10 @@ def verdict_lines(check: CrossCheck) -> list[str]:
         if parity.agrees and not verdicts and not unmade and not gravity_off:
             continue
         lines.append(f"{parity.model}: MuJoCo and Pinocchio {'agree' if parity.agrees else 'disagree'}")
-        if gravity is not None and gravity_off:  # beside the kinetic verdict, with its catalogued cause
+        # Beside the kinetic verdict, where gravity has a cause of its own (a cause the kinetic lines already
+        # name, a mass read differently, is not said twice) or is the only disagreement.
+        own = gravity is not None and any(f.root_cause for f in gravity.explanations)
+        if gravity is not None and gravity_off and (own or (parity.agrees and not verdicts)):
             lines.append(f"  {verdict_line(gravity)}")
         lines += [f"  root cause: {cause}" for cause in cause_lines(comparison.findings)]  # one a line
         lines += [f"  three engines: {f.message()}" for f in verdicts]
