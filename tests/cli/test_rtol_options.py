@@ -10,13 +10,13 @@ import pytest
 from koenig_check.cli.main import build_parser, main
 from koenig_check.engines import resolve_model
 
-#: Commands that compare numbers, each with its own --rtol (``models`` and ``causes`` only list).
+#: Commands that compare numbers, each with its own --rtol (``models`` only lists names).
 COMPARING = ("compare", "demo", "parity", "dynamics", "export", "selfcheck")
 
 
 def test_every_comparing_command_has_rtol():
     sub = next(a for a in build_parser()._actions if a.dest == "command")
-    assert set(sub.choices) - set(COMPARING) == {"models", "causes"}
+    assert set(sub.choices) - set(COMPARING) == {"models", "causes"}  # listings: nothing is compared
     for name in COMPARING:
         assert "--rtol" in sub.choices[name]._option_string_actions, name
 
