@@ -12,7 +12,7 @@ Rules, engine by engine, for an engine whose ``g(q)`` or ``dV`` differs:
    a class without ``<joint>`` and the engine declares ``<engine>.mjcf.class-joint-default`` (a lost joint axis).
 3. The vectors agree and a root cause already found for that engine changes its masses, COMs or kinematics (or,
    without one, an import difference of those): that cause explains ``g(q)``; the gravity finding refers to it
-   (its element, its id) and is no root cause itself (named once).
+   (its element under ``"explained by"``, its id) and is no root cause itself (named once).
 4. Otherwise the difference is reported without a cause.
 
 URDF carries no gravity: a note says every engine applied its default.  Springs are never gravity: an engine
@@ -151,12 +151,12 @@ def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: 
     explaining = [f for f in concerning if f.root_cause] or concerning  # a root cause, else the symptom found
     if explaining:
         by = explaining[0]
-        return Finding(
+        return Finding(  # a symptom: the cause keeps its element, named once; this one refers to it
             Kind.GRAVITY,
             engine,
-            by.element,
-            "g(q) differs: explained by the " + by.kind.value + " difference found there",
-            values,
+            "model",
+            f"g(q) differs: explained by the {by.kind.value} difference of {by.element}",
+            {**values, "explained by": by.element},
             cause=by.cause,
         )
     return Finding(Kind.GRAVITY, engine, "model", "g(q) differs under the same gravity vector: no cause found", values)
