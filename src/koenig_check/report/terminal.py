@@ -51,11 +51,11 @@ def _fold(lines: list[str]) -> list[str]:
     return out
 
 
-def _row(model: str, width: int, cells: str, text: str, total: int = WIDTH) -> list[str]:
+def _row(model: str, width: int, cells: str, text: str) -> list[str]:
     """A model's row: a label wider than its column goes on a line of its own, the cells under it."""
     if len(model) <= width:
-        return _wrap(f"{model:{width}s}  {cells}", text, total)
-    return _fold([model]) + _wrap(f"{'':{width}s}  {cells}", text, total)
+        return _wrap(f"{model:{width}s}  {cells}", text)
+    return _fold([model]) + _wrap(f"{'':{width}s}  {cells}", text)
 
 
 def optional_gap(comparison: ModelComparison, engine: str | None = None) -> tuple[float, bool] | None:
@@ -261,7 +261,8 @@ def terminal_table(check: CrossCheck) -> str:
 def gravity_rows(check: CrossCheck, mw: int) -> list[str]:
     """The gravity verdict beside the kinetic one: one row per model with each engine's vector and the causes.
 
-    The rows are indented under their heading: a line that starts with a model's label is its kinetic row.
+    The lines are indented under their heading and the label ends with a colon: a line that starts with a model's
+    label, then its cells, is its kinetic row.
 
     Parameters
     ----------
@@ -281,8 +282,7 @@ def gravity_rows(check: CrossCheck, mw: int) -> list[str]:
     lines = ["", "Gravity: g(q) and V(q)-V(q_ref) of every engine against MuJoCo's, each vector as read from the file"]
     for model, parity in rows:
         status = "agree" if parity.agrees else "DIFFER"
-        row = _row(model, mw, f"{status:8s}  ", verdict_text(parity), WIDTH - 2)
-        lines += ["  " + line for line in row]  # indented under the block's heading
+        lines += _wrap(f"  {model}: {status}: ", verdict_text(parity))  # not a table row: the kinetic row is
     return lines
 
 
