@@ -14,10 +14,10 @@ Hierarchy::
     ├── ArgumentValueError (ValueError), ArgumentTypeError (TypeError)   usage errors
     ├── ModelFileError (ValueError)                                      the file cannot be read as MJCF/URDF
     ├── ModelLoadError (ValueError)                                      an engine cannot load the file
-    │   ├── InertiaError, CoupledJointsError, NoMovingSegmentError
-    │   └── DrakeLoadError
+    │   └── InertiaError, CoupledJointsError, NoMovingSegmentError (an engine's own load error, such as
+    │       DrakeLoadError, lives in its subpackage: koenig_check.engines.drake.loader)
     ├── JointMismatch (ValueError)                                       the engines' joints cannot be paired
-    ├── DrakeUnavailableError (ValueError)                               Drake asked for, not installed
+    ├── EngineUnavailableError (ValueError)                              an optional engine asked for, unusable
     ├── PoseFileError (ValueError), RecordFileError (ValueError)         input files of a run
     ├── NotPlaneParallelError (ValueError)                               eq. (16) on a motion not in a plane
     └── PathDependentError                                               a formula's energy needs the path
@@ -36,8 +36,6 @@ __all__ = [
     "ArgumentTypeError",
     "ArgumentValueError",
     "CoupledJointsError",
-    "DrakeLoadError",
-    "DrakeUnavailableError",
     "EngineUnavailableError",
     "InertiaError",
     "JointMismatch",
@@ -166,10 +164,6 @@ class NoMassError(ModelLoadError):
         return (type(self), (self.args[0] if self.args else "", self.links))
 
 
-class DrakeLoadError(ModelLoadError):
-    """Drake cannot load a model file (or its joints cannot be paired with MuJoCo's); one line naming the file."""
-
-
 class JointMismatch(KoenigCheckError, ValueError):  # noqa: N818 - the name the design uses
     """The joints of the MuJoCo model and the Pinocchio model cannot be paired by name.
 
@@ -228,10 +222,6 @@ class EngineUnavailableError(KoenigCheckError, ValueError):
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (type(self), (self.args[0] if self.args else "", self.engine))
-
-
-#: The former name of :class:`EngineUnavailableError` (Drake was the only optional engine).
-DrakeUnavailableError = EngineUnavailableError
 
 
 # ------------------------------------------------------------------------------------------ inputs of a run

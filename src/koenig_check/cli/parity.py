@@ -16,7 +16,7 @@ from koenig_check.cli.parsing import add_command, check_models, load_options_of,
 from koenig_check.engines.load_options import add_load_arguments
 
 #: Random states on which a third engine's energies are compared by default (``compare``'s default poses; not
-#: :data:`koenig_check.api.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
+#: :data:`koenig_check.run.engine_runs.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
 DEFAULT_POSES = 20
 
 
@@ -81,7 +81,7 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: 
 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
-    from koenig_check.diagnosis.policy import asked_for
+    from koenig_check.diagnosis.policy import attach_engines
     from koenig_check.diagnosis.reason import (
         REASON_WIDTH,
         ROUNDING_LEVEL,
@@ -102,8 +102,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
     options = load_options_of(args)
     check_models(args, [args.model, *([options.pinocchio_model] if options.pinocchio_model else [])])
     model = load_model(args.model, options)
-    for name in asked_for(options.engines):
-        model.attach(name)
+    attach_engines(model)  # the engines the user named
     diagnosis = parity_diagnosis(model, args.rtol, args.poses, args.seed)
     report = diagnosis.parity
     assert report is not None
@@ -127,8 +126,10 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         and not (f.kind is Kind.ENGINE_NOT_USED and f.engine in unable)
     ]
     if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
-        names = ", ".join(engine_label(e) for e in optional())
-        print(f"\nThe third engine ({names}): verdicts and what its parser said")
+        used = [e for e in optional() if e in model.engines or model.refusal(e) is not None] or list(optional())
+        names = ", ".join(engine_label(e) for e in used)
+        head = "The third engine" if len(used) == 1 else "The other engines"
+        print(f"\n{head} ({names}): verdicts and what {'its parser' if len(used) == 1 else 'their parsers'} said")
         print("\n".join(shown(f"  {line}") for line in third))
     gravity = diagnosis.gravity
     if gravity is not None:  # beside the kinetic verdict: the same robot in the same world

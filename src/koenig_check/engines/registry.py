@@ -6,8 +6,7 @@ declarations.  MuJoCo and Pinocchio load every model (:func:`koenig_check.engine
 engine is attached to a loaded model by the function its spec names (:func:`attach`).  A new engine is one
 subpackage under ``engines/``: nothing here changes.
 
-The tables of earlier versions (:data:`ENGINE_NAMES`, :data:`REQUIRED`, :data:`OPTIONAL`, :data:`LABEL`,
-:data:`ATTACH`) are still here, derived from the specs each time they are read.
+The tables :data:`LABEL` and :data:`ATTACH` are derived from the specs each time they are read.
 """
 
 from __future__ import annotations
@@ -18,17 +17,14 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines.errors import EngineUnavailableError
-from koenig_check.engines.specs import EngineSpec, names, spec, specs
+from koenig_check.engines.specs import EngineSpec, names, reference, spec, specs
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
     from koenig_check.engines.base import Engine
 
-    ENGINE_NAMES: tuple[str, ...]  # read through __getattr__, from the specs
-    REQUIRED: tuple[str, ...]
-    OPTIONAL: tuple[str, ...]
 
-__all__ = [  # and ENGINE_NAMES, REQUIRED, OPTIONAL (module __getattr__)
+__all__ = [
     "ATTACH",
     "LABEL",
     "EngineSpec",
@@ -38,9 +34,11 @@ __all__ = [  # and ENGINE_NAMES, REQUIRED, OPTIONAL (module __getattr__)
     "installed",
     "label",
     "load_function",
+    "mjcf_mesh_formats",
     "names",
     "not_used",
     "optional",
+    "reference",
     "required",
     "spec",
     "specs",
@@ -115,14 +113,6 @@ _MODULE: Mapping[str, str] = _Table(lambda s: s.module)
 _INSTALL: Mapping[str, str] = _Table(lambda s: s.install_hint)
 
 
-def __getattr__(name: str) -> tuple[str, ...]:
-    """The tuples of earlier versions, derived from the specs: ``ENGINE_NAMES``, ``REQUIRED``, ``OPTIONAL``."""
-    derived = {"ENGINE_NAMES": names, "REQUIRED": required, "OPTIONAL": optional}
-    if name in derived:
-        return derived[name]()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 def load_function(path: str) -> Callable[..., Any]:
     """The function a spec names as ``"module:function"``.
 
@@ -187,6 +177,24 @@ def check_engines(engines: Sequence[str] | None) -> None:
             raise EngineUnavailableError(
                 f"engines: {name} asked for but {module} is not installed ({install_hint(name)})", engine=name
             )
+
+
+def mjcf_mesh_formats(engines: Sequence[str]) -> dict[str, tuple[str, ...]]:
+    """The mesh formats the MJCF parsers of some engines read, for those that read only some.
+
+    Parameters
+    ----------
+    engines : sequence of str
+        The engines that will read a file (unknown names are ignored).
+
+    Returns
+    -------
+    dict of str to tuple of str
+        Engine -> the mesh suffixes its MJCF parser reads (:attr:`EngineSpec.mjcf_meshes`); an engine that
+        reads every mesh MuJoCo reads is left out.
+    """
+    known = set(names())
+    return {e: spec(e).mjcf_meshes for e in engines if e in known and spec(e).mjcf_meshes}
 
 
 def not_used(name: str, why: str, **values: Any) -> Finding:

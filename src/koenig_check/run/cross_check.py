@@ -13,7 +13,7 @@ from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 
 @dataclass(repr=False)
@@ -27,7 +27,7 @@ class CrossCheck(ResultLookup):
     ----------
     comparisons : list of ModelComparison
     summaries : list of FormulaSummary
-    parities : list of EngineParity
+    agreements : list of EngineAgreement
     failures : list of (str, str)
         Models that could not be compared, with a one-line reason each (the engine's whole reason).
     failure_lines : dict of str to str
@@ -40,7 +40,7 @@ class CrossCheck(ResultLookup):
 
     comparisons: list[ModelComparison] = field(default_factory=list)
     summaries: list[FormulaSummary] = field(default_factory=list)
-    parities: list[EngineParity] = field(default_factory=list)
+    agreements: list[EngineAgreement] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
     failure_lines: dict[str, str] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
@@ -61,10 +61,10 @@ class CrossCheck(ResultLookup):
         """
         verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
         gravity = all(c.gravity is None or c.gravity.agrees for c in self.comparisons)
-        return not self.failures and all(p.agrees for p in self.parities) and not verdicts and gravity
+        return not self.failures and all(p.agrees for p in self.agreements) and not verdicts and gravity
 
-    def add(self, comparison: ModelComparison) -> EngineParity:
-        """Record one model's comparison with its summaries and engine parity.
+    def add(self, comparison: ModelComparison) -> EngineAgreement:
+        """Record one model's comparison with its summaries and the engines' agreement.
 
         Parameters
         ----------
@@ -72,14 +72,14 @@ class CrossCheck(ResultLookup):
 
         Returns
         -------
-        EngineParity
-            The parity just recorded.
+        EngineAgreement
+            The agreement just recorded.
         """
         self.comparisons.append(comparison)
         self.summaries += summaries.summarize(comparison, self.rtol)
-        parity = summaries.engine_agreement(comparison, self.rtol)
-        self.parities.append(parity)
-        return parity
+        agreement = summaries.engine_agreement(comparison, self.rtol)
+        self.agreements.append(agreement)
+        return agreement
 
     def reasons(self, cli: bool = False) -> list[str]:
         """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
@@ -101,7 +101,7 @@ class CrossCheck(ResultLookup):
         """
         lines = [(m, self.failure_lines.get(m, r)) for m, r in self.failures]
         parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in lines]  # once, not twice
-        for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
+        for comparison, agreement in zip(self.comparisons, self.agreements, strict=True):
             lead = reason.lead_line(comparison.findings)
             if lead or not agreement.agrees:
                 gap = summaries.gap_words(comparison, self.rtol, cli) if not agreement.agrees else ""

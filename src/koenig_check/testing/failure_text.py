@@ -27,7 +27,7 @@ def verdict_lines(check: CrossCheck) -> list[str]:
     from koenig_check.line_width import fold
 
     lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
-    for comparison, parity in zip(check.comparisons, check.parities, strict=True):
+    for comparison, parity in zip(check.comparisons, check.agreements, strict=True):
         verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
         unmade = [f for f in comparison.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked for, not made
         gravity = comparison.gravity
