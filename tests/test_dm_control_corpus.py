@@ -49,7 +49,7 @@ def test_verdict_or_whole_refusal(path: Path) -> None:
         pytest.skip("engines differ by between 1e-9 and 1e-6 relative: no clear independent verdict")
     gravity = check.comparisons[0].gravity
     gravity_off = gravity is not None and not gravity.agrees  # the gravity verdict: tests/gravity
-    kinetic_ok = all(p.agrees for p in check.parities) and not any(
+    kinetic_ok = all(p.agrees for p in check.agreements) and not any(
         f.kind in (Kind.VERDICT, Kind.ENGINE_UNABLE) for f in check.comparisons[0].findings
     )
     assert (check.ok if not gravity_off else kinetic_ok) == independent, check.reason()

@@ -279,7 +279,7 @@ def test_a_root_pose_pinocchio_drops_is_no_departure() -> None:
     check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=ALL)
     assert set(check.comparisons[0].engines) == set(ALL)
     assert not _verdicts(check), [f.message() for f in _verdicts(check)]
-    assert all(p.agrees for p in check.parities), check.reasons()
+    assert all(p.agrees for p in check.agreements), check.reasons()
     gravity = check.comparisons[0].gravity  # only gravity sees the dropped pose (issue 27): Pinocchio alone departs
     assert gravity is not None and {g.engine for g in gravity.gaps if g.relative > check.rtol} == {"pinocchio"}
     with pytest.raises(AssertionError, match="welded-root-pose"):

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 import koenig_check
+import koenig_check.causes
 from koenig_check.cli import main
 from koenig_check.implied_dynamics.gravity_terms import NO_COUNTERPART
 from koenig_check.testing import assert_energy_parity
@@ -35,7 +36,7 @@ def test_compare_exits_1_on_gravity_alone_and_names_the_cause(tmp_path: Path, ca
 
 def test_api_and_plugin_text() -> None:
     check = koenig_check.compare(MOON, n_poses=3, formulas=["exact"])
-    assert all(p.agrees for p in check.parities) and not check.ok  # kinetic energy agrees, gravity does not
+    assert all(p.agrees for p in check.agreements) and not check.ok  # kinetic energy agrees, gravity does not
     lines = verdict_lines(check)
     assert any(CAUSE in line for line in lines)
 

@@ -99,7 +99,7 @@ def diagnose(
         disagree = not parity.clean
     at = qpos if qpos is not None else np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     if not disagree:  # a gravity difference also calls for the optional engines' votes
-        disagree = not gravity_parity(model, at, [], rtol, ["mujoco", "pinocchio"]).agrees
+        disagree = not gravity_parity(model, at, [], rtol, list(registry.required())).agrees
     engines = model.options.engines
     asked = policy.asked_for(engines)
     not_consulted = [f for f in policy.attach_engines(model, disagree) if f.engine not in asked]

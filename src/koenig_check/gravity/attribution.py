@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from koenig_check.engines import registry
 from koenig_check.engines.catalogue import applies, catalogue
 from koenig_check.findings import Finding, Kind
 from koenig_check.roundoff import ROUNDOFF
@@ -72,7 +73,8 @@ def gravity_findings(parity: GravityParity, mj_model: Any, path: str, fmt: str, 
     from koenig_check.engines.mujoco.gravity import gravity_disabled
 
     ids = {c.id: c for c in catalogue() if applies(c.id)}  # a reading declared for other versions does not fire
-    ref = parity.readings["mujoco"].vector
+    reference = registry.reference()
+    ref = parity.readings[reference].vector
     out: list[Finding] = []
     if fmt == "urdf":
         out.append(
@@ -87,7 +89,7 @@ def gravity_findings(parity: GravityParity, mj_model: Any, path: str, fmt: str, 
     differing = sorted({g.engine for g in parity.gaps if g.relative > parity.rtol})
     for engine in differing:
         vector = parity.readings[engine].vector
-        values = {"mujoco": _vec(ref), engine: _vec(vector)}
+        values = {reference: _vec(ref), engine: _vec(vector)}
         if not np.allclose(vector, ref, rtol=parity.rtol, atol=parity.rtol * max(np.abs(ref).max(), 1.0)):
             if fmt == "mjcf" and gravity_disabled(mj_model) and np.any(vector):
                 key, element = f"{engine}.mjcf.flag-gravity-disable", "flag gravity"
@@ -146,7 +148,7 @@ def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: 
             hint=entry.hint,
             cause=entry.id,
         )
-    concerned = (engine, "both", "mujoco")  # MuJoCo's own departure (compiler settotalmass) moves every other's gap
+    concerned = (engine, "both", registry.reference())  # the reference's own departure (settotalmass) moves every gap
     concerning = [f for f in known if f.affects_energy and f.kind in _EXPLAINING and f.engine in concerned]
     explaining = [f for f in concerning if f.root_cause] or concerning  # a root cause, else the symptom found
     if explaining:

@@ -8,13 +8,11 @@ from typing import Any
 
 import numpy as np
 
+from koenig_check.engines import registry
 from koenig_check.findings import Finding
 from koenig_check.gravity.attribution import gravity_findings, springs
 from koenig_check.gravity.readings import GravityReading, read_gravity
 from koenig_check.roundoff import ROUNDOFF
-
-#: The engine every other is compared with (the one every model is loaded in, reading MJCF as written).
-REFERENCE = "mujoco"
 
 
 @dataclass(frozen=True)
@@ -163,10 +161,11 @@ def gravity_parity(
             readings[name] = read_gravity(engine, qpos, qref)
         except NotImplementedError as exc:
             left_out[name] = str(exc)
-    ref = readings[REFERENCE]
+    reference = registry.reference()  # every model is loaded in it; it reads MJCF as written
+    ref = readings[reference]
     gaps = []
     for name, r in readings.items():
-        if name != REFERENCE:
+        if name != reference:
             gaps += [gap(name, "g(q)", ref.g, r.g), gap(name, "dV", ref.dv_gravity, r.dv_gravity)]
     parity = GravityParity(readings, gaps, rtol=rtol, left_out=left_out)
     fmt = "urdf" if Path(loaded.path).suffix.lower() == ".urdf" else "mjcf"

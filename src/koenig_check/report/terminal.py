@@ -284,7 +284,3 @@ def gravity_rows(check: CrossCheck, mw: int) -> list[str]:
         status = "agree" if parity.agrees else "DIFFER"
         lines += _wrap(f"  {model}: {status}: ", verdict_text(parity))  # not a table row: the kinetic row is
     return lines
-
-
-#: The former name of :func:`terminal_table` ("verdict" now means only the three-engine ``Kind.VERDICT``).
-verdict_table = terminal_table

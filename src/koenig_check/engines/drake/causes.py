@@ -117,7 +117,7 @@ CAUSES: tuple[Cause, ...] = (
         '<option><flag gravity="disable"/>',
         "ignores the flag (with a warning): the file's gravity",
         ("gravity",),
-        "<flag gravity=\"disable\"/> ignored: the file's gravity applied",
+        '<flag gravity="disable"/> ignored: the file\'s gravity applied',
         "call plant.mutable_gravity_field().set_gravity_vector([0, 0, 0])",
         "flag_gravity_disable.xml",
         pinocchio="ignores all of <option>: gravity (0, 0, -9.81) (pinocchio.mjcf.flag-gravity-disable)",
