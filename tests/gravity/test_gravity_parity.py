@@ -105,7 +105,9 @@ def test_a_mass_cause_explaining_g_is_named_once() -> None:
     assert len(mass) == 1
     gravity = [f for f in d.gravity.findings if f.engine == "pinocchio"]
     assert len(gravity) == 1 and not gravity[0].root_cause  # no second root cause for the same construct
-    assert gravity[0].values["explained by"] == mass[0].element and gravity[0].cause == mass[0].cause
+    assert gravity[0].values["explained by"] == mass[0].element
+    assert gravity[0].values["explained by cause"] == mass[0].cause and not gravity[0].cause  # the id carried once
+    assert [f for f in d.findings if f.cause == mass[0].cause] == mass
     assert [f for f in d.findings if f.element == mass[0].element] == mass  # the construct's element once
     assert not [f for f in d.findings if f.root_cause and f.kind is Kind.GRAVITY]
 

@@ -12,7 +12,8 @@ Rules, engine by engine, for an engine whose ``g(q)`` or ``dV`` differs:
    a class without ``<joint>`` and the engine declares ``<engine>.mjcf.class-joint-default`` (a lost joint axis).
 3. The vectors agree and a root cause already found for that engine changes its masses, COMs or kinematics (or,
    without one, an import difference of those): that cause explains ``g(q)``; the gravity finding refers to it
-   (its element under ``"explained by"``, its id) and is no root cause itself (named once).
+   (its element under ``"explained by"``, its id under ``"explained by cause"``) and is no root cause and carries
+   no cause id itself (the cause is named once).
 4. Otherwise the difference is reported without a cause.
 
 URDF carries no gravity: a note says every engine applied its default.  Springs are never gravity: an engine
@@ -158,9 +159,8 @@ def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: 
             engine,
             "model",
             f"g(q) differs: explained by the {by.kind.value} difference of {by.element}",
-            {**values, "explained by": by.element},
-            cause=by.cause,
-        )
+            {**values, "explained by": by.element, "explained by cause": by.cause},
+        )  # no cause= of its own: the id is the explaining finding's, carried by it alone
     return Finding(Kind.GRAVITY, engine, "model", "g(q) differs under the same gravity vector: no cause found", values)
 
 

@@ -20,7 +20,7 @@ def causes(parity: GravityParity) -> list[Finding]:
     -------
     list of Finding
     """
-    return sorted(parity.explanations, key=lambda f: not f.root_cause)
+    return sorted(parity.explanations, key=lambda f: not f.root_cause)  # stable: engines in order
 
 
 def cause_words(finding: Finding) -> str:
@@ -34,7 +34,8 @@ def cause_words(finding: Finding) -> str:
     -------
     str
     """
-    tail = f" [{finding.cause}]" if finding.cause else ""
+    named = finding.cause or finding.values.get("explained by cause", "")
+    tail = f" [{named}]" if named else ""
     return f"{finding.engine}: {finding.element}: {finding.summary}{tail}"
 
 
@@ -93,7 +94,7 @@ def reason_words(parity: GravityParity) -> str:
     found = causes(parity)
     found = [f for f in found if f.engine == worst.engine] + [f for f in found if f.engine != worst.engine]
     first = found[0] if found else None
-    named = f": {first.element}: {first.summary}" + (f" [{first.cause}]" if first.cause else "") if first else ""
+    named = f": {cause_words(first).split(': ', 1)[1]}" if first else ""
     if first is not None and first.engine != worst.engine:
         named = f"; {cause_words(first)}"
     more = f" (+{len(found) - 1} more)" if len(found) > 1 else ""
