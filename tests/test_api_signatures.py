@@ -36,7 +36,7 @@ def test_dynamics_names_every_option():
 
 
 def test_assert_energy_parity_names_every_option():
-    run = {"model", "n_poses", "seed", "velocity_scale", "rtol", "include_armature", "load_options"}
+    run = {"model", "n_poses", "seed", "velocity_scale", "rtol", "include_armature", "load_options", "gravity"}
     assert keywords(assert_energy_parity) == run | LOAD
 
 

@@ -153,6 +153,7 @@ def compare_model(
     return replace(
         run,
         findings=diagnosis.findings,
+        gravity=diagnosis.gravity,
         segment_labels=diagnosis.parity.segment_labels if diagnosis.parity is not None else {},
         notes=[reason.as_note(f) for f in diagnosis.verdicts]
         + [f.message() for f in diagnosis.optional_findings]

@@ -68,6 +68,8 @@ class Kind(str, Enum):
     VERDICT = "verdict"
     # Nothing to compare.
     NOTHING_MOVES = "nothing_moves"
+    # The engines' gravity terms: the gravity vector read from the file, g(q), potential-energy differences.
+    GRAVITY = "gravity"
 
 
 @dataclass(frozen=True)

@@ -32,12 +32,15 @@ def test_parity_fails_when_the_engine_asked_for_cannot_check(capsys: pytest.Capt
 @needs_drake
 def test_parity_with_drake_passes_a_root_pose_pinocchio_drops(capsys: pytest.CaptureFixture[str]) -> None:
     """posed_root.xml: Pinocchio drops the pose of a jointless root body, a constant world transform (no import
-    difference, tests/diagnosis/test_import_parity.py); asking for Drake too must not turn it into a departure."""
+    difference, tests/diagnosis/test_import_parity.py); asking for Drake too must not turn it into a departure.
+    Gravity sees it: both runs exit 1 on the gravity verdict alone, naming the catalogued cause."""
     path = str(CAUSES / "posed_root.xml")
-    assert main(["parity", path]) == 0
-    assert main(["parity", path, "--engines", ALL]) == 0
+    assert main(["parity", path]) == 1  # gravity sees the dropped pose (issue 27): the only disagreement
+    assert main(["parity", path, "--engines", ALL]) == 1
     out, err = capsys.readouterr()
-    assert "departs" not in out and err == ""
+    assert "departs" not in out  # no kinetic departure, with or without Drake
+    lines = err.splitlines()
+    assert len(lines) == 2 and all("gravity differs" in x and "[pinocchio.mjcf.welded-root-pose]" in x for x in lines)
 
 
 TESTS = Path(__file__).resolve().parents[1]

@@ -83,9 +83,11 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: 
 def _cmd_parity(args: argparse.Namespace) -> int:
     from koenig_check.diagnosis.model_reason import short_reason
     from koenig_check.diagnosis.policy import attach_engines
-    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, lead_line, rounding_hint
+    from koenig_check.diagnosis.reason import REASON_WIDTH, ROUNDING_LEVEL, as_note, lead_line, rounding_hint
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
+    from koenig_check.gravity.words import reason_words, verdict_line
+    from koenig_check.line_width import closed_cut
     from koenig_check.report.parity_table import format_parity
     from koenig_check.run.labels import unique_labels
 
@@ -123,10 +125,17 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         head = "The third engine" if len(used) == 1 else "The other engines"
         print(f"\n{head} ({names}): verdicts and what {'its parser' if len(used) == 1 else 'their parsers'} said")
         print("\n".join(shown(f"  {line}") for line in third))
+    gravity = diagnosis.gravity
+    if gravity is not None:  # beside the kinetic verdict: the same robot in the same world
+        print("\n" + shown(verdict_line(gravity)))
+    gravity_off = gravity is not None and not gravity.agrees
     lead = lead_line(diagnosis.findings)
-    if report.clean and not lead:
+    if report.clean and not lead and not gravity_off:
         return 0
     label = unique_labels([args.model], options.floating, options.xacro_args)[0]
+    if report.clean and not lead:  # only gravity differs
+        print(f"koenig-check: {closed_cut(f'{label}: {reason_words(gravity)}', REASON_WIDTH)}", file=sys.stderr)
+        return 1
     line = short_reason(label, diagnosis.findings)  # one sentence: the details are in the table above
     if line == f"{label}: ":  # every difference at the level of a written file's rounding: the option that accepts it
         hint = rounding_hint(report.largest_relative(), args.rtol, cli=True)

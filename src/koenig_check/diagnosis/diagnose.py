@@ -2,8 +2,9 @@
 
 :func:`diagnose` gathers what is known about why the engines may see different robots in one file: the
 engines' own load findings, the import parity (computed once), the optional engines where the checker's
-policy uses them (:mod:`koenig_check.diagnosis.policy`), and, with three engines or more, the verdicts that say
-which engine departs (:mod:`koenig_check.diagnosis.three_way`).
+policy uses them (:mod:`koenig_check.diagnosis.policy`), with three engines or more the verdicts that say
+which engine departs (:mod:`koenig_check.diagnosis.three_way`), and the gravity verdict
+(:mod:`koenig_check.gravity`).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from koenig_check.engines import registry
 from koenig_check.engines.catalogue import applies
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
+from koenig_check.gravity import GravityParity, gravity_parity
 
 
 @dataclass
@@ -41,12 +43,15 @@ class Diagnosis:
         The verdicts of three engines or more (empty without a third engine).
     engines : tuple of str
         The engines that checked the model.
+    gravity : GravityParity or None
+        The engines' gravity terms against MuJoCo's (its findings are in :attr:`findings` too).
     """
 
     findings: list[Finding] = field(default_factory=list)
     parity: ParityReport | None = None
     verdicts: list[Finding] = field(default_factory=list)
     engines: tuple[str, ...] = ()
+    gravity: GravityParity | None = None
 
     @property
     def optional_findings(self) -> list[Finding]:
@@ -92,6 +97,9 @@ def diagnose(
     parity = import_parity(model, rtol=rtol)
     if disagree is None:
         disagree = not parity.clean
+    at = qpos if qpos is not None else np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
+    if not disagree:  # a gravity difference also calls for the optional engines' votes
+        disagree = not gravity_parity(model, at, [], rtol, list(registry.required())).agrees
     engines = model.options.engines
     asked = policy.asked_for(engines)
     not_consulted = [f for f in policy.attach_engines(model, disagree) if f.engine not in asked]
@@ -104,7 +112,9 @@ def diagnose(
         verdicts = _verdicts(model, voters, parity, findings, (qpos, qvel, energies or {}), rtol, include_armature)
     parser = "URDF" if Path(model.path).suffix.lower() == ".urdf" else "MJCF"
     unmade = unable_findings(limits, policy.asked_for(engines), parser) + policy.unmade_checks(optional, engines)
-    return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
+    gravity = gravity_parity(model, at, findings, rtol, voters)  # engines given another robot do not vote
+    findings += gravity.findings
+    return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines), gravity)
 
 
 def _applies(f: Finding) -> bool:

@@ -8,17 +8,19 @@ from pathlib import Path
 import numpy as np
 
 from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.potential import GravityTerms
 from koenig_check.findings import Finding
 from koenig_check.kernels import body_point_velocities
 from koenig_check.segments import SegmentStates
 
 
-class Engine(ABC):
+class Engine(GravityTerms, ABC):
     """A model loaded in one engine, answering for batches of canonical states.
 
     Every engine adapter (MuJoCo, Pinocchio, Drake, and any engine added later) derives from this class and
-    implements its abstract methods; the checker calls nothing else.  Every method takes canonical
-    (MuJoCo-layout, :mod:`koenig_check.engines.canonical`) states: ``qpos`` (P, nq), ``qvel``/``qacc`` (P, nv).
+    implements its abstract methods, and the gravity methods of :class:`~koenig_check.engines.potential.GravityTerms`
+    where it can; the checker calls nothing else.  Every method takes canonical (MuJoCo-layout,
+    :mod:`koenig_check.engines.canonical`) states: ``qpos`` (P, nq), ``qvel``/``qacc`` (P, nv).
 
     Attributes
     ----------

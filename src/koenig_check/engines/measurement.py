@@ -30,6 +30,9 @@ class Measurement:
         one-degree-of-freedom joints, by name; armature included where the engine adds it to M.
     gravity : tuple of float
         The gravity vector the engine uses for this model (zero when gravity is disabled).
+    gravity_forces : mapping of str to float
+        ``g(q)`` at the reference configuration (the force to apply to hold it still) per one-degree-of-freedom
+        joint: what gravity does to the robot the engine built (a dropped root pose, a lost joint axis).
     armature : mapping of str to float
         Rotor inertia per one-degree-of-freedom joint as the engine holds it (empty: none).
     com : tuple of float
@@ -41,6 +44,7 @@ class Measurement:
     mass: float
     mass_matrix: Mapping[tuple[str, str], float] = field(default_factory=dict)
     gravity: tuple[float, ...] = (0.0, 0.0, -9.81)
+    gravity_forces: Mapping[str, float] = field(default_factory=dict)
     armature: Mapping[str, float] = field(default_factory=dict)
     com: tuple[float, ...] = ()
 
@@ -80,7 +84,9 @@ def differences(a: Measurement, b: Measurement, rtol: float) -> set[str]:
     scale = max([abs(v) for v in (*a.mass_matrix.values(), *b.mass_matrix.values())] or [0.0])
     if any(abs(a.mass_matrix[k] - b.mass_matrix[k]) > rtol * max(scale, 1e-300) for k in shared):
         out.add("mass_matrix")
-    if not np.allclose(a.gravity, b.gravity, rtol=rtol, atol=rtol * 9.81):
+    if not np.allclose(a.gravity, b.gravity, rtol=rtol, atol=rtol * 9.81) or _differ(
+        a.gravity_forces, b.gravity_forces, rtol
+    ):
         out.add("gravity")
     if a.com and b.com and not np.allclose(a.com, b.com, rtol=rtol, atol=rtol * max(1.0, *map(abs, a.com))):
         out.add("com")
@@ -102,6 +108,13 @@ def fields(quantities: tuple[str, ...]) -> set[str]:
     set of str
     """
     return {_FIELD_OF[q] for q in quantities}
+
+
+def _differ(a: Mapping[str, float], b: Mapping[str, float], rtol: float) -> bool:
+    """Whether two per-joint readings differ on a joint both have, relative to their largest entry."""
+    shared = sorted(set(a) & set(b))
+    scale = max([abs(v) for v in (*a.values(), *b.values())] or [0.0])
+    return any(abs(a[k] - b[k]) > rtol * max(scale, 1e-300) for k in shared)
 
 
 def _close(x: float, y: float, rtol: float) -> bool:

@@ -30,9 +30,12 @@ from koenig_check.engines.load_options import LoadOptions
 from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.findings import Finding, Kind
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
+from koenig_check.gravity import GravityParity
+from koenig_check.gravity.words import reason_words
 from koenig_check.implied_dynamics.energy import FormulaEnergy, PathDependentError, implied_mass_matrix
 from koenig_check.implied_dynamics.engine_columns import add_engine_columns
 from koenig_check.implied_dynamics.errors import Discrepancy, discrepancy
+from koenig_check.implied_dynamics.gravity_terms import FullInverseDynamics, gravity_columns
 from koenig_check.implied_dynamics.kane import kane_mujoco, kane_pinocchio
 from koenig_check.implied_dynamics.lagrange import lagrange_inertia_forces
 from koenig_check.implied_dynamics.reference import rigid_inertia_forces, rigid_mass_matrix
@@ -90,6 +93,8 @@ class DynamicsResult:
         The model's load notes, for people.
     findings : list of Finding
         The same as typed records (and Drake's, when it was consulted).
+    gravity : GravityParity, optional
+        The engines' gravity terms against MuJoCo's; ``full_inverse_dynamics``: their ``τ + g(q)``.
     """
 
     model: str
@@ -107,6 +112,8 @@ class DynamicsResult:
     rtol: float | None = None
     notes: list[str] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
+    gravity: GravityParity | None = None
+    full_inverse_dynamics: list[FullInverseDynamics] = field(default_factory=list)
 
     def __repr__(self) -> str:
         return (
@@ -162,7 +169,8 @@ class DynamicsResult:
 
         Every engine the user named must have checked the model too (:meth:`unmade` is empty).
         """
-        return "exact" not in self.refusals and not self.failures() and not self.unmade()
+        gravity = self.gravity is None or self.gravity.agrees  # the same robot in the same world
+        return "exact" not in self.refusals and not self.failures() and not self.unmade() and gravity
 
     def unmade(self) -> list[Finding]:
         """The checks asked for and not made: an engine the user named could not check the model."""
@@ -186,7 +194,7 @@ class DynamicsResult:
             return f"{self.model}: exact refused: {self.refusals['exact']}"
         bad = self.failures()
         if not bad:
-            return ""
+            return f"{self.model}: {reason_words(self.gravity)}" if self.gravity is not None else ""
         e = max(bad, key=lambda d: d.max_rel_error / self.tolerance(d))
         tol = self.tolerance(e)
         if all(self._across(d) for d in bad):  # only where the engines' readings meet: a file's rounding?
@@ -368,4 +376,6 @@ def dynamics(
     result = dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)
     result.rtol = rtol
     add_engine_columns(result, pair, options.engines, ENGINE_PARITY)
+    tolerance = rtol if rtol is not None else M_RTOL
+    result.gravity, result.full_inverse_dynamics = gravity_columns(pair, poses.qpos, poses.qvel, qacc, tolerance)
     return result

@@ -11,6 +11,7 @@ from koenig_check.engines.specs import reference
 from koenig_check.findings import Kind
 from koenig_check.implied_dynamics.analysis import ENGINE_PARITY, ENGINES, DynamicsResult
 from koenig_check.implied_dynamics.errors import Discrepancy
+from koenig_check.implied_dynamics.gravity_terms import gravity_lines
 from koenig_check.implied_dynamics.lagrange import CONFIGURATION_STEP, TIME_STEP_SCALE
 from koenig_check.line_width import hanging
 
@@ -67,7 +68,7 @@ def terminal_lines(result: DynamicsResult) -> list[str]:
             f"{_cell(result, ENGINE_PARITY, 'Q*', other):>15s}"
         )
     lines += [f.message() for f in result.findings if f.kind is Kind.ENGINE_NOT_USED]
-    return lines
+    return lines + gravity_lines(result.gravity, result.full_inverse_dynamics)
 
 
 def to_markdown(result: DynamicsResult) -> str:
@@ -114,6 +115,9 @@ def to_markdown(result: DynamicsResult) -> str:
     if result.refusals:
         out += ["", "Refused:", ""]
         out += [f"- `{f}`: {why}" for f, why in result.refusals.items()]
+    gravity = gravity_lines(result.gravity, result.full_inverse_dynamics)
+    if gravity:
+        out += ["", "Gravity:", "", *[f"- {line}." for line in gravity]]
     return "\n".join(out) + "\n"
 
 
@@ -150,6 +154,8 @@ def to_json(result: DynamicsResult) -> dict:
             }
             for e in result.errors
         ],
+        "gravity": result.gravity.as_dict() if result.gravity is not None else None,
+        "full_inverse_dynamics": [vars(f) for f in result.full_inverse_dynamics],
     }
 
 

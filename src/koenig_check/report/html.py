@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from koenig_check.findings import Finding, Kind, root_causes
+from koenig_check.gravity.words import verdict_line
 from koenig_check.report.content import (
     COLUMNS,
     POSE_LABELS,
@@ -210,6 +211,9 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
             items.append(f"not exact: <code>{_e(name)}</code> {_e(rest)}")
         if f.refused:
             items.append("refused (does not apply): " + ", ".join(f"<code>{_e(n)}</code>" for n in f.refused))
+        if comp.gravity is not None:
+            gravity = "agree" if comp.gravity.agrees else "disagree"
+            items.append(f'<span class="{gravity}">{_e(verdict_line(comp.gravity))}</span>')
         shown = cls == "disagree" or not model_agrees(comp, check.agreements[k], rtol)  # folded when they agree
         body.append(
             f'<li><details{" open" if shown else ""}><summary><a href="#{model_anchor(comp.model, k)}">'

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from koenig_check.gravity.words import verdict_line
 from koenig_check.report.content import (
     COLUMNS,
     POSE_LABELS,
@@ -30,10 +31,10 @@ def summary_markdown(
 ) -> str:
     """The Markdown summary, readable without the paper.
 
-    Sections: what this run found (per model, in plain words), the formulas (glossary with the paper's
-    equation numbers in brackets), how to read the tables (every column and pose label), one section per
-    model (conditions, engine parity, the table, refusals), models that could not be compared, notes (each
-    once, with the models it concerns).
+    Sections: what this run found (per model, in plain words, the gravity verdict beside the kinetic one), the
+    formulas (glossary with the paper's equation numbers in brackets), how to read the tables (every column and
+    pose label), one section per model (conditions, engine parity, the table, refusals), models that could not
+    be compared, notes (each once, with the models it concerns).
 
     Parameters
     ----------
@@ -81,6 +82,8 @@ def summary_markdown(
             lines.append(f"  - not exact: `{name}` {rest}.")
         if f.refused:
             lines.append(f"  - refused (does not apply to this motion): {', '.join(f'`{n}`' for n in f.refused)}.")
+        if comp.gravity is not None:
+            lines.append(f"  - {verdict_line(comp.gravity)}.")
     for model, reason in failures:
         lines.append(f"- **{model}**: could not be compared: {reason}")
     lines += ["", "## Formulas", "", "The paper's equation numbers are in brackets.", ""]

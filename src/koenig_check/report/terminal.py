@@ -224,7 +224,7 @@ def terminal_table(check: CrossCheck) -> str:
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
     if not check.summaries:
-        return "\n".join(lines)
+        return "\n".join(lines + gravity_rows(check, mw))
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})
     refused = {r["formula"] for c in check.comparisons for r in c.refusals}
     fw = max(len(f) for f in [*rows, *refused, "formula"])
@@ -245,4 +245,32 @@ def terminal_table(check: CrossCheck) -> str:
         f"=: every pose within {rtol:g}; ≠: beyond. exact: models where every pose is within tolerance.",
         "over/under: share of poses where the formula over- / under-estimates the engine's energy.",
     ]
-    return "\n".join(lines)
+    return "\n".join(lines + gravity_rows(check, mw))
+
+
+def gravity_rows(check: CrossCheck, mw: int) -> list[str]:
+    """The gravity verdict beside the kinetic one: one row per model with each engine's vector and the causes.
+
+    The lines are indented under their heading and the label ends with a colon: a line that starts with a model's
+    label, then its cells, is its kinetic row.
+
+    Parameters
+    ----------
+    check : CrossCheck
+    mw : int
+        Width of the model column.
+
+    Returns
+    -------
+    list of str
+    """
+    from koenig_check.gravity.words import verdict_text
+
+    rows = [(c.model, c.gravity) for c in check.comparisons if c.gravity is not None]
+    if not rows:
+        return []
+    lines = ["", "Gravity: g(q) and V(q)-V(q_ref) of every engine against MuJoCo's, each vector as read from the file"]
+    for model, parity in rows:
+        status = "agree" if parity.agrees else "DIFFER"
+        lines += _wrap(f"  {model}: {status}: ", verdict_text(parity))  # not a table row: the kinetic row is
+    return lines

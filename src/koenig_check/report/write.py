@@ -160,6 +160,7 @@ def write_report(
                 "notes": {c.model: c.notes for c in check.comparisons},
                 "refusals": [r for c in check.comparisons for r in c.refusals],
                 "settings": check.settings,
+                "gravity": {c.model: c.gravity.as_dict() for c in check.comparisons if c.gravity is not None},
             },
         )
     )

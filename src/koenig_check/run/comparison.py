@@ -8,6 +8,7 @@ from typing import Any
 
 from koenig_check.engines.registry import required
 from koenig_check.findings import Finding
+from koenig_check.gravity import GravityParity
 from koenig_check.run.chunks import evaluate_chunk, formula_names
 from koenig_check.run.engine_runs import EngineRun
 from koenig_check.run.poses import PoseSet
@@ -47,6 +48,8 @@ class ModelComparison:
     segment_labels : dict of str to str
         Each segment (keyed by the joint that moves it) as the user wrote it: ``"link forearm (joint elbow)"``
         (empty when unknown: the report then names the joint).
+    gravity : GravityParity, optional
+        The gravity verdict: every engine's gravity vector, ``g(q)`` and ``V(q) - V(q_ref)`` against MuJoCo's.
     """
 
     model: str
@@ -61,6 +64,7 @@ class ModelComparison:
     pose_kind: str = ""
     engines: tuple[str, ...] = field(default_factory=required)
     segment_labels: dict[str, str] = field(default_factory=dict)
+    gravity: GravityParity | None = None
 
     def __repr__(self) -> str:
         return (

@@ -6,6 +6,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from koenig_check.diagnosis import model_reason, reason
+from koenig_check.gravity.words import reason_words
+from koenig_check.line_width import closed_cut
 from koenig_check.run import summaries
 from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
@@ -54,10 +56,12 @@ class CrossCheck(ResultLookup):
         """True when every model loaded and the engines agree with each other and with ``exact``.
 
         With Drake consulted, an engine that departs from the other two (a ``VERDICT`` finding) counts, and so does
-        an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made).
+        an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made),
+        and so does a gravity difference (the same robot in the same world: :mod:`koenig_check.gravity`).
         """
         verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
-        return not self.failures and all(p.agrees for p in self.agreements) and not verdicts
+        gravity = all(c.gravity is None or c.gravity.agrees for c in self.comparisons)
+        return not self.failures and all(p.agrees for p in self.agreements) and not verdicts and gravity
 
     def add(self, comparison: ModelComparison) -> EngineAgreement:
         """Record one model's comparison with its summaries and the engines' agreement.
@@ -83,7 +87,8 @@ class CrossCheck(ResultLookup):
         A model that could not be checked gives its error and at most three root causes (:attr:`failure_lines`;
         the engine's whole reason is in :attr:`failures`); a disagreeing model gives the check asked for and not
         made or the engine that departs, the gap, and at most three root causes, the most important first,
-        within 200 characters (the details are in ``koenig-check parity``, ``summary.md`` and the report).
+        or, where only gravity differs, the gravity gap and its cause, within 200 characters (the details are in
+        ``koenig-check parity``, ``summary.md`` and the report).
 
         Parameters
         ----------
@@ -108,6 +113,8 @@ class CrossCheck(ResultLookup):
                 ):
                     text += f"; {unused}"
                 parts.append(text)
+            elif comparison.gravity is not None and not comparison.gravity.agrees:  # else said in the details
+                parts.append(closed_cut(f"{agreement.model}: {reason_words(comparison.gravity)}", reason.REASON_WIDTH))
         return parts
 
     def model_reason(

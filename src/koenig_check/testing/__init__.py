@@ -37,8 +37,12 @@ def assert_energy_parity(
     allow_coupled: bool | None = None,
     engines: Sequence[str] | None = None,
     xacro_args: Mapping[str, Any] | Sequence[str] | None = None,
+    gravity: bool = True,
 ) -> None:
     """Assert that MuJoCo and Pinocchio give the same kinetic energy for a model, segment by segment.
+
+    And, with ``gravity``, that every engine compared applies the same gravity to it: the same gravity vector,
+    ``g(q)`` and ``V(q) - V(q_ref)`` (:mod:`koenig_check.gravity`); a difference names its catalogued cause.
 
     Parameters
     ----------
@@ -55,6 +59,8 @@ def assert_energy_parity(
         Also require the engines' armature energies to agree.
     load_options : LoadOptions, optional
         How the model is loaded; the load keywords override its fields.
+    gravity : bool
+        Also require the engines' gravity terms to agree (default True).
     floating, balance_inertia, repair_inertia, allow_coupled, engines, xacro_args
         The other fields of :class:`koenig_check.engines.load_options.LoadOptions` (``None`` keeps the value
         of ``load_options``).  ``engines=("mujoco", "pinocchio", "drake")`` also requires Drake to
@@ -142,6 +148,10 @@ def assert_energy_parity(
     unable = [f.message() for f in diagnosis.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked, not made
     verdicts = [as_note(f) for f in diagnosis.findings if f.kind is Kind.VERDICT]
     problems[:0] = verdicts
+    if gravity and diagnosis.gravity is not None and not diagnosis.gravity.agrees:
+        from koenig_check.gravity.words import verdict_line
+
+        problems.append(verdict_line(diagnosis.gravity))
     if problems or unable:  # as the plugin: a check not made, the root causes, the verdicts, then the symptoms
         problems[:0] = unable + [f"root cause: {cause}" for cause in cause_lines(diagnosis.findings)]
         if hint:

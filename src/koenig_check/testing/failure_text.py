@@ -11,7 +11,7 @@ if TYPE_CHECKING:
 
 
 def verdict_lines(check: CrossCheck) -> list[str]:
-    """Why ``koenig-check compare`` would exit 1, model by model: root cause, three-engine verdicts, the gap.
+    """Why ``koenig-check compare`` would exit 1, model by model: root cause, three-engine verdicts, the gap, gravity.
 
     Parameters
     ----------
@@ -23,15 +23,23 @@ def verdict_lines(check: CrossCheck) -> list[str]:
         Empty when :attr:`CrossCheck.ok`.
     """
     from koenig_check.diagnosis.reason import cause_lines, rounding_hint
+    from koenig_check.gravity.words import verdict_line
     from koenig_check.line_width import fold
 
     lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
     for comparison, parity in zip(check.comparisons, check.agreements, strict=True):
         verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
         unmade = [f for f in comparison.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked for, not made
-        if parity.agrees and not verdicts and not unmade:
+        gravity = comparison.gravity
+        gravity_off = gravity is not None and not gravity.agrees
+        if parity.agrees and not verdicts and not unmade and not gravity_off:
             continue
         lines.append(f"{parity.model}: MuJoCo and Pinocchio {'agree' if parity.agrees else 'disagree'}")
+        # Beside the kinetic verdict, where gravity has a cause of its own (a cause the kinetic lines already
+        # name, a mass read differently, is not said twice) or is the only disagreement.
+        own = gravity is not None and any(f.root_cause for f in gravity.explanations)
+        if gravity is not None and gravity_off and (own or (parity.agrees and not verdicts)):
+            lines.append(f"  {verdict_line(gravity)}")
         lines += [f"  root cause: {cause}" for cause in cause_lines(comparison.findings)]  # one a line
         lines += [f"  three engines: {f.message()}" for f in verdicts]
         if not parity.agrees:

@@ -20,7 +20,8 @@ Energy
 Drake's analogue of MuJoCo's and Pinocchio's armature; verified).  The rigid-body part is
 ``CalcKineticEnergy`` on a context whose rotor inertias are zero; the reflected-inertia part is
 ``½ Σ I_refl v²``.  ``CalcMassMatrix`` and ``CalcInverseDynamics`` include it too.  Inverse dynamics
-runs with gravity zero (set on the plant) and joint damping zero (set on the context).
+leaves gravity out (it counts only the forces passed, none here) and runs with joint damping zero (set on the
+context); the plant keeps the gravity its parser read, for :class:`~koenig_check.engines.drake.gravity.DrakeGravity`.
 """
 
 from __future__ import annotations
@@ -32,19 +33,20 @@ import numpy as np
 
 from koenig_check.engines.base import Engine, as_batches, check_points, symmetrize
 from koenig_check.engines.drake.failures import drake_failures_raised
+from koenig_check.engines.drake.gravity import DrakeGravity
 from koenig_check.engines.drake.state_map import DrakeStateMap
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
 
 
-class DrakeEngine(Engine):
+class DrakeEngine(DrakeGravity, Engine):
     """A model loaded in Drake.
 
     Parameters
     ----------
     plant : pydrake.multibody.plant.MultibodyPlant
-        Finalized, gravity zero.
+        Finalized, with the gravity its parser read.
     state_map : DrakeStateMap
     path : Path
         The model file.

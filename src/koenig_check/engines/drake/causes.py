@@ -112,6 +112,25 @@ CAUSES: tuple[Cause, ...] = (
         "write the geom with pos and size (or give the body an <inertial>)",
         "ignored_geom.xml",
     ),
+    _drake(
+        "mjcf.flag-gravity-disable",
+        '<option><flag gravity="disable"/>',
+        "ignores the flag (with a warning): the file's gravity",
+        ("gravity",),
+        '<flag gravity="disable"/> ignored: the file\'s gravity applied',
+        "call plant.mutable_gravity_field().set_gravity_vector([0, 0, 0])",
+        "flag_gravity_disable.xml",
+        pinocchio="ignores all of <option>: gravity (0, 0, -9.81) (pinocchio.mjcf.flag-gravity-disable)",
+    ),
+    _drake(
+        "mjcf.class-joint-default",
+        "<joint> default inherited through a <default> class with no <joint> of its own",
+        "loses them: the joint gets Drake's defaults (axis 0 0 1)",
+        ("kinematics", "gravity"),  # a planar arm's M cannot see the axis, g(q) does
+        "joint default inherited through a class without <joint> lost: wrong joint axis",
+        "write the <joint> attributes in the class the body uses",
+        "class_joint_inherited.xml",
+    ),
 )
 
 
@@ -140,6 +159,7 @@ def measure(path: Path) -> Measurement:
     plant.Finalize()
     context = plant.CreateDefaultContext()
     full = plant.CalcMassMatrix(context)
+    applied = -np.asarray(plant.CalcGravityGeneralizedForces(context))  # Drake's is the force gravity exerts
     joints = [plant.get_joint(i) for i in plant.GetJointIndices()]
     moving = [j for j in joints if j.num_velocities() > 0]
     one_dof = {j.name(): j.velocity_start() for j in moving if j.num_velocities() == 1}
@@ -160,6 +180,7 @@ def measure(path: Path) -> Measurement:
         mass=mass,
         mass_matrix={(a, b): float(full[i, k]) for a, i in one_dof.items() for b, k in one_dof.items()},
         gravity=tuple(float(g) for g in plant.gravity_field().gravity_vector()),
+        gravity_forces={j: float(applied[i]) for j, i in one_dof.items()},
         armature=armature,
         com=tuple(float(c) for c in (weighted / mass if mass > 0 else np.zeros(3))),
     )

@@ -217,7 +217,7 @@ def _fill_package_map(parser: Any, source: ModelSource) -> None:
 
 
 def load_drake(source: ModelSource, free_joints: dict[str, str] | None = None) -> tuple[Any, list[Finding]]:
-    """Parse a model file into a finalized Drake ``MultibodyPlant`` (continuous, gravity off).
+    """Parse a model file into a finalized Drake ``MultibodyPlant`` (continuous, with the gravity it read).
 
     Parameters
     ----------
@@ -271,8 +271,6 @@ def load_drake(source: ModelSource, free_joints: dict[str, str] | None = None) -
         raise DrakeLoadError(f"{path}: Drake cannot load the file: {reason}") from exc
     findings += warning_findings([m.replace(str(parsed), str(path)) for m in messages], path)
     _fix_base(plant, dict(free_joints or {}), path, findings)
-    # pydrake's stub spells the Eigen vector as ndarray[float64[3, 1]], which no numpy type matches
-    plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])  # type: ignore[arg-type]
     try:
         plant.Finalize()
     except RuntimeError as exc:

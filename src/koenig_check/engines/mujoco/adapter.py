@@ -30,6 +30,7 @@ import numpy as np
 from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.mujoco.dynamics import MujocoDynamics, energy_model, inverse_dynamics_model
+from koenig_check.engines.mujoco.gravity import MujocoGravity
 from koenig_check.findings import Finding, Kind
 from koenig_check.kernels import cross, rotate, rotate_points
 from koenig_check.segments import SegmentStates
@@ -37,7 +38,7 @@ from koenig_check.segments import SegmentStates
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 
 
-class MujocoEngine(MujocoDynamics, Engine):
+class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
     """A model loaded in MuJoCo.
 
     Parameters

@@ -69,6 +69,7 @@ def measure(path: Path) -> Measurement:
         mass=mass,
         mass_matrix={(a, b): float(full[i, k]) for a, i in one_dof.items() for b, k in one_dof.items()},
         gravity=(0.0, 0.0, 0.0) if disabled else tuple(float(g) for g in m.opt.gravity),
+        gravity_forces={j: float(d.qfrc_bias[i]) for j, i in one_dof.items()},  # q̇ = 0: g(q0)
         armature={j: float(m.dof_armature[i]) for j, i in one_dof.items() if m.dof_armature[i]},
         com=tuple(float(c) for c in com),
     )

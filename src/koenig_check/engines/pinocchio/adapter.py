@@ -24,6 +24,7 @@ import pinocchio as pin
 
 from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
 from koenig_check.engines.pinocchio.dynamics import PinocchioDynamics
+from koenig_check.engines.pinocchio.gravity import PinocchioGravity
 from koenig_check.engines.pinocchio.placements import placement_view, rotations_origins
 from koenig_check.engines.pinocchio.state_map import StateMap
 from koenig_check.findings import Finding, Kind
@@ -33,7 +34,7 @@ from koenig_check.segments import SegmentStates
 __all__ = ["PinocchioEngine", "placement_view"]
 
 
-class PinocchioEngine(PinocchioDynamics, Engine):
+class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
     """A model loaded in Pinocchio.
 
     Parameters
