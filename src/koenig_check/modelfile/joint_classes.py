@@ -30,15 +30,16 @@ def inherited_through_jointless_class(path: str | Path) -> tuple[str, ...]:
     if root is None:
         return ()
     defaults = DefaultClasses(root)
+    classes = defaults.element  # class name -> its <default> element
     out: list[str] = []
 
     def passes_on(cls: str) -> bool:
-        name = cls if cls in defaults.element else "main"
-        if name not in defaults.element or defaults.element[name].find("joint") is not None:
+        name = cls if cls in classes else "main"
+        if name not in classes or classes[name].find("joint") is not None:
             return False
         parent = defaults.parent.get(name)
         while parent is not None:
-            setter = defaults.element[parent].find("joint")
+            setter = classes[parent].find("joint")
             if setter is not None and setter.attrib:
                 return True
             parent = defaults.parent.get(parent)
