@@ -221,6 +221,8 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     "export/portable_mjcf.py": frozenset({"mujoco"}),
     # A cause's readings name each engine it was measured in: declared data, one Reading per engine.
     "engines/pinocchio/causes.py": frozenset({"mujoco", "drake"}),
+    "engines/pybullet/causes.py": frozenset({"mujoco", "pinocchio", "idyntree"}),
+    "engines/idyntree/causes.py": frozenset({"mujoco", "pinocchio", "pybullet"}),
     "engines/drake/causes.py": frozenset({"mujoco", "pinocchio"}),
     "engines/mujoco/causes.py": frozenset({"pinocchio", "drake"}),
     # The required pair, still by name (debt, listed so that it only shrinks; issue 26 items 2 and 5 move these

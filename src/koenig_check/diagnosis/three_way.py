@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.registry import label, names
+from koenig_check.engines.registry import label, names, spec
 from koenig_check.findings import Finding, Kind
 
 #: Default relative tolerance under which two engines "agree".
@@ -34,15 +34,25 @@ def _close(a: np.ndarray, b: np.ndarray, rtol: float, scale: np.ndarray | float 
     return np.abs(a - b) <= rtol * np.maximum(ref, 1e-300)
 
 
+def _pair_rtol(rtol: float, *engines: str) -> float:
+    """The tolerance two engines agree within: ``rtol``, or the coarser precision either declares (its spec's)."""
+    declared = [spec(e).precision for e in engines if e in names()]
+    return max([rtol, *declared])
+
+
 def _departing(values: dict[str, np.ndarray], rtol: float, scale: Any = None) -> tuple[str, ...] | None:
     """``None`` when all agree; the engines that depart when the others, a majority, agree; ``("all",)`` else.
+
+    Two engines agree within ``rtol`` or the coarser of their declared precisions (PyBullet's diagonalized
+    inertias, a float32 engine), so that an engine's round-off is never called a departure.
 
     The fewest departing engines are looked for first, in report order (of three: the first engine whose two
     others agree).
     """
     engines = list(values)
     agree: dict[frozenset[str], bool] = {
-        frozenset((a, b)): bool(np.all(_close(values[a], values[b], rtol, scale))) for a, b in combinations(engines, 2)
+        frozenset((a, b)): bool(np.all(_close(values[a], values[b], _pair_rtol(rtol, a, b), scale)))
+        for a, b in combinations(engines, 2)
     }
     if all(agree.values()):
         return None
