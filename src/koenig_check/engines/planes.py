@@ -14,6 +14,8 @@ term by term in the same order: the same numbers.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from koenig_check.kernels import dot3, fold, tile
@@ -39,7 +41,7 @@ def gather_planes(raw: np.ndarray, index: np.ndarray) -> np.ndarray:
     return out
 
 
-def entry_index(rows: np.ndarray, width: int, entries: np.ndarray | list[int]) -> np.ndarray:
+def entry_index(rows: np.ndarray, width: int, entries: Sequence[int] | np.ndarray) -> np.ndarray:
     """The :func:`gather_planes` index of some entries of some rows of a (n, width) array.
 
     Parameters

@@ -91,13 +91,12 @@ class PinocchioEngine(PinocchioDynamics, Engine):
         self._mass = np.array([Y.mass for Y in inertias], dtype=float)
         self._lever = np.array([Y.lever for Y in inertias], dtype=float).reshape(-1, 3)
         self._inertia = symmetrize(np.array([Y.inertia for Y in inertias], dtype=float).reshape(-1, 3, 3))
-        joints = self._joints
         # Where each segment's entries sit in a pose's flat placements (12 per joint: the rotation column by
         # column, then the translation) and velocities (6 per joint: linear, angular).
         self._index = {
-            "rotation": entry_index(joints, 12, [3 * j + i for i in range(3) for j in range(3)]),  # row-major
-            "origin": entry_index(joints, 12, range(9, 12)),
-            "velocity": entry_index(joints, 6, range(6)),
+            "rotation": entry_index(self._joints, 12, [3 * j + i for i in range(3) for j in range(3)]),  # row-major
+            "origin": entry_index(self._joints, 12, range(9, 12)),
+            "velocity": entry_index(self._joints, 6, range(6)),
         }
         self._placement_views = self._views()
         self._motion_views = self._velocity_views()
@@ -174,8 +173,9 @@ class PinocchioEngine(PinocchioDynamics, Engine):
                 placements[p, :, :9] = np.swapaxes(H[:, :3, :3], -1, -2).reshape(nj, 9)  # column by column
                 placements[p, :, 9:] = H[:, :3, 3]
             velocities[p] = motion if motion is not None else [x.vector for x in motions_live.tolist()]
-        index, flat = self._index, {"rotation": placements.reshape(P, -1), "velocity": velocities.reshape(P, -1)}
-        out = {name: gather_planes(flat.get(name, flat["rotation"]), index[name]) for name in index}
+        flat_placements, flat_velocities = placements.reshape(P, -1), velocities.reshape(P, -1)
+        raws = {"rotation": flat_placements, "origin": flat_placements, "velocity": flat_velocities}
+        out = {name: gather_planes(raws[name], index) for name, index in self._index.items()}
         if energies:
             out["rigid"] = rigid
         return out
