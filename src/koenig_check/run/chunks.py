@@ -22,7 +22,7 @@ from koenig_check.formulas.cache import SharedStates
 from koenig_check.run.engine_runs import EngineRun, VerdictPoses
 from koenig_check.run.poses import PoseSet
 from koenig_check.run.records import STORED_SCHEMA, categorical
-from koenig_check.run.stats import DEFAULT_RTOL, Extreme, ModelStats, relative_error
+from koenig_check.run.stats import DEFAULT_RTOL, Extreme, GroupStats, ModelStats, relative_error
 
 
 def _evaluate(name: str, run: EngineRun, states: Any, angles: np.ndarray | None, normal=None, ids=None) -> np.ndarray:
@@ -120,6 +120,7 @@ def evaluate_chunk(
     references = engines + [f"exact@{e}" for e in engines]
     scopes: dict[str, int] = {"total": 0}
     exact_totals: dict[str, np.ndarray] = {}
+    pending: list[tuple[GroupStats, np.ndarray, np.ndarray]] = []  # (group, totals, reference energies)
     for s_code, (source, run) in enumerate(runs.items()):
         shared = SharedStates(run.states)
         angles = integrate_angular_velocity(run.states.omega, poses.times) if poses.times is not None else None
@@ -143,7 +144,7 @@ def evaluate_chunk(
                 continue
             total = per_segment.sum(axis=1)
             for r_code, (reference, ref_run) in enumerate(runs.items()):
-                stats.group((name, source, reference)).add(total, ref_run.rigid, rtol, ids)
+                pending.append((stats.group((name, source, reference)), total, ref_run.rigid))
                 if records != "none":
                     blocks.append((f_code, s_code, r_code, None, total, ref_run.rigid))
             seg_err = np.abs(per_segment - exact_seg).ravel()
@@ -152,6 +153,9 @@ def evaluate_chunk(
             )
             if records == "segments":
                 blocks.append((f_code, s_code, len(engines) + s_code, seg_codes, per_segment, exact_seg))
+    if pending:  # every group's totals against its reference at once (GroupStats.add, row by row)
+        groups, totals, references_of = zip(*pending, strict=True)
+        GroupStats.add_rows(list(groups), np.array(totals), np.array(references_of), rtol, ids)
     if "mujoco" in runs and "pinocchio" in runs:
         _agreement_stats(stats, runs, ids, exact_totals)
     table = None
