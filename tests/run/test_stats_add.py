@@ -60,6 +60,7 @@ def test_add_rows_gives_what_add_gives_group_by_group() -> None:
     """The chunk's groups added at once equal each added alone: counts, worst and its pose, every quantile."""
     import numpy as np
 
+    from koenig_check.run.chunks import add_rows
     from koenig_check.run.stats import GroupStats
 
     rng = np.random.default_rng(5)
@@ -73,7 +74,7 @@ def test_add_rows_gives_what_add_gives_group_by_group() -> None:
     for g, group in enumerate(alone):
         group.add(values[g], references[g], 1e-9, labels)
     together = [GroupStats() for _ in range(4)]
-    GroupStats.add_rows(together, values, references, 1e-9, labels)
+    add_rows(together, values, references, 1e-9, labels)
     for a, b in zip(alone, together, strict=True):
         assert (a.n, a.over, a.under) == (b.n, b.over, b.under)
         assert (a.worst.value, a.worst.where) == (b.worst.value, b.worst.where) or (

@@ -92,8 +92,7 @@ class QuantileSketch:
 
     @staticmethod
     def _bins(x: np.ndarray) -> np.ndarray:
-        # floor((log10 x − LOG_MIN) · BINS_PER_DECADE) + 1, in place; at or above 10**LOG_MAX the last bin,
-        # below 10**LOG_MIN (0 included) the first, clipped to the bins.
+        # floor((log10 x − LOG_MIN) · BINS_PER_DECADE) + 1 in place; from 10**LOG_MAX the last bin, below 10**LOG_MIN 0.
         with np.errstate(divide="ignore", invalid="ignore"):
             pos = np.log10(x)
             pos -= LOG_MIN
@@ -284,34 +283,6 @@ class GroupStats:
         self.under += int(np.count_nonzero(signed < -scale))
         self.worst.offer(rel, pose_labels)
         self.sketch.add(rel, copy=False)
-
-    @staticmethod
-    def add_rows(
-        groups: list[GroupStats], values: np.ndarray, references: np.ndarray, rtol: float, pose_labels
-    ) -> None:
-        """:meth:`add` for several groups at once: row ``g`` of the arrays is group ``g``'s chunk (the same numbers).
-
-        Parameters
-        ----------
-        groups : list of GroupStats
-        values, references : ndarray, shape (G, P)
-        rtol : float
-        pose_labels : sequence or callable
-        """
-        if not groups:
-            return
-        signed = values - references
-        magnitude = np.abs(references)
-        rel = absolute_relative_error(signed, magnitude)
-        scale = rtol * magnitude
-        over = np.count_nonzero(signed > scale, axis=1)
-        under = np.count_nonzero(signed < -scale, axis=1)
-        for g, group in enumerate(groups):
-            group.n += values.shape[1]
-            group.over += int(over[g])
-            group.under += int(under[g])
-            group.worst.offer(rel[g], pose_labels)
-            group.sketch.add(rel[g], copy=False)
 
     def merge(self, other: GroupStats) -> None:
         """Merge a later chunk's statistics.
