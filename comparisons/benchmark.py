@@ -19,6 +19,12 @@ after the other, each in a fresh Python process (so that each one's peak memory 
 (b2) api, jobs=J
     with ``--jobs J``: (b) in J processes (wall clock).
 
+``--engine NAME`` measures an optional engine instead, per pose against its own bare loop:
+(d) engine-bare, the engine's own calls as its users make them (``engines/<name>/benchmark.py``'s
+``bare_loop``: Newton's batched ``eval_fk`` + ``eval_mass_matrix``), and (e) engine, the adapter's sweep
+(segment states and energy in canonical coordinates, what the cross-check reads per pose); both on a model
+already loaded, so that the cost per pose is the result.
+
 Each measurement is timed inside its process after the Python imports, the same for all three
 (matplotlib included; their time is reported in a column of its own).  (b) and (c) include loading
 the model, drawing the poses and the diagnosis, as a user pays them; (a) is the engine calls alone.
@@ -33,6 +39,7 @@ Usage::
 
     python comparisons/benchmark.py [--poses 100000] [--repeat 1] [--jobs 2] [--out comparisons/benchmark.md]
     python comparisons/benchmark.py --smoke       # a few poses, nothing written (run by the test suite)
+    python comparisons/benchmark.py --engine newton --poses 10000 --models ur5 talos   # printed, not written
 """
 
 from __future__ import annotations
@@ -102,6 +109,29 @@ def _report(model: str, n_poses: int) -> None:
     print(json.dumps({"exit": code, "report_bytes": size}), file=sys.stderr)
 
 
+def _engine(kind: str, model: str, n_poses: int, engine: str) -> dict:
+    """(d) or (e) for an optional engine: its bare loop or the adapter's sweep, timed after loading."""
+    import importlib
+
+    from koenig_check.engines import load_model
+    from koenig_check.engines.load_options import LoadOptions
+    from koenig_check.run.poses import random_poses
+
+    pair = load_model(model, LoadOptions(engines=("mujoco", "pinocchio", engine)))
+    adapter = pair.engine(engine)
+    poses = random_poses(pair.mujoco.model, n_poses, seed=0)
+    bare = importlib.import_module(f"koenig_check.engines.{engine}.benchmark").bare_loop
+    # a first pass, untimed: kernel loads and the engine's batched models (one per batch size) are loading
+    adapter.sweep(poses.qpos, poses.qvel)
+    bare(adapter, poses.qpos, poses.qvel)
+    start, cpu_start = time.perf_counter(), time.process_time()
+    if kind == "engine-bare":
+        bare(adapter, poses.qpos, poses.qvel)
+    else:
+        adapter.sweep(poses.qpos, poses.qvel)
+    return {"seconds": time.perf_counter() - start, "cpu": time.process_time() - cpu_start}
+
+
 def run_one(kind: str, model: str, n_poses: int, jobs: int) -> dict:
     """Run one measurement in this process; return seconds and peak memory."""
     import contextlib
@@ -155,6 +185,19 @@ def measure(kind: str, model: str, n_poses: int, jobs: int = 1) -> dict:
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+def _measure_engine(kind: str, model: str, n_poses: int, engine: str) -> dict:
+    """(d) or (e) in a fresh process."""
+    proc = subprocess.run(
+        [sys.executable, __file__, "--engine", engine, "--one", kind, model, str(n_poses), "1"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    if proc.returncode != 0:
+        raise SystemExit(f"benchmark {kind} {engine} {model}: failed\n{proc.stderr[-3000:]}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
 def _table(results: dict, n_poses: int, jobs: int) -> list[str]:
     head = (
         "| model | poses | (a) bare engine calls, poses/s | (b) API, poses/s | (c) with report, poses/s | b/a | c/a "
@@ -192,11 +235,24 @@ def main() -> None:
     parser.add_argument("--out", type=Path, default=Path(__file__).with_name("benchmark.md"))
     parser.add_argument("--kinds", nargs="+", choices=KINDS, default=list(KINDS), help="measurements to run")
     parser.add_argument("--smoke", action="store_true", help="a few poses, print only (for the test suite)")
+    parser.add_argument("--engine", default="", help="an optional engine's cost per pose against its bare loop")
     parser.add_argument("--one", nargs=4, metavar=("KIND", "MODEL", "POSES", "JOBS"), help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.one:
         kind, model, n, jobs = args.one
-        print(json.dumps(run_one(kind, model, int(n), int(jobs))))
+        if kind.startswith("engine"):
+            print(json.dumps(_engine(kind, model, int(n), args.engine)))
+        else:
+            print(json.dumps(run_one(kind, model, int(n), int(jobs))))
+        return
+    if args.engine:
+        for model in args.models:
+            r = {k: _measure_engine(k, model, args.poses, args.engine) for k in ("engine-bare", "engine")}
+            per = {k: 1e6 * v["cpu"] / args.poses for k, v in r.items()}
+            print(
+                f"{model}: {args.engine} bare loop {per['engine-bare']:.1f} µs/pose, adapter sweep "
+                f"{per['engine']:.1f} µs/pose (CPU), ratio {per['engine'] / per['engine-bare']:.2f}"
+            )
         return
     if args.smoke:
         args.poses, args.repeat = 20, 1

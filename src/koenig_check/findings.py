@@ -102,6 +102,11 @@ class Finding:
         For a finding without a cause: its few words in a one-line reason (``"inertia changed so that MuJoCo
         accepts it"``); empty: the summary.  A cause's brief form is its declaration's
         (:attr:`koenig_check.causes.Cause.brief`).  Not a record's key (the summary says it whole).
+    tag : str
+        What the element is (``"geom"``, ``"body"``, ``"link"``, ``"joint"``, ``"compiler"``): the element is then
+        ``"<tag> <name>"`` and :attr:`name` its name (or names, or a place: ``"frame #1 in body base"``).  Empty
+        for an element of another form (``"model"``, ``"rigid-body energy"``): what groups, shortens and matches
+        elements reads this field, never the element's words.
     """
 
     kind: Kind
@@ -115,6 +120,7 @@ class Finding:
     hint: str = ""
     cause: str = ""
     brief: str = ""
+    tag: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.kind, Kind):
@@ -125,10 +131,17 @@ class Finding:
             raise ValueError("Finding needs an element and a summary")
         object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
         object.__setattr__(self, "segments", tuple(self.segments))
+        if self.tag and not (self.element.startswith(f"{self.tag} ") and len(self.element) > len(self.tag) + 1):
+            raise ValueError(f"Finding.element {self.element!r} must be its tag {self.tag!r} and a name")
         if self.cause:
             from koenig_check.engines.catalogue import cause  # it reads the engines, which read findings
 
             cause(self.cause)  # an unknown id is a programming error: KeyError names the closest ids
+
+    @property
+    def name(self) -> str:
+        """The element without its tag (``"pole"`` of ``"geom pole"``); empty without a :attr:`tag`."""
+        return self.element[len(self.tag) + 1 :] if self.tag else ""
 
     def message(self) -> str:
         """One line for people: engine, element, summary, values and hint.
@@ -165,6 +178,7 @@ class Finding:
             "segments": list(self.segments),
             "hint": self.hint,
             "cause": self.cause,
+            "tag": self.tag,
         }
 
 

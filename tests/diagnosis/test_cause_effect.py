@@ -18,7 +18,7 @@ from koenig_check.findings import Finding, Kind
 
 def _mass(engine: str, mujoco_kg: float, other_kg: float, name: str) -> Finding:
     values = {"mujoco": mujoco_kg, engine: other_kg}
-    return Finding(Kind.MASS, engine, f"geom {name}", "mass read another way", values, True, True)
+    return Finding(Kind.MASS, engine, f"geom {name}", "mass read another way", values, True, True, tag="geom")
 
 
 def test_mass_causes_are_ordered_by_the_mass_they_change_and_others_keep_their_place() -> None:

@@ -89,7 +89,9 @@ def test_an_anchor_of_a_one_joint_body_is_no_parser_limit() -> None:
     from koenig_check.findings import Finding
 
     def anchor(joint: str) -> Finding:
-        return Finding(Kind.ANCHOR, "drake", f"joint {joint}", "Drake turns the joint about another point", {})
+        return Finding(
+            Kind.ANCHOR, "drake", f"joint {joint}", "Drake turns the joint about another point", {}, tag="joint"
+        )
 
     several = load_model(MODEL).mujoco.model
     assert parser_limit(anchor("arm_y"), several) is not None

@@ -32,7 +32,8 @@ def _error(message: str, causes: list[Finding]) -> ModelLoadError:
 
 
 def _root(element: str, summary: str) -> Finding:
-    return Finding(Kind.IGNORED_CONSTRUCT, "pinocchio", element, summary, affects_energy=True, root_cause=True)
+    tag = element.split(" ", 1)[0]  # the builders give each element's tag: "body b" -> "body"
+    return Finding(Kind.IGNORED_CONSTRUCT, "pinocchio", element, summary, affects_energy=True, root_cause=True, tag=tag)
 
 
 def test_the_engines_detail_goes_whole_before_anything_is_cut() -> None:

@@ -9,12 +9,12 @@ import pytest
 
 import koenig_check
 from koenig_check.cli import main
+from koenig_check.diagnosis.model_reason import short_reason
 from koenig_check.diagnosis.reason import (
     REASON_WIDTH,
     ROUNDING_LEVEL,
     ordered_causes,
     root_cause_groups,
-    short_reason,
 )
 from koenig_check.findings import Finding, Kind
 from koenig_check.testing import assert_energy_parity
@@ -142,3 +142,46 @@ def test_more_root_causes_end_the_last_cause_line_never_a_line_of_their_own() ->
     lines = cause_lines(roots)
     assert len(lines) == 3 and lines[-1].endswith("; and 2 more root causes"), lines
     assert not any(line.startswith("and ") for line in lines)
+
+
+def _unable(reason_words: str) -> Finding:
+    return Finding(Kind.ENGINE_UNABLE, "drake", "model", f"Drake cannot check this model: {reason_words}", hint="")
+
+
+def _departs() -> Finding:
+    values = {"mujoco": 1.0, "pinocchio": 2.0, "drake": 1.0}
+    return Finding(Kind.VERDICT, "pinocchio", "rigid-body energy", "Pinocchio departs", values, True)
+
+
+def test_a_reason_is_built_once_and_shown_whole_or_within_a_line() -> None:
+    """One Reason: the row shows every part whole, the line cuts the check not made at a word to fit."""
+    from koenig_check.diagnosis.model_reason import model_reason
+    from koenig_check.diagnosis.reason import REASON_WIDTH
+
+    long = "its parser " + " ".join(f"word{k}" for k in range(60))  # an engine's own reason, 400 characters
+    gap = "MuJoCo and Pinocchio differ by 1 relative (pose p)"
+    why = model_reason("m.xml", [_departs(), _unable(long)], gap)
+    assert why.whole() == f"m.xml: Pinocchio departs; {gap}; Drake cannot check this model: {long}"  # never cut
+    line = why.line()
+    assert len(line) <= REASON_WIDTH and line.endswith("…")
+    assert line.startswith(f"m.xml: Pinocchio departs; {gap}; Drake cannot check this model: its parser word0")
+    short = model_reason("m.xml", [_departs(), _unable("its parser ignores armature")])
+    assert (
+        short.line()
+        == short.whole()
+        == "m.xml: Pinocchio departs; Drake cannot check this model: its parser ignores armature"
+    )
+
+
+def test_the_table_row_and_the_error_line_show_the_same_reason() -> None:
+    """A disagreeing model whose named Drake cannot check it: the row holds the reason whole, the line its first 186."""
+    pytest.importorskip("pydrake")
+    from koenig_check.report.terminal import terminal_table
+
+    path = Path(__file__).resolve().parents[1] / "models" / "causes" / "class_joint_pos_explicit.xml"
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=["mujoco", "pinocchio", "drake"])
+    why = check.model_reason(check.comparisons[0], check.agreements[0], cli=True)
+    assert why is not None and why.unmade.startswith("Drake cannot check this model")
+    assert check.reasons(cli=True) == [why.line()]
+    row = " ".join(terminal_table(check).split())  # folded under its column: the words in order
+    assert " ".join(why.whole().removeprefix(f"{path.name}: ").split()) in row

@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -57,3 +58,52 @@ def test_a_cause_outside_the_departing_segments_is_still_named() -> None:
     assert departure_cause([elsewhere], "drake", ["shoulder"]) is elsewhere
     assert departure_cause([elsewhere, here], "drake", ["wrist"]) is here
     assert departure_cause([elsewhere], "mujoco", ["shoulder"]) is None
+
+
+SMALL_FIRST = Path(__file__).resolve().parents[1] / "models" / "tiebreak" / "small_cause_first.xml"
+
+
+def test_the_construct_named_is_the_cause_of_largest_effect_not_the_first_found() -> None:
+    """small_cause_first.xml: a 0.5 kg visual-only sphere (body a) and a 6 kg class mass (body b) Pinocchio misreads.
+
+    By hand: body a weighs 1 + 0.5 = 1.5 kg in MuJoCo and 1 kg in Pinocchio (the visual sphere left out: 0.5 kg);
+    body b's box weighs its class's 2 kg in MuJoCo and density 1000 x 0.2^3 m^3 = 8 kg in Pinocchio (6 kg).  Given in
+    file order (body a's first), the verdict names the 6 kg cause, as the reason ranks it.
+    """
+    pytest.importorskip("pydrake")
+    import koenig_check
+    from koenig_check.diagnosis.reason import ordered_causes
+
+    check = koenig_check.compare(SMALL_FIRST, n_poses=3, formulas=["exact"], engines=("mujoco", "pinocchio", "drake"))
+    findings = check.comparisons[0].findings
+    (light,) = [f for f in findings if f.cause == "pinocchio.mjcf.visual-geoms"]
+    (heavy,) = [f for f in findings if f.cause == "pinocchio.mjcf.class-geom-mass"]
+    assert (light.values["mujoco"], light.values["pinocchio"]) == pytest.approx((1.5, 1.0), rel=1e-12)
+    assert (heavy.values["mujoco"], heavy.values["pinocchio"]) == pytest.approx((2.0, 8.0), rel=1e-12)
+    assert ordered_causes(findings)[:2] == [heavy, light]  # the reason: 6 kg first
+    assert departure_cause([light, heavy], "pinocchio") == heavy  # in file order: still the 6 kg one
+    assert departure_cause([light, heavy], "pinocchio", ("ja",)) == light  # the only one on body a's segment
+    (energy,) = [f for f in findings if f.kind is Kind.VERDICT and f.element == "rigid-body energy"]
+    assert energy.engine == "pinocchio" and energy.summary.endswith("construct responsible: geom box")
+
+
+def test_where_all_differ_each_engine_is_named_with_its_own_construct() -> None:
+    """all_differ.xml: MuJoCo alone rescales to settotalmass=3, Pinocchio alone ignores the pole's class mass.
+
+    By hand: the pole's class gives it 0.1 kg (Drake); MuJoCo rescales 1 + 0.1 kg to 3 kg (0.1 x 3 / 1.1); Pinocchio
+    weighs the capsule (radius 0.045, length 1) at density 1000: 1000 (pi r^2 + 4/3 pi r^3).  The settotalmass cause
+    is MuJoCo's, built so; it was once moved to the engine a verdict named after the verdicts, so that Pinocchio too
+    was said to depart through settotalmass.
+    """
+    pytest.importorskip("pydrake")
+    import koenig_check
+
+    path = Path(__file__).resolve().parents[1] / "models" / "tiebreak" / "all_differ.xml"
+    check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=("mujoco", "pinocchio", "drake"))
+    verdicts = {f.element: f for f in check.comparisons[0].findings if f.kind is Kind.VERDICT}
+    pole = verdicts["body pole (joint hinge) mass"]
+    r = 0.045
+    expected = {"mujoco": 0.1 * 3 / 1.1, "pinocchio": 1000 * (np.pi * r**2 + 4 / 3 * np.pi * r**3), "drake": 0.1}
+    assert dict(pole.values) == pytest.approx(expected, rel=1e-9)
+    assert pole.engine == "all"
+    assert pole.summary.endswith("MuJoCo: compiler settotalmass (compiler); Pinocchio: geom pole (mass)")

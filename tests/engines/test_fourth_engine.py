@@ -115,7 +115,7 @@ def findings(mj_model, own):
             out.append(Finding(
                 Kind.MASS, "gpu", f"body {body}", "GPU's MJCF parser drops the geoms' mass: density × volume",
                 {"mujoco": written, "gpu": read_}, affects_energy=True, root_cause=True,
-                segments=(seg[body],) if seg.get(body) else (), cause=GEOM_MASS,
+                segments=(seg[body],) if seg.get(body) else (), cause=GEOM_MASS, tag="body",
             ))
     for j in range(mj_model.njnt):
         dof = int(mj_model.jnt_dofadr[j])
@@ -124,7 +124,7 @@ def findings(mj_model, own):
             out.append(Finding(
                 Kind.ARMATURE, "gpu", f"joint {joint}", "GPU's MJCF parser ignores the joint's armature",
                 {"mujoco": [float(mj_model.dof_armature[dof])], "gpu": [0.0]}, affects_energy=True,
-                root_cause=True, segments=(joint,), cause=ARMATURE,
+                root_cause=True, segments=(joint,), cause=ARMATURE, tag="joint",
             ))
     return out
 '''

@@ -70,7 +70,7 @@ def test_settotalmass_reads_the_same_in_the_parity_notes_and_the_cause() -> None
     ) in report.findings
     (cause,) = [c for c in report.causes if c.kind is Kind.COMPILER]
     assert (cause.engine, cause.element, cause.root_cause, cause.hint, cause.cause) == (
-        "pinocchio",
+        "mujoco",  # the engine that applies the option alone, as the option's record says (not moved later)
         "compiler settotalmass",
         True,
         "",

@@ -81,8 +81,9 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: 
 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
+    from koenig_check.diagnosis.model_reason import short_reason
     from koenig_check.diagnosis.policy import attach_engines
-    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, lead_line, rounding_hint, short_reason
+    from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, lead_line, rounding_hint
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
     from koenig_check.report.parity_table import format_parity

@@ -43,8 +43,8 @@ def brief_form(f: Finding) -> str:
 def element_words(f: Finding) -> str:
     """A finding's element, one that lists several names by the first and how many more.
 
-    The names are the finding's values under the plural of the element's tag (``geom`` -> ``geoms``,
-    ``segment`` -> ``segments``), never read back from the element's text.
+    The names are the finding's values under the plural of its :attr:`~koenig_check.findings.Finding.tag`
+    (``geom`` -> ``geoms``, ``segment`` -> ``segments``), never read back from the element's text.
 
     Parameters
     ----------
@@ -54,11 +54,22 @@ def element_words(f: Finding) -> str:
     -------
     str
     """
-    tag = f.element.partition(" ")[0]
-    names = f.values.get(_PLURAL.get(tag, tag + "s"), ())
-    if isinstance(names, (tuple, list)) and len(names) > 1 and all(isinstance(n, str) for n in names):
-        return f"{tag} {names[0]} (+{len(names) - 1} more)"
+    names = _names(f)
+    if len(names) > 1:
+        return f"{f.tag} {names[0]} (+{len(names) - 1} more)"
     return f.element
+
+
+def _plural(tag: str) -> str:
+    return _PLURAL.get(tag, tag + "s")
+
+
+def _names(f: Finding) -> list[str]:
+    """The names a finding's values list under the plural of its tag (empty without a tag or a list)."""
+    names = f.values.get(_plural(f.tag), ()) if f.tag else ()
+    if isinstance(names, (tuple, list)) and all(isinstance(n, str) for n in names):
+        return list(names)
+    return []
 
 
 def lost_joints(f: Finding) -> list[str]:
@@ -112,12 +123,11 @@ class CauseGroup:
         """
         if len(self.findings) == 1:
             return element_words(self.findings[0])
-        tags = {f.element.split(" ", 1)[0] for f in self.findings}
-        simple = all(" " in f.element and ", " not in f.element for f in self.findings)
-        if len(tags) == 1 and simple:
-            tag = tags.pop()
-            names = [f.element.split(" ", 1)[1] for f in self.findings]
-            return f"{_PLURAL.get(tag, tag + 's')} {shown_names(names, shown)}"
+        tags = {f.tag for f in self.findings}
+        single = all(f.tag and len(_names(f)) <= 1 for f in self.findings)  # each names one element
+        if len(tags) == 1 and single:
+            names = [f.name for f in self.findings]
+            return f"{_plural(tags.pop())} {shown_names(names, shown)}"
         return shown_names([element_words(f) for f in self.findings], shown)
 
     def lost_joints(self) -> list[str]:

@@ -9,7 +9,7 @@ which engine departs (:mod:`koenig_check.diagnosis.three_way`).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -104,36 +104,12 @@ def diagnose(
         verdicts = _verdicts(model, voters, parity, findings, (qpos, qvel, energies or {}), rtol, include_armature)
     parser = "URDF" if Path(model.path).suffix.lower() == ".urdf" else "MJCF"
     unmade = unable_findings(limits, policy.asked_for(engines), parser) + policy.unmade_checks(optional, engines)
-    findings, parity = _blamed_as_verdicts_say(verdicts, findings, parity)
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
 
 
 def _applies(f: Finding) -> bool:
     """A finding of a cause whose declared reading does not hold for the installed engine's version is dropped."""
     return not f.cause or applies(f.cause)
-
-
-def _blamed_as_verdicts_say(
-    verdicts: list[Finding], findings: list[Finding], parity: ParityReport
-) -> tuple[list[Finding], ParityReport]:
-    """The causes the verdicts name, recorded against the engine that departs (as the verdict says).
-
-    Two engines cannot say which applies a construct alone; the pair's finding may name the other one (compiler
-    ``settotalmass``: "Pinocchio does not rescale").  With three engines the verdict knows
-    (:func:`koenig_check.diagnosis.three_way.departure_cause`), and the cause lists (``parity``'s root causes,
-    the report) must say the same engine.
-    """
-    moved: dict[int, Finding] = {}  # by identity: a finding's values are not hashable
-    for v in verdicts:
-        if v.engine == "all":
-            continue
-        cause = three_way.departure_cause(findings, v.engine, v.segments)
-        if cause is not None and cause.engine != v.engine:
-            moved.setdefault(id(cause), replace(cause, engine=v.engine))
-    if not moved:
-        return findings, parity
-    causes = [moved.get(id(c), c) for c in parity.causes]
-    return [moved.get(id(f), f) for f in findings], replace(parity, causes=causes)
 
 
 def _verdicts(
@@ -164,7 +140,8 @@ def _verdicts(
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in engines.items()}
     if parity.frame_offset is not None:  # Pinocchio dropped a jointless root body's pose: compare in MuJoCo's world
-        states["pinocchio"] = parity.frame_offset.segment_states(states["pinocchio"])
+        dropped = parity.frame_offset.engine
+        states[dropped] = parity.frame_offset.segment_states(states[dropped])
     return out + three_way.import_verdicts(states, findings, rtol, parity.segment_labels)
 
 

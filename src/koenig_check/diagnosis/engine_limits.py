@@ -61,15 +61,15 @@ def parser_limit(finding: Finding, mj_model: Any) -> Limit | None:
         E.g. ``Limit("ignores armature", ["spin"])``; for a construct that is not a joint's attribute (a
         ``<frame>``), the element itself (``Limit("ignores <frame>", ["frame f in body b"], "elements")``).
     """
-    tag, _, name = finding.element.partition(" ")
     for declared in limits(finding.engine):
         if declared.shown_by(finding, mj_model):
-            return Limit(declared.says, [name], declared.names)
+            return Limit(declared.says, [finding.name or finding.element], declared.names)  # untagged: whole
     if finding.kind is Kind.IGNORED_CONSTRUCT:
         joints = finding.values.get("joints")
-        if tag == "joint" and name and joints:  # an attribute of joints ("joint armature")
-            return Limit(f"ignores {name}", [str(j) for j in joints])
-        return Limit(f"ignores <{tag}>", [finding.element], "elements")
+        if finding.tag == "joint" and joints:  # an attribute of joints ("joint armature")
+            return Limit(f"ignores {finding.name}", [str(j) for j in joints])
+        what = f"<{finding.tag}>" if finding.tag else finding.element
+        return Limit(f"ignores {what}", [finding.element], "elements")
     return None
 
 

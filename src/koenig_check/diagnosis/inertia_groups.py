@@ -16,7 +16,12 @@ import numpy as np
 
 from koenig_check.diagnosis.segment_masses import compiled, mujoco_segment_masses, pinocchio_segment_masses
 from koenig_check.engines.canonical import segment_of_body
+from koenig_check.engines.catalogue import cause
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind, shown_names
+
+#: The catalogued cause of a compiler inertiagrouprange.
+INERTIA_GROUPS = "pinocchio.mjcf.inertiagrouprange"
 
 #: Relative mass difference under which two masses are the same.
 RTOL = 1e-9
@@ -69,22 +74,24 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
         for g in range(narrow.ngeom)
         if not low <= int(groups[g]) <= high and seg_of.get(narrow.body(int(narrow.geom_bodyid[g])).name) in segments
     ]
+    ignores = cause(INERTIA_GROUPS).engine  # counts every geom
     return [
         Finding(
             Kind.COMPILER,
-            "pinocchio",
+            reference(),  # the engine that applies the option (Pinocchio and Drake count every geom)
             "compiler inertiagrouprange",
             f"MuJoCo counts only geoms of groups {low} to {high} (geoms {shown_names(left_out)} left out), "
             "Pinocchio counts every geom",
             values={
                 "geoms": tuple(left_out),
-                "mujoco": float(sum(as_file[s] for s in segments)),
-                "pinocchio": float(sum(pinocchio[s] for s in segments)),
+                reference(): float(sum(as_file[s] for s in segments)),
+                ignores: float(sum(pinocchio[s] for s in segments)),
                 "mujoco, every group": float(sum(all_groups[s] for s in segments)),
             },
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
-            cause="pinocchio.mjcf.inertiagrouprange",
+            cause=INERTIA_GROUPS,
+            tag="compiler",
         )
     ]

@@ -113,6 +113,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
                 root_cause=not set(names) <= explained,
                 segments=tuple(names),
                 brief=f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'}",
+                tag="segment",
             )
         )
     return out
@@ -209,6 +210,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
                 root_cause=True,
                 segments=segments,
                 cause=f"pinocchio.mjcf.class-{tag}-{'mass' if attr == 'mass' else 'pos'}",
+                tag=tag,
             )
         )
     return out
@@ -271,9 +273,8 @@ def compiler_causes(pair: Any) -> list[Finding]:
         scale = max(m_mj, m_pin, 1e-300)
         if abs(m_mj - option.values["settotalmass"]) <= RTOL * scale and abs(m_mj - m_pin) > RTOL * scale:
             out.append(
-                replace(
+                replace(  # MuJoCo's (the engine that applies it), as the option's record says
                     option,
-                    engine="pinocchio",
                     summary=f"{option_text(option)}: {option.summary}, Pinocchio does not",
                     values={"mujoco": m_mj, "pinocchio": m_pin},
                     root_cause=True,
@@ -346,6 +347,7 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
             root_cause=True,
             segments=tuple(segments),
             cause="pinocchio.mjcf.mesh-mass",
+            tag="geom",
         )
     ]
 

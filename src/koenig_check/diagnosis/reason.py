@@ -8,7 +8,6 @@ from koenig_check.diagnosis.cause_effect import by_effect
 from koenig_check.diagnosis.cause_groups import CauseGroup, brief_form, cause_groups, element_words, more_causes
 from koenig_check.diagnosis.one_line import short_error
 from koenig_check.findings import Finding, Kind, root_causes
-from koenig_check.line_width import closed_cut
 
 __all__ = ["short_error"]  # its home is diagnosis/one_line.py; imported from here by earlier code
 
@@ -145,85 +144,6 @@ def short_cause(f: Finding) -> str:
     str
     """
     return f"{element_words(f)}: {brief_form(f)}"
-
-
-def _departures(findings: Sequence[Finding]) -> str:
-    """The three-engine verdicts in a few words: which engine departs (once each), or that all differ."""
-    from koenig_check.diagnosis.three_way import verdict_head
-
-    heads = []
-    for f in findings:
-        if f.kind is Kind.VERDICT:
-            head = verdict_head(f)  # "Pinocchio departs", "all three engines differ"
-            if head not in heads:
-                heads.append(head)
-    return ", ".join(heads)
-
-
-def short_reason(
-    label: str, findings: Sequence[Finding], gap: str = "", limit: int = 3, width: int = REASON_WIDTH
-) -> str:
-    """Why a model fails, in one sentence of at most :data:`REASON_WIDTH` characters.
-
-    The engine that departs first, then at most ``limit`` root causes, the most important first (the same cause
-    on several elements is one cause naming them), and how many more (``; and 2 more root causes``), then the
-    engines' gap, and last a check asked for and not made, with the engine's own reason (cut at a word when it
-    does not fit: the verdict table's row, ``summary.md`` and the report hold it whole, and ``koenig-check
-    parity`` the details).  To fit, whole parts go, never half of one: the gap loses its pose, then the gap goes
-    (the verdict table shows it), then the causes after the first ("and N more"), then "and N more"; only then is
-    the line cut at a word ("…"), never inside a parenthesis.
-
-    Parameters
-    ----------
-    label : str
-        The model's label.
-    findings : sequence of Finding
-    gap : str
-        The engines' disagreement in a few words (empty when they agree).
-    limit : int
-    width : int
-        The longest line (the verdict table's row gives room for the check not made, whole).
-
-    Returns
-    -------
-    str
-    """
-    unable_findings = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
-    unmade = "; ".join(f.summary for f in unable_findings)  # each summary names its engine and gives its reason
-    head = _departures(findings)
-    if unmade and not head and not gap:  # MuJoCo and Pinocchio agree: the check not made is the whole reason
-        hints = "; ".join(f.hint for f in unable_findings if f.hint)
-        text = f"{label}: {unmade}"
-        hinted = f"{text}; {hints}" if hints else text
-        return hinted if len(hinted) <= width else closed_cut(text, width)  # whole: the table row
-    unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
-    groups = cause_groups(f for f in ordered_causes(findings) if f.engine not in unable)
-    causes = [g.short() for g in groups]
-    gaps = [gap, gap.split(" (pose ")[0]] if " (pose " in gap else [gap]
-    if head or causes:  # the gap may go when something else says why (the verdict table shows it)
-        gaps.append("")
-    room = min(len(unmade) + 2, _UNMADE_ROOM) if unmade else 0  # kept for the check not made, which closes the line
-    tries = [(n, g, True) for n in range(min(limit, len(causes)), 0, -1) for g in gaps]
-    tries += [(1, "", False)] if causes else [(0, g, False) for g in gaps]
-    text = ""
-    for n, g, counted in tries:
-        said = "; ".join(causes[:n] + ([more_causes(groups[n:])] if counted and len(causes) > n else []))
-        parts = [head, f"root cause: {said}" if n else "", g]
-        text = f"{label}: " + "; ".join(t for t in parts if t)
-        if len(text) + room <= width:
-            return _closed(text, unmade, width)
-    return _closed(closed_cut(text, width - room), unmade, width)  # the first cause too long: cut at a word
-
-
-#: The room a reason keeps for a check asked for and not made (the rest of its text is in the verdict table's row).
-_UNMADE_ROOM = 80
-
-
-def _closed(text: str, unmade: str, width: int) -> str:
-    """A reason closed by the checks asked for and not made, cut at a word to fit (whole in the table's row)."""
-    if not unmade:
-        return text
-    return closed_cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
 
 
 def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and Pinocchio", cli: bool = False) -> str:

@@ -8,8 +8,12 @@ from typing import Any
 import mujoco
 import numpy as np
 
+from koenig_check.engines.catalogue import cause
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
+
+#: The catalogued cause of a dropped root-body pose; its engine is the one whose world is offset.
+ROOT_POSE = "pinocchio.mjcf.root-pose"
 
 
 @dataclass(frozen=True)
@@ -20,10 +24,13 @@ class FrameOffset:
     ----------
     rotation : ndarray, shape (3, 3)
     translation : ndarray, shape (3,)
+    engine : str
+        The engine whose world it maps (the one that dropped the pose: :data:`ROOT_POSE`'s).
     """
 
     rotation: np.ndarray
     translation: np.ndarray
+    engine: str = ""
 
     def point(self, x: np.ndarray) -> np.ndarray:
         """Map points (..., 3) from Pinocchio's world to MuJoCo's."""
@@ -100,11 +107,12 @@ def root_frame_offset(pair: Any, atol: float = 1e-9) -> tuple[FrameOffset | None
     if np.abs(R_mj - R_pin).max() <= atol and np.abs(p_mj - p_pin).max() <= atol:
         return None, None
     R = R_mj @ R_pin.T
-    offset = FrameOffset(R, p_mj - R @ p_pin)
+    dropped = cause(ROOT_POSE).engine
+    offset = FrameOffset(R, p_mj - R @ p_pin, dropped)
     quat = _quat(R_mj)
     finding = Finding(
         Kind.FRAME,
-        "pinocchio",
+        dropped,
         f"body {name}",
         "pose of the jointless root body dropped by Pinocchio's MJCF parser: a constant world transform "
         "between the engines (segments compared in MuJoCo's world after removing it)",
@@ -117,7 +125,8 @@ def root_frame_offset(pair: Any, atol: float = 1e-9) -> tuple[FrameOffset | None
         affects_energy=False,
         root_cause=True,
         segments=tuple(pair.pinocchio.segment_names),
-        cause="pinocchio.mjcf.root-pose",
+        cause=ROOT_POSE,
+        tag="body",
     )
     return offset, finding
 

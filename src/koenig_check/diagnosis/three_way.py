@@ -22,7 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.registry import label, names, spec
+from koenig_check.diagnosis.cause_effect import by_effect
+from koenig_check.engines.registry import label, names, reference, required, spec
 from koenig_check.findings import Finding, Kind
 
 #: Default relative tolerance under which two engines "agree".
@@ -80,10 +81,10 @@ def _listed(engines: Sequence[str]) -> str:
 def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence[str] = ()) -> Finding | None:
     """The known construct responsible for an engine's departure, from the model's findings.
 
-    Root causes that change the energy, about that engine, first those that explain the given segments;
-    for MuJoCo, first a compiler option (``compiler settotalmass``), which the two-engine parity may have
-    recorded against Pinocchio ("Pinocchio does not rescale"): with three engines, MuJoCo is the one that
-    applies it alone.
+    Root causes that change the energy, about that engine (each cause is built against the engine it concerns:
+    a compiler option only MuJoCo applies is MuJoCo's), first those that explain the given segments, ranked as
+    the reason ranks them (:func:`koenig_check.diagnosis.cause_effect.by_effect`: the largest measured effect
+    first, the others in their place).
 
     Parameters
     ----------
@@ -98,15 +99,11 @@ def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence
     """
     own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
     roots = [f for f in own if f.root_cause] or [f for f in own if f.kind in (Kind.COMPILER, Kind.IGNORED_CONSTRUCT)]
-    if engine == "mujoco":  # a compiler option only MuJoCo applies, whichever engine the pair's finding blamed
-        options = [
-            f for f in findings if f.kind is Kind.COMPILER and f.affects_energy and f.element.startswith("compiler ")
-        ]
-        roots = options + [f for f in roots if f not in options]
     if segments:
         hit = [f for f in roots if set(f.segments) & set(segments)]
         roots = hit or roots
-    return roots[0] if roots else None
+    ranked = by_effect(roots)
+    return ranked[0] if ranked else None
 
 
 def _shared_cause(engines: Sequence[str], findings: Sequence[Finding], segments: Sequence[str]) -> Finding | None:
@@ -120,9 +117,8 @@ def _shared_cause(engines: Sequence[str], findings: Sequence[Finding], segments:
 
 def _construct(cause: Finding) -> str:
     """The construct a cause names: ``compiler settotalmass`` rather than the body it altered."""
-    if cause.kind is Kind.COMPILER and cause.engine == "mujoco":
-        if float(cause.values.get("settotalmass", -1) or -1) > 0:
-            return "compiler settotalmass"
+    if cause.kind is Kind.COMPILER and float(cause.values.get("settotalmass", -1) or -1) > 0:
+        return "compiler settotalmass"
     return cause.element
 
 
@@ -214,8 +210,8 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
     Parameters
     ----------
     runs : dict of str to EngineRun
-        Each engine's energies (``rigid``, ``armature``): needs ``"mujoco"`` and at least two others;
-        otherwise nothing is said.
+        Each engine's energies (``rigid``, ``armature``): needs the reference engine's
+        (:func:`~koenig_check.engines.registry.reference`) and at least two others; otherwise nothing is said.
     findings : sequence of Finding
         The model's findings (causes are looked up there).
     rtol : float
@@ -226,7 +222,8 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
         Per quantity, one per departing engine (or one saying no majority agrees), with the values at the pose
         of largest spread.
     """
-    if len(runs) < 3 or "mujoco" not in runs:
+    ref = reference()
+    if len(runs) < 3 or ref not in runs:
         return []
     engines = _ordered(runs)
     out = []
@@ -236,7 +233,7 @@ def energy_verdicts(runs: dict[str, Any], findings: Sequence[Finding], rtol: flo
         k = int(np.argmax(np.ptp(np.stack(list(rigid.values())), axis=0)))
         out += _verdicts("rigid-body energy", departing, {e: float(v[k]) for e, v in rigid.items()}, findings)
     arm = {e: np.asarray(runs[e].armature, dtype=float) for e in engines}
-    scale = np.abs(rigid["mujoco"]) + np.abs(arm["mujoco"])
+    scale = np.abs(rigid[ref]) + np.abs(arm[ref])  # the reference's whole energy
     departing = _departing(arm, rtol, scale)
     if departing is not None:
         k = int(np.argmax(np.ptp(np.stack(list(arm.values())), axis=0)))
@@ -258,8 +255,9 @@ def import_verdicts(
     Parameters
     ----------
     states : dict of str to SegmentStates
-        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``): needs
-        ``"mujoco"``, ``"pinocchio"`` and at least one other; otherwise nothing is said.
+        Each engine's segment states at the same single canonical state (MuJoCo's ``qpos0``): needs the
+        required engines' (:func:`~koenig_check.engines.registry.required`) and at least one other; otherwise
+        nothing is said.
     findings : sequence of Finding
     rtol : float
     labels : mapping of str to str, optional
@@ -270,10 +268,11 @@ def import_verdicts(
     list of Finding
         One per quantity and departing engine (segments grouped), with the worst segment's values.
     """
-    if len(states) < 3 or not {"mujoco", "pinocchio"} <= set(states):
+    ref = reference()
+    if len(states) < 3 or not {ref, *required()} <= set(states):
         return []
     engines = _ordered(states)
-    common = [n for n in states["mujoco"].names if all(n in states[e].names for e in engines)]
+    common = [n for n in states[ref].names if all(n in states[e].names for e in engines)]
     if not common:
         return []
     sel = {e: states[e].select(segments=common) for e in engines}
@@ -285,7 +284,7 @@ def import_verdicts(
         "COM": ({e: s.com[0] for e, s in sel.items()}, "length"),
         "inertia": (world_inertia, "inertia"),
     }
-    size = max(float(np.abs(sel["mujoco"].com[0]).max()), 1.0)
+    size = max(float(np.abs(sel[ref].com[0]).max()), 1.0)
     about = {e: s.inertia_about_anchor() for e, s in sel.items()}
     grouped: dict[tuple[str, tuple[str, ...]], list[tuple[str, dict[str, Any]]]] = {}
     for quantity, (vals, kind) in quantities.items():

@@ -17,7 +17,12 @@ import mujoco
 
 from koenig_check.diagnosis.segment_masses import compiled, mujoco_segment_masses, pinocchio_segment_masses
 from koenig_check.engines.canonical import segment_of_body
+from koenig_check.engines.catalogue import cause
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind, shown_names
+
+#: The catalogued cause of geoms read as visual only.
+VISUAL_GEOMS = "pinocchio.mjcf.visual-geoms"
 
 #: Relative mass difference (of the model's total mass) under which two masses are the same.
 RTOL = 1e-9
@@ -78,22 +83,24 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
         for g in visual
         if seg_of.get(g.parent.name) in segments
     ]
+    ignores = cause(VISUAL_GEOMS).engine  # leaves their mass out
     return [
         Finding(
             Kind.MASS,
-            "pinocchio",
+            ignores,
             f"geom {shown_names(geoms)}",
             "contype=0 and conaffinity=0: Pinocchio's MJCF parser reads these geoms as visual only and leaves "
             "their mass out; MuJoCo weighs every geom",
             values={
                 "geoms": tuple(geoms),
-                "mujoco": float(sum(mujoco_mass[s] for s in segments)),
-                "pinocchio": float(sum(pinocchio[s] for s in segments)),
+                reference(): float(sum(mujoco_mass[s] for s in segments)),
+                ignores: float(sum(pinocchio[s] for s in segments)),
                 "mujoco, visual geoms left out": float(sum(without_mass[s] for s in segments)),
             },
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
-            cause="pinocchio.mjcf.visual-geoms",
+            cause=VISUAL_GEOMS,
+            tag="geom",
         )
     ]

@@ -103,10 +103,9 @@ def one_of_several_joints(finding: Finding, mj_model: Any) -> bool:
     """
     import mujoco
 
-    tag, _, name = finding.element.partition(" ")
-    if tag != "joint":
+    if finding.tag != "joint":
         return False
-    k = mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_JOINT, name)
+    k = mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_JOINT, finding.name)
     if k < 0:
         return False
     body = int(mj_model.jnt_bodyid[k])

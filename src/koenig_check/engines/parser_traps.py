@@ -84,6 +84,7 @@ def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocc
                 hint="give the bodies and geoms inside it the frame's pose and remove the <frame> "
                 "(MuJoCo resolves it at compile time)",
                 cause=cause_id,
+                tag="frame",
             )
         )
     return out
@@ -162,6 +163,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 segments=moved or inc.joints,
                 hint="load a file without <include> (e.g. the robot's own file)" if inc.bodies else "",
                 cause="pinocchio.mjcf.include",
+                tag="include",
             )
         )
     out += frame_causes(root, seg_of)
@@ -181,6 +183,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 root_cause=True,
                 segments=joints,
                 cause="pinocchio.mjcf.root-bodies",
+                tag="body",
             )
         )
     return out
@@ -307,6 +310,7 @@ def planar_cause(joint: str, axis: tuple[float, ...] = (1.0, 0.0, 0.0)) -> Findi
         segments=parts,
         hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
         cause="pinocchio.urdf.planar-axis",
+        tag="joint",
     )
 
 

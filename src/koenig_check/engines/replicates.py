@@ -10,8 +10,12 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
+from koenig_check.engines.catalogue import cause
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.mjcf import joint_names
+
+#: The catalogued cause of a <replicate> not read.
+REPLICATE = "pinocchio.mjcf.replicate"
 
 
 def _copies(element: ET.Element, names: list[str]) -> list[str]:
@@ -64,7 +68,7 @@ def replicate_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                 out.append(
                     Finding(
                         Kind.IGNORED_CONSTRUCT,
-                        "pinocchio",
+                        cause(REPLICATE).engine,
                         f"replicate {child.get('name') or f'#{count}'} in {where}",
                         f"<replicate> not read by Pinocchio's MJCF parser: the {child.get('count', '1')} copies "
                         f"MuJoCo makes are missing ({len(bodies)} bodies, {len(joints)} joints)",
@@ -73,7 +77,8 @@ def replicate_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                         root_cause=True,
                         segments=moved or tuple(joints),
                         hint="koenig-check export MODEL --to mjcf writes the copies out (no <replicate>, no <frame>)",
-                        cause="pinocchio.mjcf.replicate",
+                        cause=REPLICATE,
+                        tag="replicate",
                     )
                 )
             elif child.tag == "body":

@@ -12,7 +12,11 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
+from koenig_check.engines.catalogue import cause
 from koenig_check.findings import Finding, Kind
+
+#: The catalogued cause of an axisangle axis not of unit length.
+AXISANGLE = "pinocchio.mjcf.axisangle-length"
 
 #: Relative departure of the axis length from 1 under which the axis is taken as a unit one.
 UNIT_RTOL = 1e-9
@@ -81,7 +85,7 @@ def axisangle_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                     out.append(
                         Finding(
                             Kind.IGNORED_CONSTRUCT,
-                            "pinocchio",
+                            cause(AXISANGLE).engine,
                             _element_name(child, body, geoms),
                             f"axisangle axis of length {length:.6g}: MuJoCo normalizes it, Pinocchio's MJCF parser "
                             f"does not (the {what} it builds is distorted); write a unit axis",
@@ -89,7 +93,8 @@ def axisangle_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                             affects_energy=bool(segments) or not seg_of,
                             root_cause=True,
                             segments=segments,
-                            cause="pinocchio.mjcf.axisangle-length",
+                            cause=AXISANGLE,
+                            tag=child.tag if child.tag in ("body", "inertial") else "geom",
                         )
                     )
             if child.tag == "body":

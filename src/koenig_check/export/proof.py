@@ -31,6 +31,9 @@ from koenig_check.export.result import EngineProof, Proof, SegmentDifference
 from koenig_check.export.unread_constructs import refusal_with_frames
 from koenig_check.sources.catalogue import detect_format
 
+#: A declared precision this coarse is a single-precision engine's (Newton's float32, 1e-5): by default the proof
+#: leaves such an engine out where its round-off reaches the tolerance; named (``engines=``), it is compared at it.
+SINGLE_PRECISION = 1e-6
 #: Default relative tolerance of the proof.
 PROOF_RTOL = 1e-9
 #: Default number of seeded random poses.
@@ -112,7 +115,7 @@ def compare_engine(
     if engine in export.refused:
         reason = refusal_with_frames(export.refused[engine], export.path, export.mj_model, engine)
         return EngineProof(engine, np.nan, np.nan, 0, False, f"cannot load the export: {reason}"), []
-    reference, b = original.adapters["mujoco"], export.adapters[engine]
+    reference, b = original.adapters[registry.reference()], export.adapters[engine]
     qx, vx = pairing.export_states(qpos, qvel, export.mj_model)
     dm, de, di = _differences(reference, b, pairing, states, (qx, vx))
     own = np.nan
@@ -218,8 +221,10 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine whose parser reads the export's format (its spec's ``formats``), each compared where
-        it loads both files.  Engines named here are asked for: one that cannot compare the files fails the proof.
+        Default: every engine whose parser reads the export's format (its spec's ``formats``), but a
+        single-precision engine (declared precision of :data:`SINGLE_PRECISION` or more, at or above ``rtol``) only
+        where it is named; each compared where it loads both files.  Engines named here are asked for: one that
+        cannot compare the files fails the proof.
 
     Returns
     -------
@@ -227,8 +232,12 @@ def prove(
     """
     asked = () if engines is None else tuple(engines)
     if engines is None:  # every engine whose parser reads the export's format (PyBullet, iDynTree: URDF only)
-        target = detect_format(Path(export))
-        engines = tuple(n for n in registry.names() if target in registry.spec(n).formats)
+        target = detect_format(Path(export))  # a single-precision engine (Newton) only where named, or at a coarse rtol
+        engines = tuple(
+            n
+            for n in registry.names()
+            if target in registry.spec(n).formats and registry.spec(n).precision < max(rtol, SINGLE_PRECISION)
+        )
     else:
         engines = tuple(engines)
     opts = options or LoadOptions()

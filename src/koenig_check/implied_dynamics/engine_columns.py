@@ -13,7 +13,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from koenig_check.engines.registry import optional
+from koenig_check.engines.registry import optional, reference
 from koenig_check.implied_dynamics.errors import discrepancy
 from koenig_check.implied_dynamics.reference import rigid_inertia_forces, rigid_mass_matrix
 
@@ -55,5 +55,6 @@ def _add_column(result: Any, name: str, engine: Any, parity_label: str) -> None:
     for (formula, route), r in list(result.routes.items()):
         result.errors.append(discrepancy(r.M, M, formula, route, name))
         result.errors.append(discrepancy(r.Q, Q, formula, route, name))
-    result.errors.append(discrepancy(result.engine_mass["mujoco"], M, parity_label, "mujoco", name))
-    result.errors.append(discrepancy(result.engine_forces["mujoco"], Q, parity_label, "mujoco", name))
+    ref = reference()
+    result.errors.append(discrepancy(result.engine_mass[ref], M, parity_label, ref, name))
+    result.errors.append(discrepancy(result.engine_forces[ref], Q, parity_label, ref, name))

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Kind
 from koenig_check.implied_dynamics.analysis import ENGINE_PARITY, ENGINES, DynamicsResult
 from koenig_check.implied_dynamics.errors import Discrepancy
@@ -60,7 +61,7 @@ def terminal_lines(result: DynamicsResult) -> list[str]:
             continue
         cells = " ".join(f"{_cell(result, formula, q, e):>15s}" for q, e in columns)
         lines += hanging(f"{formula:30s} {cells}  ", _describe(result, _worst(result.errors_of(formula))))
-    for other in [e for e in result.engine_mass if e != "mujoco"]:  # Pinocchio, then each optional engine run
+    for other in [e for e in result.engine_mass if e != reference()]:  # Pinocchio, then each optional engine run
         lines.append(
             f"{f'engines (mujoco vs {other})':30s} {_cell(result, ENGINE_PARITY, 'M', other):>15s} {'':>15s} "
             f"{_cell(result, ENGINE_PARITY, 'Q*', other):>15s}"

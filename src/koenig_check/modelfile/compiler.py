@@ -51,7 +51,8 @@ def compiler_options(path: Path) -> list[Finding]:
             value = _in_effect(written)
             if value is not None:
                 values = {name: value, "as written": written}
-                out.append(Finding(Kind.COMPILER, "mujoco", f"compiler {name}", effect, values, True, hint=hint))
+                element = f"compiler {name}"
+                out.append(Finding(Kind.COMPILER, "mujoco", element, effect, values, True, hint=hint, tag="compiler"))
     return out
 
 
@@ -67,7 +68,7 @@ def option_text(option: Finding) -> str:
     -------
     str
     """
-    return f"{option.element.removeprefix('compiler ')}={option.values['as written']}"
+    return f"{option.name}={option.values['as written']}"
 
 
 def _in_effect(written: str | None) -> float | bool | None:

@@ -103,24 +103,14 @@ def _status(agrees: bool, findings: Sequence[Finding]) -> str:
     return "UNABLE" if any(f.kind is Kind.ENGINE_UNABLE for f in findings) else "agree"
 
 
-#: The longest reason a row gives (folded under its column): room for an engine's reason whole.
-_ROW_REASON = 1000
-
-
 def _cause(check: CrossCheck, model: str) -> str:
-    from koenig_check.diagnosis.reason import REASON_WIDTH, changes_line, lead_line, short_reason
+    from koenig_check.diagnosis.reason import changes_line
     from koenig_check.engines.mujoco.meshes import dropped_meshes_line
-    from koenig_check.run.summaries import gap_words
 
     for comparison, parity in zip(check.comparisons, check.agreements, strict=True):
         if parity.model == model:
-            short = ""
-            if lead_line(comparison.findings) or not parity.agrees:  # the one-line reason, without the label
-                unmade = any(f.kind is Kind.ENGINE_UNABLE for f in comparison.findings)  # its reason whole
-                width = _ROW_REASON if unmade else REASON_WIDTH
-                gap = gap_words(comparison, check.rtol, cli=True) if not parity.agrees else ""  # --rtol named
-                text = short_reason(model, comparison.findings, gap, width=width)
-                short = text.removeprefix(f"{model}: ")
+            why = check.model_reason(comparison, parity, cli=True)  # --rtol named
+            short = why.whole().removeprefix(f"{model}: ") if why is not None else ""  # the check not made whole
             changes = changes_line(comparison.findings)  # a model changed to be loaded says so, agreeing or not
             dropped = dropped_meshes_line(comparison.findings)  # so does one loaded without some of its meshes
             return "; ".join(t for t in (short, changes, dropped) if t)

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from koenig_check.diagnosis import reason
+from koenig_check.diagnosis import model_reason, reason
 from koenig_check.run import summaries
 from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
@@ -97,15 +97,40 @@ class CrossCheck(ResultLookup):
         lines = [(m, self.failure_lines.get(m, r)) for m, r in self.failures]
         parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in lines]  # once, not twice
         for comparison, agreement in zip(self.comparisons, self.agreements, strict=True):
-            lead = reason.lead_line(comparison.findings)
-            if lead or not agreement.agrees:
-                gap = summaries.gap_words(comparison, self.rtol, cli) if not agreement.agrees else ""
-                text = reason.short_reason(agreement.model, comparison.findings, gap)
+            why = self.model_reason(comparison, agreement, cli)
+            if why is not None:
+                text = why.line()
                 unused = reason.engine_usage(comparison.findings)
-                if not lead and unused and len(text) + len(unused) + 2 <= reason.REASON_WIDTH:
+                if (
+                    not reason.lead_line(comparison.findings)
+                    and unused
+                    and len(text) + len(unused) + 2 <= reason.REASON_WIDTH
+                ):
                     text += f"; {unused}"
                 parts.append(text)
         return parts
+
+    def model_reason(
+        self, comparison: ModelComparison, agreement: EngineAgreement, cli: bool = False
+    ) -> model_reason.Reason | None:
+        """Why one model fails (None when it does not): the one reason both :meth:`reasons` and the verdict table show.
+
+        Parameters
+        ----------
+        comparison : ModelComparison
+        agreement : EngineAgreement
+            Its engines' agreement.
+        cli : bool
+            Options named as the command line spells them.
+
+        Returns
+        -------
+        koenig_check.diagnosis.model_reason.Reason or None
+        """
+        if not reason.lead_line(comparison.findings) and agreement.agrees:
+            return None
+        gap = summaries.gap_words(comparison, self.rtol, cli) if not agreement.agrees else ""
+        return model_reason.model_reason(agreement.model, comparison.findings, gap)
 
     def reason(self) -> str:
         """One line saying why :attr:`ok` is False (empty when it is True): :meth:`reasons` joined."""

@@ -56,6 +56,14 @@ def summarize(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> list[F
     return summarize_records(comparison.records, rtol, comparison.model)
 
 
+def _engine_rtol(rtol: float, *engines: str) -> float:
+    """``rtol``, or the coarsest precision the engines declare (a float32 engine's round-off is no difference)."""
+    from koenig_check.engines.specs import specs
+
+    declared = {s.name: s.precision for s in specs()}
+    return max([rtol, *(declared[e] for e in engines if e in declared)])
+
+
 def summaries_from_stats(model: str, stats: ModelStats) -> list[FormulaSummary]:
     """The summaries of one model from its merged statistics.
 
@@ -84,7 +92,7 @@ def summaries_from_stats(model: str, stats: ModelStats) -> list[FormulaSummary]:
                 under_fraction=g.under / g.n,
                 worst_pose=g.worst.where,
                 worst_segment=seg.where if seg is not None and seg.value > 0 else None,
-                agrees=bool(g.worst.value <= stats.rtol),
+                agrees=bool(g.worst.value <= _engine_rtol(stats.rtol, source, reference)),
             )
         )
     rank = {f: k for k, f in enumerate(dict.fromkeys(s.formula for s in out))}
@@ -140,7 +148,7 @@ def summarize_records(
                         under_fraction=float(np.mean(signed < -rtol * ref)),
                         worst_pose=str(rec["pose"][rows[int(np.argmax(rel))]]),
                         worst_segment=worst_segment,
-                        agrees=bool(rel.max() <= rtol),
+                        agrees=bool(rel.max() <= _engine_rtol(rtol, str(source), str(reference))),
                     )
                 )
     return out
@@ -151,7 +159,7 @@ class EngineAgreement:
     """Engine-versus-engine and engine-versus-exact agreement of one model.
 
     ``reason`` says in full why they do not agree (with the cause's values); ``gap`` says it in a few words, for
-    the one-line reason (:func:`koenig_check.diagnosis.reason.short_reason`).  ``reason`` is built from
+    the one-line reason (:func:`koenig_check.diagnosis.model_reason.short_reason`).  ``reason`` is built from
     ``symptoms`` (each way the engines differ, one sentence each) and ``cause`` (the known cause, or empty):
     read those, never ``reason`` cut apart.  ``causes`` holds the ids of the catalogued causes among them
     (:func:`koenig_check.causes.cause`), the most important first.
@@ -200,7 +208,7 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
             f"(MuJoCo {mj:.6g} J, Pinocchio {pn:.6g} J)"
         )
     for name, value in p.self_rel.items():
-        if value > rtol:
+        if value > _engine_rtol(rtol, name):
             reasons.append(f"{name}: exact on its own segment states differs from its own energy by {value:.3g}")
     gap = _gap(p, rtol) if reasons else ""
     cause = disagreement_cause(comparison.findings) if reasons else ""
@@ -243,6 +251,10 @@ def _gap(p: Any, rtol: float, cli: bool = False) -> str:
         parts.append(f"MuJoCo and Pinocchio differ by {p.rigid.value:.2g} relative (pose {p.rigid.where})")
     if p.armature_scaled > rtol:
         parts.append(f"their armature energies by {p.armature.value:.2g} J")
-    parts += [f"{name}'s exact differs from its own energy by {v:.2g}" for name, v in p.self_rel.items() if v > rtol]
+    parts += [
+        f"{name}'s exact differs from its own energy by {v:.2g}"
+        for name, v in p.self_rel.items()
+        if v > _engine_rtol(rtol, name)
+    ]
     hint = rounding_hint(float(p.rigid.value), rtol, cli=cli) if len(parts) == 1 else ""
     return hint or ", ".join(parts)  # within a written file's rounding, the hint says the gap and what to do

@@ -115,5 +115,6 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
             root_cause=True,
             segments=tuple(joints),
             cause="drake.mjcf.unactuated-armature",
+            tag="joint",
         ),
     ]

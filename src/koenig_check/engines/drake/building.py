@@ -11,6 +11,7 @@ import numpy as np
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.drake.adapter import DrakeEngine
 from koenig_check.engines.drake.state_map import DrakeStateMap
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind
 
 
@@ -53,8 +54,7 @@ def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:
         from koenig_check.engines.drake.inertia import replaced_inertias
 
         # a parser warning names its link only when Drake's message is about an inertia (loader.warning_findings)
-        elements = [f.element.partition(" ") for f in findings if f.kind is Kind.LOAD]
-        warned = [name for tag, _, name in elements if tag == "link"]
+        warned = [f.name for f in findings if f.kind is Kind.LOAD and f.tag == "link"]
         engine.findings += replaced_inertias(plant, Path(source.path), warned, engine.segment_of_body())
     return engine
 
@@ -132,11 +132,12 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
                     if several
                     else ""
                 ),
-                {"mujoco": np.round(anchor, 12).tolist(), "drake": np.round(where, 12).tolist()},
+                {reference(): np.round(anchor, 12).tolist(), "drake": np.round(where, 12).tolist()},
                 affects_energy=True,
                 root_cause=True,
                 segments=(last,),
                 cause="drake.mjcf.multi-joint-anchor" if several else "",
+                tag="joint",
             )
         )
     return out

@@ -12,6 +12,7 @@ import re
 import warnings
 from pathlib import Path
 
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind
 
 _IGNORED = re.compile(r"\bgeom (\S+) will be ignored")
@@ -81,7 +82,7 @@ def ignored_geom_finding(path: Path, name: str, warning: str, lines: list[int]) 
     Finding
     """
     mass = geom_mass(path, name)
-    values: dict[str, object] = {"mujoco": mass if mass is not None else "not known", "drake": "ignored"}
+    values: dict[str, object] = {reference(): mass if mass is not None else "not known", "drake": "ignored"}
     if lines:
         values["lines"] = lines
     return Finding(
@@ -93,4 +94,5 @@ def ignored_geom_finding(path: Path, name: str, warning: str, lines: list[int]) 
         affects_energy=mass is None or mass > 0,
         root_cause=mass is None or mass > 0,
         cause="drake.mjcf.ignored-geom",
+        tag="geom",
     )

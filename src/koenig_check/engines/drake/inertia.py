@@ -104,6 +104,7 @@ def replaced_inertias(plant: Any, path: Path, links: list[str], segment_of: dict
                 root_cause=True,
                 segments=(segment_of[link],) if link in segment_of else (),
                 cause="drake.urdf.replaced-inertia",
+                tag="link",
             )
         )
     return out

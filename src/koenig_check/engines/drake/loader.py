@@ -138,17 +138,17 @@ def one_line_reason(text: str, path: Path) -> str:
     return without_build_location("; ".join(out).replace("ERROR: ", ""))
 
 
-def _element_at(path: Path, line: int) -> str:
-    """The URDF link or joint (MJCF body or joint) open at a line of the file, as ``"<tag> <name>"``."""
+def _element_at(path: Path, line: int) -> tuple[str, str]:
+    """The URDF link or joint (MJCF body or joint) open at a line of the file: its tag and name, or empty."""
     try:
         head = path.read_text(errors="replace").splitlines()[:line]
     except OSError:
-        return ""
+        return "", ""
     for text in reversed(head):
         m = re.search(r"<(link|joint|body)\b[^>]*\bname\s*=\s*\"([^\"]*)\"", text)
         if m:
-            return f"{m[1]} {m[2]}"
-    return ""
+            return (m[1], m[2]) if m[2] else ("", "")
+    return "", ""
 
 
 def warning_findings(messages: list[str], path: Path) -> list[Finding]:
@@ -165,14 +165,14 @@ def warning_findings(messages: list[str], path: Path) -> list[Finding]:
     -------
     list of Finding
     """
-    grouped: dict[tuple[str, str], list[int]] = {}
+    grouped: dict[tuple[str, str, str], list[int]] = {}
     for message in messages:
         first = without_build_location(" ".join(message.split()))  # Drake's reason, not its build tree
         m = _LOCATION.match(first)
         line = int(m["line"]) if m else 0
         body = first[m.end() :] if m else first
-        element = _element_at(path, line) if line and "inertia" in body else ""
-        grouped.setdefault((element or "model", body), []).append(line)
+        tag, name = _element_at(path, line) if line and "inertia" in body else ("", "")
+        grouped.setdefault((tag, f"{tag} {name}" if tag else "model", body), []).append(line)
     return [
         ignored_geom_finding(path, geom, body, sorted(set(lines)) if any(lines) else [])
         if (geom := ignored_geom(body)) and path.suffix.lower() != ".urdf"
@@ -182,8 +182,9 @@ def warning_findings(messages: list[str], path: Path) -> list[Finding]:
             element,
             f"parser warns: {body}",
             {"lines": sorted(set(lines))} if any(lines) else {},
+            tag=tag,
         )
-        for (element, body), lines in grouped.items()
+        for (tag, element, body), lines in grouped.items()
     ]
 
 

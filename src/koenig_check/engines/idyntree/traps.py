@@ -69,5 +69,6 @@ def frame_findings(engine: Any, path: Path) -> list[Finding]:
             root_cause=True,
             segments=tuple(dict.fromkeys(segment[frames[n]] for n in dropped)),
             cause="idyntree.urdf.massless-link-inertia",
+            tag="links",
         )
     ]

@@ -144,6 +144,7 @@ def _load(
                 "mujoco",
                 "compiler inertiafromgeom",
                 "inertiafromgeom=true: every body's inertia comes from its geoms",
+                tag="compiler",
             )
         )
     file_inertia = {
@@ -213,6 +214,7 @@ def _load(
                     affects_energy=True,
                     root_cause=True,
                     cause="mujoco.any.fusestatic-massless-inertia",
+                    tag=what,
                 ),
             )
         )
@@ -255,6 +257,7 @@ def _load(
                     affects_energy=rescaled,
                     root_cause=rescaled,
                     cause="pinocchio.mjcf.settotalmass" if rescaled else "",
+                    tag=what,
                 ),
             )
         )

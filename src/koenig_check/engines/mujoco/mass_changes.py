@@ -83,6 +83,7 @@ def balance_findings(
             root_cause=True,
             hint="--balance-inertia (balance_inertia=True) was asked for",
             brief="principal moments changed by MuJoCo's balanceinertia",
+            tag=what,
         )
         out.append((name, finding))
     return out

@@ -112,6 +112,7 @@ def inertial_findings(engine: Any, path: Path) -> list[Finding]:
                 root_cause=True,
                 segments=tuple(dict.fromkeys(segment[r] for r in moving)),
                 cause="pybullet.urdf.link-without-inertial",
+                tag="links",
             )
         )
     root = tree.link_names[0]
@@ -131,6 +132,7 @@ def inertial_findings(engine: Any, path: Path) -> list[Finding]:
                 root_cause=floating and 0 in segment,
                 segments=(segment[0],) if 0 in segment else (),
                 cause="pybullet.urdf.floating-root-without-inertial",
+                tag="link",
             )
         )
     return out
@@ -194,6 +196,7 @@ def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
                 affects_energy=True,
                 root_cause=True,
                 segments=(segment[row],) if row in segment else (),
+                tag="link",
             )
         )
     return out
