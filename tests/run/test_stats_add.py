@@ -54,3 +54,32 @@ def test_sketch_keeps_its_own_copy_unless_handed_over() -> None:
     kept.add(values)
     values[:] = 100.0
     assert kept.median() == 2.0
+
+
+def test_add_rows_gives_what_add_gives_group_by_group() -> None:
+    """The chunk's groups added at once equal each added alone: counts, worst and its pose, every quantile."""
+    import numpy as np
+
+    from koenig_check.run.chunks import add_rows
+    from koenig_check.run.stats import GroupStats
+
+    rng = np.random.default_rng(5)
+    references = rng.normal(1.0, 1e-6, (4, 300))
+    values = references * (1.0 + rng.uniform(-3e-9, 3e-9, (4, 300)))  # over, under and within rtol = 1e-9
+    references[1, 7] = 0.0  # x/0: inf
+    values[2, 9] = references[2, 9] = 0.0  # 0/0: 0
+    values[3, 11] = np.nan
+    labels = [f"p{i}" for i in range(300)]
+    alone = [GroupStats() for _ in range(4)]
+    for g, group in enumerate(alone):
+        group.add(values[g], references[g], 1e-9, labels)
+    together = [GroupStats() for _ in range(4)]
+    add_rows(together, values, references, 1e-9, labels)
+    for a, b in zip(alone, together, strict=True):
+        assert (a.n, a.over, a.under) == (b.n, b.over, b.under)
+        assert (a.worst.value, a.worst.where) == (b.worst.value, b.worst.where) or (
+            np.isnan(a.worst.value) and np.isnan(b.worst.value) and a.worst.where == b.worst.where
+        )
+        assert a.sketch.nan == b.sketch.nan
+        for q in (0.0, 0.25, 0.5, 0.9, 1.0):
+            np.testing.assert_array_equal(a.sketch.quantile(q), b.sketch.quantile(q))

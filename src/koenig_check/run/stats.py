@@ -92,10 +92,16 @@ class QuantileSketch:
 
     @staticmethod
     def _bins(x: np.ndarray) -> np.ndarray:
-        with np.errstate(divide="ignore"):
-            pos = np.floor((np.log10(x) - LOG_MIN) * BINS_PER_DECADE)
-        pos = np.where(x >= 10.0**LOG_MAX, _NBINS + 1, pos)
-        return np.clip(np.where(x < 10.0**LOG_MIN, 0, pos + 1), 0, _NBINS + 1).astype(np.int64)
+        # floor((log10 x − LOG_MIN) · BINS_PER_DECADE) + 1 in place; from 10**LOG_MAX the last bin, below 10**LOG_MIN 0.
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pos = np.log10(x)
+            pos -= LOG_MIN
+            pos *= BINS_PER_DECADE
+            np.floor(pos, out=pos)
+            pos += 1
+        pos[x >= 10.0**LOG_MAX] = _NBINS + 2
+        pos[x < 10.0**LOG_MIN] = 0
+        return np.clip(pos, 0, _NBINS + 1, out=pos).astype(np.int64)
 
     def _to_bins(self) -> None:
         counts = np.zeros(_NBINS + 2, dtype=np.int64)

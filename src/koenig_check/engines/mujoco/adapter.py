@@ -31,8 +31,16 @@ from koenig_check.engines.base import Engine, as_batches, check_points, rows, st
 from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.mujoco.dynamics import MujocoDynamics, energy_model, inverse_dynamics_model
 from koenig_check.engines.mujoco.gravity import MujocoGravity
+from koenig_check.engines.planes import (
+    entry_index,
+    gather_planes,
+    matrices,
+    moved_point_velocity,
+    rotate_constant,
+    vectors,
+)
 from koenig_check.findings import Finding, Kind
-from koenig_check.kernels import cross, rotate, rotate_points
+from koenig_check.kernels import cross, rotate_points
 from koenig_check.segments import SegmentStates
 
 _KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
@@ -155,10 +163,32 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
         self._mass = mass[keep]
         self._com_local = com[keep]
         self._inertia = symmetrize(inertia[keep])
-        self._ref = self._sweep(m.qpos0[None], np.zeros((1, m.nv)))
+        roots = rows(self._seg_root)  # one root body for every segment: one row, broadcast
+        root_rows = self._seg_root[:1] if isinstance(roots, slice) and roots.stop - roots.start == 1 else self._seg_root
+        # Where each segment's entries sit in a pose's flat xpos (3), xmat (9), cvel (6) and subtree_com (3).
+        self._index = {
+            "xpos": entry_index(self._seg_body, 3, range(3)),
+            "xmat": entry_index(self._seg_body, 9, range(9)),
+            "cvel": entry_index(self._seg_body, 6, range(6)),
+            "ref": entry_index(root_rows, 3, range(3)),
+        }
+        ref = self._sweep(m.qpos0[None], np.zeros((1, m.nv)))
+        R0, x0 = matrices(ref["xmat"])[0].copy(), vectors(ref["xpos"])[0].copy()
+        # The reference configuration, once per model.
+        self._ref = {
+            "rotation": R0,
+            "com": x0 + np.einsum("bij,bj->bi", R0, self._com_local),
+            "pole": vectors(ref["anchor"])[0].copy(),
+        }
 
     def _sweep(self, qpos: np.ndarray, qvel: np.ndarray, energies: bool = False) -> dict[str, np.ndarray]:
-        """Run the engine once per pose, copy its body arrays whole into preallocated arrays.
+        """Run the engine once per pose, copy its body arrays whole; return the segments' entries as planes.
+
+        Per pose, ``xpos``, ``xmat``, ``cvel`` and ``subtree_com`` are copied whole (one copy each);
+        the segments' entries of every pose are then gathered at once into (k, P, B) planes
+        (:func:`~koenig_check.engines.planes.gather_planes`): ``xpos`` (3), ``xmat`` (9, row-major),
+        ``cvel`` (6: ω then v), ``ref`` (3: each segment's root ``subtree_com``, (3, P, 1) when
+        every segment hangs from one root body) and ``anchor`` (3).
 
         With ``energies``, the same pass also evaluates ``mj_makeM`` + ``mj_energyVel`` (``½ q̇ᵀ M q̇``,
         armature included) without running the kinematics again; ``rigid`` is that minus the
@@ -167,15 +197,15 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
         """
         m, d = self.model, self._data
         P, nb = qpos.shape[0], m.nbody
-        xpos, xmat = np.empty((P, nb, 3)), np.empty((P, nb, 9))
-        cvel, sub = np.empty((P, nb, 6)), np.empty((P, nb, 3))
+        xpos, xmat = np.empty((P, nb * 3)), np.empty((P, nb * 9))
+        cvel, sub = np.empty((P, nb * 6)), np.empty((P, nb * 3))
         rigid = np.empty(P)
         m_energy = self._m_energy
         kinematics, com_pos, com_vel = mujoco.mj_kinematics, mujoco.mj_comPos, mujoco.mj_comVel
         make_m, energy_vel = mujoco.mj_makeM, mujoco.mj_energyVel
-        # MjData's arrays are views of its own buffers: taken once, each attribute access would build a new view.
+        # MjData's arrays are views of its own buffers: taken once (flat), each attribute access would build a new view.
         d_qpos, d_qvel, d_energy = d.qpos, d.qvel, d.energy
-        d_xpos, d_xmat, d_cvel, d_sub = d.xpos, d.xmat, d.cvel, d.subtree_com
+        d_xpos, d_xmat, d_cvel, d_sub = (a.reshape(-1) for a in (d.xpos, d.xmat, d.cvel, d.subtree_com))
         for p, (qpos_p, qvel_p) in enumerate(zip(qpos, qvel, strict=True)):
             d_qpos[:] = qpos_p
             d_qvel[:] = qvel_p
@@ -187,43 +217,42 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
                 make_m(m_energy, d)
                 energy_vel(m_energy, d)
                 rigid[p] = d_energy[1]
-        idx, root = rows(self._seg_body), rows(self._seg_root)
-        out = {
-            "xpos": xpos[:, idx],
-            "xmat": xmat[:, idx].reshape(P, len(self._seg_body), 3, 3),
-            "cvel": cvel[:, idx],
-            "ref": sub[:, root],  # (P, 1, 3) when every segment hangs from one root body
-        }
-        out["anchor"] = out["xpos"] + rotate(out["xmat"], self._anchor_local)
+        index = self._index
+        out = {name: gather_planes(raw, index[name]) for name, raw in zip(index, (xpos, xmat, cvel, sub), strict=True)}
+        out["anchor"] = rotate_constant(out["xmat"], self._anchor_local)
+        out["anchor"] += out["xpos"]
         if energies:
             out["armature"] = 0.5 * (qvel**2) @ m.dof_armature
             out["rigid"] = rigid - out["armature"]
         return out
 
     def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
-        R = s["xmat"]
-        com = s["xpos"] + rotate(R, self._com_local)
-        omega, v_ref = s["cvel"][..., :3], s["cvel"][..., 3:]
+        R, V = s["xmat"], s["cvel"]
+        com = rotate_constant(R, self._com_local)
+        com += s["xpos"]
+        omega, v_ref = V[:3], V[3:]
         ref = self._ref
         return (SegmentStates.trusted if trusted else SegmentStates)(
             names=self.segment_names,
             mass=self._mass,
             inertia_body=self._inertia,
-            com=com,
-            v_com=v_ref + cross(omega, com - s["ref"]),
-            rotation=R,
-            omega=omega,
-            pole=s["anchor"],
-            v_pole=v_ref + cross(omega, s["anchor"] - s["ref"]),
-            rotation_ref=ref["xmat"][0],
-            com_ref=ref["xpos"][0] + np.einsum("bij,bj->bi", ref["xmat"][0], self._com_local),
-            pole_ref=ref["anchor"][0],
+            com=vectors(com),
+            v_com=vectors(moved_point_velocity(v_ref, omega, com, s["ref"])),
+            rotation=matrices(R),
+            omega=vectors(omega),
+            pole=vectors(s["anchor"]),
+            v_pole=vectors(moved_point_velocity(v_ref, omega, s["anchor"], s["ref"])),
+            rotation_ref=ref["rotation"],
+            com_ref=ref["com"],
+            pole_ref=ref["pole"],
         )
 
     def _points(self, s: dict[str, np.ndarray], points: np.ndarray) -> np.ndarray:
         local = self._com_local[:, None, :] + points
-        world = (s["xpos"] - s["ref"])[:, :, None, :] + rotate_points(s["xmat"], local)
-        omega, v_ref = s["cvel"][:, :, None, :3], s["cvel"][:, :, None, 3:]
+        xpos, xmat, ref = vectors(s["xpos"]), matrices(s["xmat"]), vectors(s["ref"])
+        world = (xpos - ref)[:, :, None, :] + rotate_points(xmat, local)
+        cvel = vectors(s["cvel"])
+        omega, v_ref = cvel[:, :, None, :3], cvel[:, :, None, 3:]
         return v_ref + cross(omega, world)
 
     def sweep(

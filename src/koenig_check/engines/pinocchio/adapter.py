@@ -5,14 +5,15 @@ converts them to Pinocchio's ``(q, v)`` and converts the mass matrix and general
 
 Segments are Pinocchio joints with non-zero mass: ``model.inertias[i]`` already lumps the links
 fixed to the joint (URDF fixed joints, jointless MJCF bodies) and is expressed in the joint frame.
-Segment states come from ``computeJointJacobians(model, data, q)``: ``data.oMi`` (world <- joint)
-and the world-frame joint Jacobians, whose columns over a joint's supporting dofs give its twist;
-point velocities take the other route, ``forwardKinematics(model, data, q, v)`` and ``data.v``
-(spatial velocity in the joint frame).  The pole is the joint frame origin.
+Segment states come from ``forwardKinematics(model, data, q, v)``: ``data.oMi`` (world <- joint) and
+``data.v`` (the joint frame's spatial velocity in its own axes), rotated to the world; the public
+:meth:`PinocchioEngine.point_velocities` applies ``data.v`` to the points in the joint's axes instead
+(the other order of operations).  The pole is the joint frame origin.
 
 Dynamics (energy, mass matrix, inverse dynamics) are
-:class:`~koenig_check.engines.pinocchio.dynamics.PinocchioDynamics`; the placements are read whole through
-:func:`~koenig_check.engines.pinocchio.placements.placement_view`.
+:class:`~koenig_check.engines.pinocchio.dynamics.PinocchioDynamics`; the placements and velocities are read
+whole through :func:`~koenig_check.engines.pinocchio.placements.placement_view` and
+:func:`~koenig_check.engines.pinocchio.placements.motion_view`.
 """
 
 from __future__ import annotations
@@ -22,16 +23,24 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
+from koenig_check.engines.base import Engine, as_batches, check_points, states_point_velocities, symmetrize
 from koenig_check.engines.pinocchio.dynamics import PinocchioDynamics
 from koenig_check.engines.pinocchio.gravity import PinocchioGravity
-from koenig_check.engines.pinocchio.placements import placement_view, rotations_origins
+from koenig_check.engines.pinocchio.placements import motion_view, placement_view
 from koenig_check.engines.pinocchio.state_map import StateMap
+from koenig_check.engines.planes import (
+    cross_planes,
+    entry_index,
+    gather_planes,
+    matrices,
+    rotate_constant,
+    rotate_planes,
+    vectors,
+)
 from koenig_check.findings import Finding, Kind
-from koenig_check.kernels import cross, rotate
 from koenig_check.segments import SegmentStates
 
-__all__ = ["PinocchioEngine", "placement_view"]
+__all__ = ["PinocchioEngine", "motion_view", "placement_view"]
 
 
 class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
@@ -83,34 +92,43 @@ class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
         self._mass = np.array([Y.mass for Y in inertias], dtype=float)
         self._lever = np.array([Y.lever for Y in inertias], dtype=float).reshape(-1, 3)
         self._inertia = symmetrize(np.array([Y.inertia for Y in inertias], dtype=float).reshape(-1, 3, 3))
-        self._support = np.zeros((model.nv, len(self._joints)))  # dof k moves segment b
-        for b, i in enumerate(self._joints):
-            for j in model.supports[int(i)]:
-                if j > 0:
-                    start = model.idx_vs[j]
-                    self._support[start : start + model.nvs[j], b] = 1.0
+        # Where each segment's entries sit in a pose's flat placements (12 per joint: the rotation column by
+        # column, then the translation) and velocities (6 per joint: linear, angular).
+        self._index = {
+            "rotation": entry_index(self._joints, 12, [3 * j + i for i in range(3) for j in range(3)]),  # row-major
+            "origin": entry_index(self._joints, 12, range(9, 12)),
+            "velocity": entry_index(self._joints, 6, range(6)),
+        }
         self._placement_views = self._views()
+        self._motion_views = self._velocity_views()
         H, _ = self._sweep(pin.neutral(model)[None], None)
-        self._ref = H[0]
+        R0, origin0 = H[0][:, :3, :3], H[0][:, :3, 3]
+        # The reference configuration, once per model.
+        self._ref = {"rotation": R0, "com": origin0 + np.einsum("bij,bj->bi", R0, self._lever), "pole": origin0}
 
     def _views(self) -> tuple[np.ndarray | None, np.ndarray | None]:
         """The :func:`placement_view` of the armature-free copy's data and of the model's data."""
         return placement_view(self._m_rigid, self._d_rigid), placement_view(self.model, self._data)
 
+    def _velocity_views(self) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """The :func:`motion_view` of the armature-free copy's data and of the model's data."""
+        return motion_view(self._m_rigid, self._d_rigid), motion_view(self.model, self._data)
+
     def __getstate__(self) -> dict:
-        # A placement view reads the memory of this engine's own data: a copy (pickle, deepcopy) builds its own.
+        # A view reads the memory of this engine's own data: a copy (pickle, deepcopy) builds its own.
         state = self.__dict__.copy()
-        del state["_placement_views"]
+        del state["_placement_views"], state["_motion_views"]
         return state
 
     def __setstate__(self, state: dict) -> None:
         self.__dict__.update(state)
         self._placement_views = self._views()
+        self._motion_views = self._velocity_views()
 
     def _sweep(self, q: np.ndarray, v: np.ndarray | None) -> tuple[np.ndarray, np.ndarray | None]:
         """Run forward kinematics once per pose; return oMi (P, B, 4, 4) and data.v (P, B, 6).
 
-        The route of the public :meth:`point_velocities`, independent of the world Jacobian.
+        The route of the public :meth:`point_velocities` (and of the reference configuration).
         """
         m, d, idx = self.model, self._data, self._joints
         P = q.shape[0]
@@ -126,68 +144,64 @@ class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
             H[p] = [M.homogeneous for M in d.oMi.tolist()]
         return H[:, idx], None if V is None else V[:, idx]
 
-    def _sweep_world(
-        self, q: np.ndarray, v: np.ndarray, energies: bool = False
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-        """Run ``computeJointJacobians`` once per pose: rotations, origins and world twists of the segments.
+    def _sweep_motion(self, q: np.ndarray, v: np.ndarray, energies: bool = False) -> dict[str, np.ndarray]:
+        """Run ``forwardKinematics(q, v)`` once per pose; return the segments' placements and velocities as planes.
 
-        The twist of joint ``i`` is ``J_world[:, support(i)] v``: ``(v_O, ω)`` with ``v_O`` the
-        velocity of the segment point at the world origin, so a point ``p`` moves with
-        ``v_O + ω × p``.  Per pose: one engine call, the world Jacobian ``data.J`` copied whole
-        and the placements ``data.oMi`` copied whole through :func:`placement_view` (per joint,
-        through the bindings, where that view is not available); the sum over supports is
-        vectorized.  With ``energies``, the same pass evaluates ``computeKineticEnergy`` on the
-        armature-free copy (``rigid`` of :meth:`kinetic_energy`): ``forwardKinematics(q, v)`` once,
-        then the energy and the Jacobians from that pass (the copy has the model's kinematic tree).
+        Per pose: one kinematic pass, ``data.oMi`` and ``data.v`` copied whole through
+        :func:`placement_view` and :func:`motion_view` (joint by joint, through the bindings, where a
+        view is not available); the segments' entries of every pose are then gathered at once into
+        (k, P, B) planes: ``rotation`` (9, row-major), ``origin`` (3), ``velocity`` (6: the joint
+        frame's linear then angular velocity, in its own axes).  With ``energies``, the pass runs on
+        the armature-free copy (the same kinematic tree, so the same placements and velocities, bit
+        for bit) and evaluates ``computeKineticEnergy`` there: ``rigid`` of :meth:`kinetic_energy`.
         """
-        m = self.model
-        P = q.shape[0]
-        J = np.empty((P, 6, m.nv))
-        rigid: np.ndarray | None = None
-        jacobians, kinetic, kinematics = pin.computeJointJacobians, pin.computeKineticEnergy, pin.forwardKinematics
-        m_rigid, d_rigid, d = self._m_rigid, self._d_rigid, self._data
-        Jp = J if m.nv > 1 else J[..., 0]  # the bindings hand a 6 x 1 Jacobian out as a vector
-        # data.J, data.oMi and the placement view follow every pose: taken once, outside the loop.
-        data = d_rigid if energies else d
-        J_live, placements = data.J, data.oMi
-        view = self._placement_views[0 if energies else 1]
-        raw = np.empty((P, m.njoints, 12)) if view is not None else np.empty((P, m.njoints, 4, 4))
+        P, nj = q.shape[0], self.model.njoints
+        m, d = (self._m_rigid, self._d_rigid) if energies else (self.model, self._data)
+        which = 0 if energies else 1
+        place_view, motion = self._placement_views[which], self._motion_views[which]
+        kinematics, kinetic = pin.forwardKinematics, pin.computeKineticEnergy
+        placements, velocities = np.empty((P, nj, 12)), np.empty((P, nj, 6))
+        rigid = np.empty(P)
+        placements_live, motions_live = d.oMi, d.v  # follow every pose: taken once, outside the loop
+        for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
+            kinematics(m, d, q_p, v_p)
+            if energies:
+                rigid[p] = kinetic(m, d)
+            if place_view is not None:
+                placements[p] = place_view
+            else:
+                H = np.array([M.homogeneous for M in placements_live.tolist()])
+                placements[p, :, :9] = np.swapaxes(H[:, :3, :3], -1, -2).reshape(nj, 9)  # column by column
+                placements[p, :, 9:] = H[:, :3, 3]
+            velocities[p] = motion if motion is not None else [x.vector for x in motions_live.tolist()]
+        flat_placements, flat_velocities = placements.reshape(P, -1), velocities.reshape(P, -1)
+        raws = {"rotation": flat_placements, "origin": flat_placements, "velocity": flat_velocities}
+        out = {name: gather_planes(raws[name], index) for name, index in self._index.items()}
         if energies:
-            rigid = np.empty(P)
-            # One kinematic pass on the armature-free copy (the same tree, so the same placements and
-            # Jacobian, bit for bit): forwardKinematics with v, then the energy and the Jacobians from it.
-            for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
-                kinematics(m_rigid, d_rigid, q_p, v_p)
-                rigid[p] = kinetic(m_rigid, d_rigid)
-                jacobians(m_rigid, d_rigid)
-                Jp[p] = J_live
-                raw[p] = view if view is not None else [M.homogeneous for M in placements.tolist()]
-        else:
-            for p, q_p in enumerate(q):
-                jacobians(m, d, q_p)
-                Jp[p] = J_live
-                raw[p] = view if view is not None else [M.homogeneous for M in placements.tolist()]
-        twists = np.swapaxes((J * v[:, None, :]) @ self._support, -1, -2)  # (P, B, 6): sum over supports
-        R, origin = rotations_origins(raw, view is not None, rows(self._joints))
-        return R, origin, twists, rigid
+            out["rigid"] = rigid
+        return out
 
-    def _states(self, R: np.ndarray, origin: np.ndarray, T: np.ndarray, trusted: bool = False) -> SegmentStates:
-        v_origin, omega = T[..., :3], T[..., 3:]
-        com = origin + rotate(R, self._lever)
-        R0 = self._ref[..., :3, :3]
+    def _states(self, s: dict[str, np.ndarray], trusted: bool = False) -> SegmentStates:
+        R, V = s["rotation"], s["velocity"]
+        lever = rotate_constant(R, self._lever)  # C − O, world axes
+        com = np.add(s["origin"], lever)
+        omega, v_pole = rotate_planes(R, V[3:]), rotate_planes(R, V[:3])
+        v_com = cross_planes(omega, lever)
+        v_com += v_pole
+        ref = self._ref
         return (SegmentStates.trusted if trusted else SegmentStates)(
             names=self.segment_names,
             mass=self._mass,
             inertia_body=self._inertia,
-            com=com,
-            v_com=v_origin + cross(omega, com),
-            rotation=R,
-            omega=omega,
-            pole=origin,
-            v_pole=v_origin + cross(omega, origin),
-            rotation_ref=R0,
-            com_ref=self._ref[..., :3, 3] + np.einsum("bij,bj->bi", R0, self._lever),
-            pole_ref=self._ref[..., :3, 3],
+            com=vectors(com),
+            v_com=vectors(v_com),
+            rotation=matrices(R),
+            omega=vectors(omega),
+            pole=vectors(s["origin"]),
+            v_pole=vectors(v_pole),
+            rotation_ref=ref["rotation"],
+            com_ref=ref["com"],
+            pole_ref=ref["pole"],
         )
 
     def sweep(
@@ -196,23 +210,21 @@ class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
         """Segment states, point velocities and energy from one pass of the engine per pose.
 
         The internal path of the comparison: the states are not validated again, and the
-        point velocities come from the same world twists as the states (``v_O + ω × p``).
+        point velocities come from the states' world velocities (``v_C + ω × R r``).
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
-        R, origin, T, rigid = self._sweep_world(q, v, energies=True)
-        assert rigid is not None  # energies=True always evaluates the energies
-        states = self._states(R, origin, T, trusted=True)
+        s = self._sweep_motion(q, v, energies=True)
+        states = self._states(s, trusted=True)
         pv = states_point_velocities(states, points)
         armature = 0.5 * (v**2) @ np.asarray(self.model.armature)
-        return states, pv, rigid, armature
+        return states, pv, s["rigid"], armature
 
     def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
         """Return Pinocchio's segment states for a batch of canonical states."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         q, v = self.state_map.to_pinocchio(qpos, qvel)
-        R, origin, T, _ = self._sweep_world(q, v)
-        return self._states(R, origin, T)
+        return self._states(self._sweep_motion(q, v))
 
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
         """Return the world velocity of points fixed in the segments, ``R (v + ω × r)`` from ``data.v``."""

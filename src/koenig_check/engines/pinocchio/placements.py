@@ -1,4 +1,4 @@
-"""Pinocchio's joint placements (``data.oMi``) read whole, in one copy per pose, where its memory layout allows."""
+"""Pinocchio's joint placements (``data.oMi``) and velocities (``data.v``), read whole where the layout allows."""
 
 from __future__ import annotations
 
@@ -93,3 +93,49 @@ def rotations_origins(raw: np.ndarray, from_view: bool, joints: slice | np.ndarr
     R = np.empty((P, len(joints), 3, 3))
     np.take(by_column, joints, axis=1, out=R)
     return R, np.take(raw[..., 9:], joints, axis=1)
+
+
+def motion_view(model: pin.Model, data: pin.Data) -> np.ndarray | None:
+    """``data.v`` as one (njoints, 6) array over Pinocchio's own storage, or None.
+
+    Row ``i`` is joint ``i``'s spatial velocity in its own frame, linear then angular (``data.v[i].vector``),
+    read from the contiguous vector of ``Motion`` objects inside ``data`` (the bindings' ``vector`` is a view
+    of it).  As for :func:`placement_view`, the layout is verified, not assumed: every joint's ``vector``
+    must sit at the address and stride the view reads, and after forward-kinematics passes with
+    velocities at two random states the view must equal every joint's ``vector`` exactly; otherwise None
+    (callers read the joints one by one).
+
+    The view does not keep ``data`` alive and follows it: the caller holds ``data`` for as long as it
+    uses the view, and copies it after each kinematic pass.
+
+    Parameters
+    ----------
+    model : pinocchio.Model
+    data : pinocchio.Data
+        Created from ``model``.
+
+    Returns
+    -------
+    ndarray, shape (njoints, 6), read-only, or None
+    """
+    motions = data.v
+    n = len(motions)
+    vectors = [motions[i].vector for i in range(n)]
+    address = np.array([v.__array_interface__["data"][0] for v in vectors], dtype=np.int64)
+    stride = int(address[1] - address[0]) if n > 1 else 48
+    layout_ok = (
+        n >= 1
+        and stride >= 48
+        and all(v.shape == (6,) and v.strides == (8,) and v.dtype == np.float64 for v in vectors)
+        and np.array_equal(address, address[0] + stride * np.arange(n))
+    )
+    if not layout_ok:
+        return None
+    view = np.lib.stride_tricks.as_strided(vectors[0], shape=(n, 6), strides=(stride, 8), writeable=False)
+    rng = np.random.default_rng(1)
+    for _ in range(2):  # two states: a snapshot of the data as it was cannot match both
+        q = pin.integrate(model, pin.neutral(model), rng.uniform(-1.0, 1.0, model.nv))
+        pin.forwardKinematics(model, data, q, rng.uniform(-1.0, 1.0, model.nv))
+        if not np.array_equal(view, np.array([m.vector for m in motions.tolist()]).reshape(n, 6)):
+            return None
+    return view
