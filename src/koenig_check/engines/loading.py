@@ -318,7 +318,7 @@ def load_model(
                 {"pinocchio": str(pin_source.path), "mujoco": str(source.path)},
             ),
         )
-    check_finite(mj_model, pin_model, str(source.path))
+    large_values = check_finite(mj_model, pin_model, str(source.path))
     if mj_model.nv == 0:
         advice = moving_advice(mj_model, urdf=source.path.suffix.lower() == ".urdf")
         err = NoMovingSegmentError(
@@ -332,7 +332,7 @@ def load_model(
     pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_findings + state_map.findings)
     tolerate = frozenset({"pinocchio"}) if opts.balance_inertia or opts.repair_inertia else frozenset()
     pn.findings += check_segments((mj, pn), mj_model.qpos0, str(source.path), tolerate)
-    findings = mj.findings + pn.findings + coupling_findings(source, mj_model)
+    findings = mj.findings + pn.findings + large_values + coupling_findings(source, mj_model)
     findings += _armature_findings(mj, pn, state_map) + _pose_findings(mj, pn)
     if set(mj.segment_names) != set(pn.segment_names):
         only_mj = sorted(set(mj.segment_names) - set(pn.segment_names))
