@@ -139,6 +139,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     m_scale = max(float(np.abs(np.diag(Ma[0])).max(initial=0.0)), 1e-300)
     for d, joint in enumerate(mujoco_coordinate_names(mj_model)[1]):
         seg = own.get(dof_segment[d])
+        missing = "" if seg is not None else _missing_segment(dof_segment[d], report)
         if seg is None:  # the dof's segment exists in one engine only: reported with the segments
             diff = float("nan")
         else:
@@ -147,7 +148,8 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
             )
         relative = {"axis": diff / (jac_scale * size), "armature": abs(arm_a[d] - arm_b[d]) / m_scale}
         causes = tuple(q for q, value in relative.items() if value > rtol)  # nan (segment missing) is no axis cause
-        report.dofs.append(DofParity(d, joint, (float(arm_a[d]), float(arm_b[d])), diff, causes, relative))
+        arms = (float(arm_a[d]), float(arm_b[d]))
+        report.dofs.append(DofParity(d, joint, arms, diff, causes, relative, missing))
     report.findings = _pair_notes(pair, dropped_root=offset is not None) + compiler_findings(
         Path(str(mj.path)), mj_model
     )
@@ -161,6 +163,19 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
                 "a total-mass rescaling honoured by one engine only"
             )
     return report
+
+
+def _missing_segment(segment: str, report: ParityReport) -> str:
+    """Why a dof's segment has no counterpart to compare its Jacobian with (``segment j2 massless in Pinocchio``)."""
+    for names, where in (
+        (report.massless_in_pinocchio, "massless in Pinocchio"),
+        (report.massless_in_mujoco, "massless in MuJoCo"),
+        (report.only_in_mujoco, "only in MuJoCo"),
+        (report.only_in_pinocchio, "only in Pinocchio"),
+    ):
+        if segment in names:
+            return f"segment {segment} {where}"
+    return f"segment {segment} has no mass in either engine"
 
 
 def _pair_notes(pair: Any, dropped_root: bool = False) -> list[str]:
