@@ -50,8 +50,24 @@ def segment_labels(pair: Any) -> dict[str, str]:
     word = "link" if pair.source.format == "urdf" else "body"
     out = {}
     for segment, body in pair.mujoco.segment_bodies().items():
-        out[segment] = f"{word} {body}" if body == segment or not body else f"{word} {body} (joint {segment})"
+        if not body:  # an unnamed body: by its place (the body it hangs from) and its joint
+            out[segment] = f"unnamed {word} in {_parent_words(pair, segment, word)} (joint {segment})"
+        else:
+            out[segment] = f"{word} {body}" if body == segment else f"{word} {body} (joint {segment})"
     return out
+
+
+def _parent_words(pair: Any, segment: str, word: str) -> str:
+    """Where the unnamed body that starts a segment hangs: ``body a``, ``the world``, ``an unnamed body``."""
+    import mujoco
+
+    model = pair.mujoco.model
+    dofs = [d for d, s in enumerate(pair.mujoco.dof_segments()) if s == segment]
+    if not dofs:
+        return "the model"
+    parent = int(model.body_parentid[int(model.dof_bodyid[dofs[0]])])
+    name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, parent) or ""
+    return "the world" if parent == 0 else f"{word} {name}" if name else f"an unnamed {word}"
 
 
 def _unit_rate_states(engine: Any, qpos0: np.ndarray, nv: int) -> SegmentStates:
