@@ -88,7 +88,8 @@ def test_no_import_cycle_between_subpackages() -> None:
 
 #: The one import from a top-level module into a subpackage below which nothing would close a cycle: a finding
 #: checks the engine it names against the engines' specs (engines/specs.py imports nothing of the package).
-ALLOWED_UPWARD = {(".findings", "engines.specs")}
+#: It also asks which cause ids exist (engines/catalogue.py, read when a finding with a cause is built).
+ALLOWED_UPWARD = {(".findings", "engines.specs"), (".findings", "engines.catalogue")}
 
 
 def _node(dotted: str) -> str:
@@ -145,9 +146,12 @@ def test_no_import_cycle_through_top_level_modules() -> None:
 
 
 def test_the_allowed_upward_import_imports_nothing_of_the_package() -> None:
-    for _, target in ALLOWED_UPWARD:
-        source = (PACKAGE / (target.replace(".", "/") + ".py")).read_text(encoding="utf-8")
-        assert not _runtime_imports(ast.parse(source)), target
+    """Besides each other and the cause declarations (engines/cause.py, which import nothing of the package)."""
+    below = {"koenig_check." + t for _, t in ALLOWED_UPWARD} | {"koenig_check.engines.cause"}
+    for target in below:
+        relative = target.removeprefix("koenig_check.").replace(".", "/") + ".py"
+        source = (PACKAGE / relative).read_text(encoding="utf-8")
+        assert set(_runtime_imports(ast.parse(source))) <= below, target
 
 
 @pytest.mark.parametrize("path", sorted(PACKAGE.rglob("*.py")), ids=lambda p: str(p.relative_to(PACKAGE)))

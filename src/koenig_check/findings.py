@@ -106,6 +106,8 @@ class Finding:
         Segments whose symptoms it explains (empty when none or unknown).
     hint : str
         What the user can do about it (an option, a file to load instead), or empty.
+    cause : str
+        The id of the catalogued cause it is an instance of (:func:`koenig_check.causes.cause`), or empty.
     """
 
     kind: Kind
@@ -117,6 +119,7 @@ class Finding:
     root_cause: bool = False
     segments: tuple[str, ...] = ()
     hint: str = ""
+    cause: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.kind, Kind):
@@ -127,6 +130,10 @@ class Finding:
             raise ValueError("Finding needs an element and a summary")
         object.__setattr__(self, "values", MappingProxyType(dict(self.values)))
         object.__setattr__(self, "segments", tuple(self.segments))
+        if self.cause:
+            from koenig_check.engines.catalogue import cause  # it reads the engines, which read findings
+
+            cause(self.cause)  # an unknown id is a programming error: KeyError names the closest ids
 
     def message(self) -> str:
         """One line for people: engine, element, summary, values and hint.
@@ -162,6 +169,7 @@ class Finding:
             "root_cause": self.root_cause,
             "segments": list(self.segments),
             "hint": self.hint,
+            "cause": self.cause,
         }
 
 

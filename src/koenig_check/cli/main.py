@@ -12,11 +12,11 @@ import sys
 from collections.abc import Sequence
 
 from koenig_check import __version__
-from koenig_check.cli import compare, dynamics, export, models, parity, selfcheck
+from koenig_check.cli import causes, compare, dynamics, export, models, parity, selfcheck
 from koenig_check.cli.parsing import USAGE_ERRORS, Parser, formatter, usage_error
 
 #: The sub-commands, in the order ``--help`` lists them (each module adds its own).
-COMMANDS = (compare, parity, models, selfcheck, dynamics, export)
+COMMANDS = (compare, parity, models, causes, selfcheck, dynamics, export)
 
 
 def build_parser() -> argparse.ArgumentParser:

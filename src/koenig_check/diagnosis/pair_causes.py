@@ -207,6 +207,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
                 affects_energy=True,
                 root_cause=True,
                 segments=segments,
+                cause="pinocchio.mjcf.class-geom-mass" if attr == "mass" else "",
             )
         )
     return out

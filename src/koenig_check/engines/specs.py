@@ -48,6 +48,14 @@ class EngineSpec:
         export's proof): ``function(source, mj_model) -> Engine``; empty for MuJoCo, which defines the layout.
     color : str
         Its colour in every figure (a Matplotlib colour).
+    distribution : str
+        The distribution that installs it (``"pin"`` for Pinocchio), whose version the catalogue's readings are
+        checked against; empty: :attr:`module`.
+    formats : tuple of str
+        The file formats its parser reads (``("urdf",)``); an engine asked for a file of another format refuses it.
+    precision : float
+        The relative round-off of what it reads and computes (float32 engines about 1e-5): a difference below it
+        is never called a difference.
     """
 
     name: str
@@ -58,6 +66,13 @@ class EngineSpec:
     attach: str = ""
     load_alone: str = ""
     color: str = "tab:gray"
+    distribution: str = ""
+    formats: tuple[str, ...] = ("mjcf", "urdf")
+    precision: float = 1e-12
+
+    def __post_init__(self) -> None:
+        if not self.distribution:
+            object.__setattr__(self, "distribution", self.module)
 
     @property
     def install_hint(self) -> str:

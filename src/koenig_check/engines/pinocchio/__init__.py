@@ -7,6 +7,7 @@ SPEC = EngineSpec(
     name="pinocchio",
     label="Pinocchio",
     module="pinocchio",
+    distribution="pin",
     required=True,
     load_alone="koenig_check.engines.pinocchio.alone:load_alone",
     color="tab:orange",

@@ -1,0 +1,134 @@
+"""The catalogue: every cause declared by the engine subpackages, found once, looked up by id.
+
+An engine subpackage declares the causes it is subject to in ``engines/<name>/causes.py`` as ``CAUSES``; a new
+engine brings its causes with it and nothing here changes.
+"""
+
+from __future__ import annotations
+
+import difflib
+import importlib
+import importlib.metadata
+import importlib.resources
+import importlib.util
+from functools import cache
+from pathlib import Path
+
+from packaging.specifiers import SpecifierSet
+from packaging.version import InvalidVersion, Version
+
+from koenig_check.engines.cause import Cause
+from koenig_check.engines.specs import ENGINES_PACKAGE, spec, specs
+
+
+@cache
+def catalogue() -> tuple[Cause, ...]:
+    """Every declared cause, ordered by id.
+
+    Returns
+    -------
+    tuple of Cause
+
+    Raises
+    ------
+    ValueError
+        Two declarations share an id, a cause is declared by a subpackage other than its engine's, or a
+        reading names an engine that does not exist.
+    """
+    found: list[Cause] = []
+    engines = {s.name for s in specs()}
+    for s in specs():
+        module = f"{ENGINES_PACKAGE}.{s.name}.causes"
+        if importlib.util.find_spec(module) is None:
+            continue
+        for c in importlib.import_module(module).CAUSES:
+            if c.engine != s.name:
+                raise ValueError(f"{module}: cause {c.id} belongs to engine {c.engine}, not {s.name}")
+            unknown = sorted({r.engine for r in c.readings} - engines)
+            if unknown:
+                raise ValueError(f"cause {c.id}: readings of unknown engines {unknown}")
+            found.append(c)
+    ids = [c.id for c in found]
+    twice = sorted({i for i in ids if ids.count(i) > 1})
+    if twice:
+        raise ValueError(f"causes declared twice: {', '.join(twice)}")
+    return tuple(sorted(found, key=lambda c: c.id))
+
+
+def cause(cause_id: str) -> Cause:
+    """One cause by its id.
+
+    Parameters
+    ----------
+    cause_id : str
+
+    Returns
+    -------
+    Cause
+
+    Raises
+    ------
+    KeyError
+        No cause has that id; the message names the closest ids.
+    """
+    for c in catalogue():
+        if c.id == cause_id:
+            return c
+    close = difflib.get_close_matches(cause_id, [c.id for c in catalogue()], n=3, cutoff=0.5)
+    raise KeyError(f"no cause {cause_id!r}" + (f"; did you mean {', '.join(close)}?" if close else ""))
+
+
+def fixture_path(c: Cause) -> Path:
+    """The cause's minimal model file, shipped with the package.
+
+    Parameters
+    ----------
+    c : Cause
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    return Path(str(importlib.resources.files("koenig_check.causes").joinpath("fixtures", c.fixture)))
+
+
+@cache
+def installed_version(engine: str) -> Version | None:
+    """The installed version of an engine's distribution, or None where it is not installed.
+
+    Parameters
+    ----------
+    engine : str
+
+    Returns
+    -------
+    packaging.version.Version or None
+    """
+    try:
+        return Version(importlib.metadata.version(spec(engine).distribution))
+    except (importlib.metadata.PackageNotFoundError, InvalidVersion):
+        return None
+
+
+def applies(cause_id: str, engine: str | None = None) -> bool:
+    """Whether a cause's declared reading holds for the installed version of an engine.
+
+    A reading whose ``versions`` do not contain the installed version says nothing about it: detection must not
+    fire there.
+
+    Parameters
+    ----------
+    cause_id : str
+    engine : str, optional
+        The engine (default: the one the cause's id names).
+
+    Returns
+    -------
+    bool
+    """
+    c = cause(cause_id)
+    reading = c.reading(engine or c.engine)
+    if not reading.versions:
+        return True
+    version = installed_version(reading.engine)
+    return version is None or version in SpecifierSet(reading.versions)

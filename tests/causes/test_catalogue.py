@@ -1,0 +1,125 @@
+"""The catalogue: ids unique, fixtures shipped, each engine's declared reading re-measured on the fixture."""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import json
+from pathlib import Path
+
+import pytest
+
+from koenig_check.causes import applies, catalogue, cause, fixture_path, installed_version, markdown
+from koenig_check.cli import main
+from koenig_check.engines.cause import Cause, Reading
+from koenig_check.engines.measurement import Measurement, differences, fields
+from koenig_check.engines.specs import names, spec
+
+ROOT = Path(__file__).resolve().parents[2]
+CAUSES = catalogue()
+
+
+def _installed(engine: str) -> bool:
+    return importlib.util.find_spec(spec(engine).module) is not None
+
+
+def _measure(engine: str, path: Path) -> Measurement:
+    return importlib.import_module(f"koenig_check.engines.{engine}.causes").measure(path)
+
+
+def test_ids_are_unique_and_each_cause_is_declared_by_its_engine() -> None:
+    ids = [c.id for c in CAUSES]
+    assert len(ids) == len(set(ids))
+    assert CAUSES, "the catalogue is empty"
+    for c in CAUSES:
+        assert c.engine in names()
+        assert cause(c.id) is c
+
+
+def test_an_unknown_id_names_the_closest() -> None:
+    with pytest.raises(KeyError, match=r"did you mean pinocchio\.mjcf\.class-geom-mass"):
+        cause("pinocchio.mjcf.class-geom-mas")
+
+
+@pytest.mark.parametrize("c", CAUSES, ids=lambda c: c.id)
+def test_fixture_is_shipped_and_named(c: Cause) -> None:
+    path = fixture_path(c)
+    assert path.is_file(), f"{c.id}: fixture {c.fixture} missing from koenig_check/causes/fixtures/"
+    text = path.read_text()
+    if path.suffix == ".xml":
+        assert "<mujoco model=" in text, f"{c.id}: give the fixture a model name (Drake refuses it otherwise)"
+
+
+READINGS = [(c, r) for c in CAUSES for r in c.readings]
+
+
+@pytest.mark.parametrize(("c", "reading"), READINGS, ids=[f"{c.id}-{r.engine}" for c, r in READINGS])
+def test_each_engine_reads_the_fixture_as_declared(c: Cause, reading: Reading) -> None:
+    """The catalogue's claim, re-measured in the installed engine against an engine that reads it as written."""
+    if not _installed(reading.engine):
+        pytest.skip(f"{reading.engine} is not installed")
+    version = installed_version(reading.engine)
+    where = f"{c.id}: {spec(reading.engine).label} {version}"
+    if not applies(c.id, reading.engine):
+        pytest.skip(f"{where}: the declared reading holds for versions {reading.versions} only")
+    path = fixture_path(c)
+    if reading.reads == "refuses":
+        with pytest.raises(Exception):  # noqa: B017 (each engine refuses with its own exception type)
+            _measure(reading.engine, path)
+        return
+    refs = [
+        r.engine for r in c.readings if r.reads == "as written" and r.engine != reading.engine and _installed(r.engine)
+    ]
+    if not refs:
+        pytest.skip(f"{where}: no installed engine reads it as written")
+    ref = refs[0]
+    measured = _measure(reading.engine, path)
+    rtol = max(spec(reading.engine).precision, spec(ref).precision, 1e-9)
+    differ = differences(measured, _measure(ref, path), rtol) & fields(c.quantities)
+    if reading.reads == "differently":
+        assert differ, f"{where} now reads the fixture as {spec(ref).label} does: the cause no longer applies"
+    else:
+        assert not differ, f"{where} now departs from {spec(ref).label} in {sorted(differ)}"
+
+
+@pytest.mark.parametrize("c", CAUSES, ids=lambda c: c.id)
+def test_the_tool_names_the_cause_on_its_fixture(c: Cause) -> None:
+    """Compared in every installed engine that reads the fixture, the finding carries the cause's id."""
+    import koenig_check
+
+    if not _installed(c.engine):
+        pytest.skip(f"{c.engine} is not installed")
+    engines = [r.engine for r in c.readings if _installed(r.engine)]
+    check = koenig_check.compare(str(fixture_path(c)), n_poses=4, engines=engines)
+    found = {f.cause for comp in check.comparisons for f in comp.findings}
+    assert c.id in found, f"{c.id} not named on its fixture (named: {sorted(found - {''})})"
+
+
+def test_the_documentation_page_is_current() -> None:
+    page = ROOT / "docs" / "causes.md"
+    assert page.read_text() == markdown(), "docs/causes.md is stale: python -m koenig_check.causes > docs/causes.md"
+
+
+def test_causes_json_lists_every_cause(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["causes", "--json"]) == 0
+    listed = json.loads(capsys.readouterr().out)
+    assert [c["id"] for c in listed] == [c.id for c in CAUSES]
+    for entry in listed:
+        assert {"id", "engines", "formats", "summary", "fixture"} <= set(entry)
+        assert entry["engines"][entry["id"].split(".")[0]]["reads"] in ("differently", "refuses")
+
+
+def test_causes_filters_by_engine_and_format(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["causes", "--engine", "pinocchio", "--format", "urdf", "--json"]) == 0
+    listed = json.loads(capsys.readouterr().out)
+    assert all("urdf" in c["formats"] and "pinocchio" in c["engines"] for c in listed)
+    assert main(["causes", "--format", "mjcf"]) == 0
+    text = capsys.readouterr().out
+    assert "pinocchio.mjcf.class-geom-mass" in text and "fixture: class_geom_mass.xml" in text
+
+
+def test_a_misdeclared_cause_is_refused() -> None:
+    with pytest.raises(ValueError, match="must read it differently"):
+        Cause("mujoco.mjcf.x", "c", ("mjcf",), (Reading("mujoco", "as written"),), ("mass",), "b", "", "f.xml")
+    with pytest.raises(ValueError, match="expected <engine>"):
+        Cause("Bad Id", "c", ("mjcf",), (Reading("mujoco", "refuses", "x"),), ("mass",), "b", "", "f.xml")
