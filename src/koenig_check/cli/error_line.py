@@ -1,4 +1,7 @@
-"""The one line of an error that stops a command: short, naming the file as the user gave it."""
+"""The message of an error that stops a command: a short first line naming the file as the user gave it, then more.
+
+The lines after the first, indented, give the rest of the error whole: the engine's own words and the hint.
+"""
 
 from __future__ import annotations
 
@@ -56,3 +59,24 @@ def error_line(args: argparse.Namespace, err: BaseException) -> str:
     if len(whole) <= width or max(map(len, named), default=0) <= width // 2:  # the file as given, and its reason
         return PREFIX + line
     return PREFIX + short_error(err, width, lambda text: as_given(text, files, short=True))
+
+
+def error_lines(args: argparse.Namespace, err: BaseException, first: str) -> list[str]:
+    """The indented lines after an error's first line: its whole message, the engine's own words, the hint.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    err : BaseException
+    first : str
+        The first line (:func:`error_line`).
+
+    Returns
+    -------
+    list of str
+    """
+    from koenig_check.diagnosis.message import detail_lines
+    from koenig_check.sources.shown_paths import as_given
+
+    files = given_files(args)
+    return detail_lines(err, first, lambda text: as_given(text, files), cli=True)

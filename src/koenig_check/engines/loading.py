@@ -27,6 +27,7 @@ from koenig_check.engines.pinocchio.adapter import PinocchioEngine
 from koenig_check.engines.pinocchio.loader import load_pinocchio
 from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
 from koenig_check.engines.sampling import random_states
+from koenig_check.exceptions import KoenigCheckError, quote_engine
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.validate import preflight
 from koenig_check.roundoff import ROUNDOFF
@@ -303,10 +304,18 @@ def load_model(
     )
     for s in {source.path: source, pin_source.path: pin_source}.values():
         preflight(s.path)
-    mj_model, mj_findings, body_findings = load_mujoco(
-        source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
-    )
-    pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
+    try:
+        mj_model, mj_findings, body_findings = load_mujoco(
+            source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
+        )
+    except KoenigCheckError as err:  # MuJoCo's own words kept with ours (the exception it raised)
+        quote_engine(err, "MuJoCo")
+        raise
+    try:
+        pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
+    except KoenigCheckError as err:
+        quote_engine(err, "Pinocchio")
+        raise
     if pin_source is not source:
         pin_findings.insert(
             0,

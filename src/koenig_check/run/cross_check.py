@@ -30,6 +30,9 @@ class CrossCheck(ResultLookup):
         Models that could not be compared, with a one-line reason each (the engine's whole reason).
     failure_lines : dict of str to str
         Per failed model, its reason in one sentence of at most 200 characters (:meth:`reasons`).
+    failure_parts : dict of str to dict
+        Per failed model, what its whole message is made of (:func:`koenig_check.diagnosis.message.error_parts`:
+        the message, the refusing engine's own words, the hint), for the lines after its reason (:meth:`messages`).
     rtol : float
     settings : dict
         Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
@@ -41,6 +44,7 @@ class CrossCheck(ResultLookup):
     parities: list[EngineParity] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
     failure_lines: dict[str, str] = field(default_factory=dict)
+    failure_parts: dict[str, dict[str, Any]] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
     settings: dict[str, dict[str, Any]] = field(default_factory=dict)
 
@@ -107,6 +111,42 @@ class CrossCheck(ResultLookup):
                 parts.append(text)
         return parts
 
+    def messages(self, cli: bool = False) -> list[str]:
+        """Why :attr:`ok` is False, one message per failing model: its reason, then the whole of it indented.
+
+        The first line of each is the model's reason (:meth:`reasons`, at most 200 characters); the lines after it,
+        indented, give what that line leaves out, never cut: the rest of the error's message, the refusing
+        engine's own words and the hint (a model that could not be compared), or each check asked for and not
+        made, whole (a model compared).
+
+        Parameters
+        ----------
+        cli : bool
+            Options named as the command line spells them.
+
+        Returns
+        -------
+        list of str
+            One string per failing model, its lines joined by newlines (the first without a prefix).
+        """
+        from koenig_check.diagnosis.message import detail_lines, finding_lines
+
+        out = []
+        lines = self.reasons(cli)
+        for (model, _), line in zip(self.failures, lines, strict=False):
+            parts = self.failure_parts.get(model)
+            out.append("\n".join([line, *(detail_lines(parts, line, cli=cli) if parts else [])]))
+        compared = lines[len(self.failures) :]
+        failing = [c for c, a in zip(self.comparisons, self.parities, strict=True) if _fails(c, a)]
+        for comparison, line in zip(failing, compared, strict=True):
+            out.append("\n".join([line, *finding_lines(comparison.findings, line)]))
+        return out
+
     def reason(self) -> str:
         """One line saying why :attr:`ok` is False (empty when it is True): :meth:`reasons` joined."""
         return "; ".join(self.reasons())
+
+
+def _fails(comparison: ModelComparison, agreement: EngineParity) -> bool:
+    """Whether a compared model has a reason in :meth:`CrossCheck.reasons` (as that method decides)."""
+    return bool(reason.lead_line(comparison.findings)) or not agreement.agrees
