@@ -294,6 +294,7 @@ def compare(
             result.failures.append((label, one_line(err)))
             result.failure_lines[label] = failure_line(err, model, label)
             result.failure_parts[label] = failure_parts(err, model)
+            result.failure_causes[label] = tuple(getattr(err, "causes", ()))
             continue
         result.add(comp)
     return result

@@ -118,6 +118,7 @@ def run_demo(
                 check.failures.append((label, one_line(err)))
                 check.failure_lines[label] = failure_line(err, options["model"], label)
                 check.failure_parts[label] = failure_parts(err, options["model"])
+                check.failure_causes[label] = tuple(getattr(err, "causes", ()))
                 continue
             check.add(comp)
             if options.get("pose_kind") == "grid":

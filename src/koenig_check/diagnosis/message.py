@@ -31,15 +31,16 @@ def error_parts(err: BaseException) -> dict[str, object]:
     Returns
     -------
     dict
-        ``whole`` (the message on one line), ``engine_texts`` (each refusing engine's label and own words) and
-        ``hint``.
+        ``whole`` (the message on one line), ``engine_texts`` (each refusing engine's label and own words),
+        ``hint``, and ``unpaired`` (the engines' joints could not be paired).
     """
-    from koenig_check.exceptions import one_line
+    from koenig_check.exceptions import JointMismatch, one_line
 
     return {
         "whole": one_line(err),
         "engine_texts": tuple(getattr(err, "engine_texts", ())),
         "hint": str(getattr(err, "hint", "") or ""),
+        "unpaired": isinstance(err, JointMismatch),
     }
 
 

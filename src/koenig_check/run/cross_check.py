@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from koenig_check.diagnosis import reason
+from koenig_check.findings import Finding
 from koenig_check.run import summaries
 from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
@@ -33,6 +34,10 @@ class CrossCheck(ResultLookup):
     failure_parts : dict of str to dict
         Per failed model, what its whole message is made of (:func:`koenig_check.diagnosis.message.error_parts`:
         the message, the refusing engine's own words, the hint), for the lines after its reason (:meth:`messages`).
+    failure_causes : dict of str to tuple of Finding
+        Per failed model, the root causes found for its failure (each carries its catalogue id, ``cause``); a
+        model whose joints cannot be paired because one parser ignores a construct of the file is a disagreement
+        (:meth:`disagrees`), not an error.
     rtol : float
     settings : dict
         Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
@@ -45,6 +50,7 @@ class CrossCheck(ResultLookup):
     failures: list[tuple[str, str]] = field(default_factory=list)
     failure_lines: dict[str, str] = field(default_factory=dict)
     failure_parts: dict[str, dict[str, Any]] = field(default_factory=dict)
+    failure_causes: dict[str, tuple[Finding, ...]] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
     settings: dict[str, dict[str, Any]] = field(default_factory=dict)
 
@@ -110,6 +116,25 @@ class CrossCheck(ResultLookup):
                     text += f"; {unused}"
                 parts.append(text)
         return parts
+
+    def disagrees(self, model: str) -> bool:
+        """Whether a model that could not be compared is a disagreement: its engines built different mechanisms.
+
+        True when its joints cannot be paired and a root cause that changes the energy explains it (a construct one
+        parser ignores: ``<attach>``, ``<include>``, ``<frame>``...); False for an error (a file an engine refuses).
+
+        Parameters
+        ----------
+        model : str
+            The model's label.
+
+        Returns
+        -------
+        bool
+        """
+        parts = self.failure_parts.get(model, {})
+        causes = self.failure_causes.get(model, ())
+        return bool(parts.get("unpaired")) and any(c.root_cause and c.affects_energy for c in causes)
 
     def messages(self, cli: bool = False) -> list[str]:
         """Why :attr:`ok` is False, one message per failing model: its reason, then the whole of it indented.
