@@ -86,7 +86,8 @@ def detail_lines(
             quoted.append([f"{engine} says: {words[0]}", *(f"  {w}" for w in words[1:])])
     hint = tidy(str(parts.get("hint", "")))
     hints = [[f"hint: {hint}"]] if hint and " ".join(hint.split()) not in said else []
-    known = " ".join([said, *(" ".join(line.split()) for item in quoted + hints for line in item)])
+    known = " ".join([said, hint, *(" ".join(line.split()) for item in quoted for line in item)])
+    known = f"{known} {_unparenthesized(known)}"
     rest = [part for part in _parts(tidy(str(parts.get("whole", "")))) if _bare(part) and _bare(part) not in known]
     items = ([["details: " + "; ".join(rest)]] if rest else []) + quoted + hints
     return _indented(items, width)
@@ -139,6 +140,30 @@ def error_message(first: str, err: BaseException, **details: object) -> str:
     return "\n".join([first, *detail_lines(err, first, **details)])  # type: ignore[arg-type]
 
 
+def first_and_rest(text: str, width: int = LINE_LIMIT) -> tuple[str, list[str]]:
+    """A one-line message made a first line of whole parts that fit ``width``, and the indented lines of the rest.
+
+    The message is split at its ``"; "`` outside parentheses; the first line keeps the leading parts that fit
+    (at least the first), the others follow, whole, indented (``details:``): nothing is cut.
+
+    Parameters
+    ----------
+    text : str
+    width : int
+
+    Returns
+    -------
+    first : str
+    rest : list of str
+    """
+    parts = _parts(text)
+    k = 1
+    while k < len(parts) and len("; ".join(parts[: k + 1])) <= width:
+        k += 1
+    rest = parts[k:]
+    return "; ".join(parts[:k]), _indented([["details: " + "; ".join(rest)]], width) if rest else []
+
+
 def _parts(text: str) -> list[str]:
     """A message's parts: split at each ``"; "`` outside parentheses."""
     parts, depth, start = [], 0, 0
@@ -150,15 +175,20 @@ def _parts(text: str) -> list[str]:
     return [*parts, text[start:]]
 
 
-def _bare(part: str) -> str:
-    """A part without its parentheses and without the file it opens with: what a shorter line keeps of it."""
-    text, depth = "", 0
-    for ch in part:
+def _unparenthesized(text: str) -> str:
+    """``text`` without its parentheses (and what they hold), white space made single spaces."""
+    out, depth = "", 0
+    for ch in text:
         depth += ch == "("
         if depth == 0:
-            text += ch
+            out += ch
         depth -= ch == ")" and depth > 0
-    text = " ".join(text.split())
+    return " ".join(out.split())
+
+
+def _bare(part: str) -> str:
+    """A part without its parentheses and without the file it opens with: what a shorter line keeps of it."""
+    text = _unparenthesized(part)
     head, sep, rest = text.partition(": ")
     return rest if sep and ("/" in head or "." in head) else text
 

@@ -308,13 +308,13 @@ def load_model(
         mj_model, mj_findings, body_findings = load_mujoco(
             source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
         )
-    except KoenigCheckError as err:  # MuJoCo's own words kept with ours (the exception it raised)
-        quote_engine(err, "MuJoCo")
+    except KoenigCheckError as refused:  # MuJoCo's own words kept with ours (the exception it raised)
+        quote_engine(refused, "MuJoCo")
         raise
     try:
         pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
-    except KoenigCheckError as err:
-        quote_engine(err, "Pinocchio")
+    except KoenigCheckError as refused:
+        quote_engine(refused, "Pinocchio")
         raise
     if pin_source is not source:
         pin_findings.insert(

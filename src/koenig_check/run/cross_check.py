@@ -136,7 +136,7 @@ class CrossCheck(ResultLookup):
         causes = self.failure_causes.get(model, ())
         return bool(parts.get("unpaired")) and any(c.root_cause and c.affects_energy for c in causes)
 
-    def messages(self, cli: bool = False) -> list[str]:
+    def messages(self, cli: bool = False, width: int = 200) -> list[str]:
         """Why :attr:`ok` is False, one message per failing model: its reason, then the whole of it indented.
 
         The first line of each is the model's reason (:meth:`reasons`, at most 200 characters); the lines after it,
@@ -148,6 +148,8 @@ class CrossCheck(ResultLookup):
         ----------
         cli : bool
             Options named as the command line spells them.
+        width : int
+            The longest line after the first (a longer one is folded at words, never cut).
 
         Returns
         -------
@@ -160,11 +162,11 @@ class CrossCheck(ResultLookup):
         lines = self.reasons(cli)
         for (model, _), line in zip(self.failures, lines, strict=False):
             parts = self.failure_parts.get(model)
-            out.append("\n".join([line, *(detail_lines(parts, line, cli=cli) if parts else [])]))
+            out.append("\n".join([line, *(detail_lines(parts, line, cli=cli, width=width) if parts else [])]))
         compared = lines[len(self.failures) :]
         failing = [c for c, a in zip(self.comparisons, self.parities, strict=True) if _fails(c, a)]
         for comparison, line in zip(failing, compared, strict=True):
-            out.append("\n".join([line, *finding_lines(comparison.findings, line)]))
+            out.append("\n".join([line, *finding_lines(comparison.findings, line, width)]))
         return out
 
     def reason(self) -> str:
