@@ -56,7 +56,8 @@ def error_line(args: argparse.Namespace, err: BaseException) -> str:
     line = short_error(err, width, lambda text: as_given(text, files))
     whole = short_error(err, 10**6, lambda text: as_given(text, files))
     named = [f for f in files if f in whole]
-    if len(whole) <= width or max(map(len, named), default=0) <= width // 2:  # the file as given, and its reason
+    cut = line.endswith("…")  # its first part alone is too long with the paths as given: the files by their names
+    if not cut and (len(whole) <= width or max(map(len, named), default=0) <= width // 2):  # the file as given
         return PREFIX + line
     return PREFIX + short_error(err, width, lambda text: as_given(text, files, short=True))
 

@@ -198,7 +198,7 @@ def short_reason(
         hints = "; ".join(f.hint for f in unable_findings if f.hint)
         text = f"{label}: {unmade}"
         hinted = f"{text}; {hints}" if hints else text
-        return hinted if len(hinted) <= width else closed_cut(text, width)  # whole: the table row
+        return hinted if len(hinted) <= width else _closed(f"{label}: ", unmade, width)  # whole: the lines below
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
     groups = cause_groups(f for f in ordered_causes(findings) if f.engine not in unable)
     causes = [g.short() for g in groups]
@@ -223,10 +223,30 @@ _UNMADE_ROOM = 80
 
 
 def _closed(text: str, unmade: str, width: int) -> str:
-    """A reason closed by the checks asked for and not made, cut at a word to fit (whole in the table's row)."""
+    """A reason closed by the checks asked for and not made, by whole clauses that fit (whole in the lines below).
+
+    The checks not made are shortened at a clause (``": "`` or ``"; "`` outside parentheses), never inside one;
+    the lines after the reason give them whole (:func:`koenig_check.diagnosis.message.finding_lines`).
+    """
     if not unmade:
         return text
-    return closed_cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
+    joined = f"{text}{'' if text.endswith(': ') else '; '}"
+    whole = joined + unmade
+    if len(whole) <= width:
+        return whole
+    clauses = _clause_ends(unmade)
+    fitting = [end for end in clauses if len(joined) + end <= width]
+    return joined + unmade[: fitting[-1]] if fitting else closed_cut(whole, width)
+
+
+def _clause_ends(text: str) -> list[int]:
+    """Where each clause of ``text`` ends: before a ``": "`` or ``"; "`` outside parentheses and brackets."""
+    ends, depth = [], 0
+    for i, ch in enumerate(text):
+        depth += (ch in "([") - (ch in ")]")
+        if depth == 0 and text.startswith((": ", "; "), i):
+            ends.append(i)
+    return ends
 
 
 def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and Pinocchio", cli: bool = False) -> str:
