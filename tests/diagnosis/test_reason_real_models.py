@@ -53,10 +53,10 @@ def _mujoco_refuses(path: str) -> str:
     return re.search(r"Element name '([^']+)'", str(info.value)).group(1)
 
 
-
 def _first_lines(err: str) -> list[str]:
     """The first line of each message on stderr (the lines after it, indented, give the rest: issue 28)."""
     return [line for line in err.strip().splitlines() if line.startswith("koenig-check: ")]
+
 
 # ----------------------------------------------------------------------------------------- 1: whole parts
 @pytest.mark.parametrize("name", ["anymal_b_simple/anymal", "anymal_c_simple/anymal", "go1"])
