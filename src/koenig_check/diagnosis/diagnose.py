@@ -20,6 +20,7 @@ from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
 from koenig_check.diagnosis.root_frame import root_frame_offset
 from koenig_check.engines import registry
+from koenig_check.engines.catalogue import applies
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 
@@ -98,7 +99,7 @@ def diagnose(
         elif name not in policy.asked_for(engines):
             optional.append(why)
     optional = model.optional_findings + optional
-    findings = list(model.findings) + parity.as_findings() + optional
+    findings = [f for f in list(model.findings) + parity.as_findings() + optional if _applies(f)]
     limits = limited_engines(findings, model.mujoco.model)  # engines given another robot: they do not vote
     voters = [name for name in model.engines if name not in limits]
     verdicts: list[Finding] = []
@@ -108,6 +109,11 @@ def diagnose(
     unmade = unable_findings(limits, policy.asked_for(engines), parser) + policy.unmade_checks(optional, engines)
     findings, parity = _blamed_as_verdicts_say(verdicts, findings, parity)
     return Diagnosis(unmade + verdicts + findings, parity, verdicts, tuple(model.engines))
+
+
+def _applies(f: Finding) -> bool:
+    """A finding of a cause whose declared reading does not hold for the installed engine's version is dropped."""
+    return not f.cause or applies(f.cause)
 
 
 def _blamed_as_verdicts_say(

@@ -124,3 +124,21 @@ def test_a_misdeclared_cause_is_refused() -> None:
         Cause("mujoco.mjcf.x", "c", ("mjcf",), (Reading("mujoco", "as written"),), ("mass",), "b", "", "f.xml")
     with pytest.raises(ValueError, match="expected <engine>"):
         Cause("Bad Id", "c", ("mjcf",), (Reading("mujoco", "refuses", "x"),), ("mass",), "b", "", "f.xml")
+
+
+def test_a_cause_fires_only_for_the_engine_versions_it_declares(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A release of Pinocchio outside the declared versions: the cause is not named (its reading says nothing)."""
+    import dataclasses
+
+    import koenig_check
+    from koenig_check.engines import catalogue as module
+
+    c = cause("pinocchio.mjcf.class-geom-mass")
+    version = installed_version("pinocchio")
+    assert version is not None
+    older = tuple(dataclasses.replace(r, versions=f"<{version}") if r.engine == "pinocchio" else r for r in c.readings)
+    changed = dataclasses.replace(c, readings=older)
+    monkeypatch.setattr(module, "catalogue", lambda: tuple(changed if x.id == c.id else x for x in CAUSES))
+    assert not applies(c.id)
+    check = koenig_check.compare(str(fixture_path(c)), n_poses=4, engines=["mujoco", "pinocchio"])
+    assert c.id not in {f.cause for comp in check.comparisons for f in comp.findings}
