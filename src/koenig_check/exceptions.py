@@ -1,7 +1,9 @@
 """Every exception koenig-check raises on purpose: the root :class:`KoenigCheckError` and its subclasses.
 
-Each message is one line naming the file (or the argument) and the element concerned.  Values a caller
-needs are attributes, not text to parse: the root causes of a load failure are
+Each message is one line naming the file (or the argument) and the element concerned; the refusing engine's own
+words, whole and as it wrote them, are :attr:`KoenigCheckError.engine_texts` (the lines printed after the
+message's first line: :mod:`koenig_check.diagnosis.message`).  Values a caller needs are attributes, not text to
+parse: the root causes of a load failure are
 :attr:`KoenigCheckError.causes` (typed :class:`~koenig_check.findings.Finding` records), the joints
 that cannot be paired are :attr:`JointMismatch.only_in_mujoco` and its siblings.
 

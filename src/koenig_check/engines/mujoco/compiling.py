@@ -215,7 +215,8 @@ def fusion_refusal(pairs: list[tuple[str, str]], what: str, message: str) -> str
     -------
     str
     """
-    named = ", ".join(f"{child!r} into {parent!r}" for child, parent in pairs[:4]) + (" …" if len(pairs) > 4 else "")
+    named = ", ".join(f"{child!r} into {parent!r}" for child, parent in pairs[:4])
+    named += f" and {len(pairs) - 4} more" if len(pairs) > 4 else ""  # counted, never "…"
     where = f": {named}" if pairs else ""
     return f"MuJoCo rejects the inertia of static {what}s fused into their parent ({_refusal(message)}){where}"
 
