@@ -66,3 +66,28 @@ def test_parity_prints_its_report_not_an_error(capsys: pytest.CaptureFixture[str
     assert "koenig-check: error:" not in captured.err
     first = captured.err.splitlines()[0]
     assert first.startswith("koenig-check: attach.xml: ") and "<attach>" in first and len(first) <= 200
+
+
+CHILD = """<mujoco model="child"><worldbody>
+  <body name="body1"><freejoint/><geom type="sphere" size="0.1"/>
+    <body name="body2" pos="0 0 1"><joint type="hinge"/><geom type="sphere" size="0.1"/></body>
+  </body></worldbody></mujoco>"""
+PARENT = """<mujoco model="parent"><asset><model name="other" file="child.xml"/></asset><worldbody>
+  <body name="base"><joint name="slide" type="slide"/><geom type="box" size="0.1 0.1 0.1"/></body>
+  <frame name="f" pos="1 0 0"><attach model="other" body="body1" prefix="other2"/></frame>
+</worldbody></mujoco>"""
+
+
+def test_an_attach_in_a_frame_with_unnamed_joints_names_what_the_engines_lack(tmp_path: Path) -> None:
+    """As MuJoCo's parent.xml: free bodies attached in a frame; the cause's joints are those the pairing misses."""
+    from koenig_check.engines import load_model
+    from koenig_check.exceptions import JointMismatch
+
+    (tmp_path / "child.xml").write_text(CHILD)
+    path = tmp_path / "parent.xml"
+    path.write_text(PARENT)
+    with pytest.raises(JointMismatch) as info:
+        load_model(path)
+    (found,) = [f for f in info.value.causes if f.cause == "pinocchio.mjcf.attach"]
+    assert found.values["in"] == "frame f" and found.values["bodies"] == ("other2body1", "other2body2")
+    assert list(found.values["joints"]) == info.value.only_in_mujoco == ["other2body1_free", "other2body2Joint_0"]
