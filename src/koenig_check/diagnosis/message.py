@@ -160,8 +160,33 @@ def first_and_rest(text: str, width: int = LINE_LIMIT) -> tuple[str, list[str]]:
     k = 1
     while k < len(parts) and len("; ".join(parts[: k + 1])) <= width:
         k += 1
-    rest = parts[k:]
-    return "; ".join(parts[:k]), _indented([["details: " + "; ".join(rest)]], width) if rest else []
+    first, rest = "; ".join(parts[:k]), parts[k:]
+    if len(first) > width:  # one part too long alone: at its last clause (": " or ", ") that fits
+        ends = [i for i in clause_ends(first, (": ", ", ")) if i <= width]
+        if ends:
+            first, rest = first[: ends[-1]], [first[ends[-1] + 2 :], *rest]
+    return first, _indented([["details: " + "; ".join(rest)]], width) if rest else []
+
+
+def clause_ends(text: str, marks: tuple[str, ...] = (": ", "; ")) -> list[int]:
+    """Where the clauses of ``text`` end: before each of ``marks`` outside parentheses and brackets.
+
+    Parameters
+    ----------
+    text : str
+    marks : tuple of str
+
+    Returns
+    -------
+    list of int
+        The index of each mark that ends a clause.
+    """
+    ends, depth = [], 0
+    for i, ch in enumerate(text):
+        depth += (ch in "([") - (ch in ")]")
+        if depth == 0 and text.startswith(marks, i):
+            ends.append(i)
+    return ends
 
 
 def _parts(text: str) -> list[str]:

@@ -234,19 +234,11 @@ def _closed(text: str, unmade: str, width: int) -> str:
     whole = joined + unmade
     if len(whole) <= width:
         return whole
-    clauses = _clause_ends(unmade)
+    from koenig_check.diagnosis.message import clause_ends
+
+    clauses = clause_ends(unmade)
     fitting = [end for end in clauses if len(joined) + end <= width]
     return joined + unmade[: fitting[-1]] if fitting else closed_cut(whole, width)
-
-
-def _clause_ends(text: str) -> list[int]:
-    """Where each clause of ``text`` ends: before a ``": "`` or ``"; "`` outside parentheses and brackets."""
-    ends, depth = [], 0
-    for i, ch in enumerate(text):
-        depth += (ch in "([") - (ch in ")]")
-        if depth == 0 and text.startswith((": ", "; "), i):
-            ends.append(i)
-    return ends
 
 
 def rounding_hint(max_relative: float, rtol: float, between: str = "MuJoCo and Pinocchio", cli: bool = False) -> str:
