@@ -199,7 +199,7 @@ def test_first_and_rest_splits_at_whole_parts() -> None:
 
 def test_first_and_rest_splits_a_part_too_long_alone_at_a_clause() -> None:
     """dynamics on all_differ.xml: one part of 205 characters; the first line ends at a clause, the rest below."""
-    text = "model.xml: exact disagrees by lagrange: M " + "y" * 120 + " off by 7.37 relative at pose 0, worst entry a,b"
+    text = "model.xml: exact disagrees by lagrange: M " + "y" * 90 + " off by 7.37 relative at pose 0, worst entry a,b"
     first, rest = first_and_rest(text, 170)
     assert first == text[: text.index(", worst")] and len(first) <= 170
     assert rest == ["    details: worst entry a,b"]
