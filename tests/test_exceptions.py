@@ -25,7 +25,6 @@ OLD_HOMES = {
     "CoupledJointsError": "koenig_check.engines.errors",
     "NoMovingSegmentError": "koenig_check.engines.errors",
     "JointMismatch": "koenig_check.engines.errors",
-    "DrakeLoadError": "koenig_check.engines.drake_loader",
     "DrakeUnavailableError": "koenig_check.tiebreak",
     "ModelFileError": "koenig_check.validate",
     "PoseFileError": "koenig_check.run.pose_file",
@@ -121,3 +120,15 @@ def test_drakes_failed_condition_is_kept_whole_without_its_build_location() -> N
     text = exceptions.one_line(info.value)
     assert text == "SetPositions(): condition 'q.size() == num_positions()' failed."
     assert exceptions.one_line(ValueError("Failure at the gate")) == "Failure at the gate"  # not a location
+
+
+def test_an_engines_own_load_error_lives_in_its_subpackage() -> None:
+    """Drake's load error is Drake's (engines/drake/loader.py), a ModelLoadError that survives pickling; the
+    top-level module names no engine's exception."""
+    pytest.importorskip("pydrake")
+    from koenig_check.engines.drake.loader import DrakeLoadError
+
+    assert not hasattr(exceptions, "DrakeLoadError")
+    assert issubclass(DrakeLoadError, ModelLoadError) and DrakeLoadError.__module__.startswith("koenig_check.engines.")
+    back = pickle.loads(pickle.dumps(DrakeLoadError("m.xml: Drake cannot load the file: x")))
+    assert type(back) is DrakeLoadError and str(back) == "m.xml: Drake cannot load the file: x"

@@ -16,8 +16,8 @@ Hierarchy::
     ├── ArgumentValueError (ValueError), ArgumentTypeError (TypeError)   usage errors
     ├── ModelFileError (ValueError)                                      the file cannot be read as MJCF/URDF
     ├── ModelLoadError (ValueError)                                      an engine cannot load the file
-    │   ├── InertiaError, CoupledJointsError, NoMovingSegmentError
-    │   └── DrakeLoadError
+    │   └── InertiaError, CoupledJointsError, NoMovingSegmentError (an engine's own load error, such as
+    │       DrakeLoadError, lives in its subpackage: koenig_check.engines.drake.loader)
     ├── JointMismatch (ValueError)                                       the engines' joints cannot be paired
     ├── DrakeUnavailableError (ValueError)                               Drake asked for, not installed
     ├── PoseFileError (ValueError), RecordFileError (ValueError)         input files of a run
@@ -38,7 +38,6 @@ __all__ = [
     "ArgumentTypeError",
     "ArgumentValueError",
     "CoupledJointsError",
-    "DrakeLoadError",
     "DrakeUnavailableError",
     "EngineUnavailableError",
     "InertiaError",
@@ -174,10 +173,6 @@ class NoMassError(ModelLoadError):
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (type(self), (self.args[0] if self.args else "", self.links))
-
-
-class DrakeLoadError(ModelLoadError):
-    """Drake cannot load a model file (or its joints cannot be paired with MuJoCo's); one line naming the file."""
 
 
 class JointMismatch(KoenigCheckError, ValueError):  # noqa: N818 - the name the design uses

@@ -12,12 +12,12 @@ import pinocchio
 import pytest
 
 import koenig_check
+from documents import document_with
 from koenig_check.cli import main
 from koenig_check.testing import assert_energy_parity
 from koenig_check.testing.failure_text import verdict_lines
 from written_twins import written_twin
 
-README = Path(__file__).resolve().parents[2] / "README.md"
 ROBOTS = ["ur5", "panda"]
 
 
@@ -27,8 +27,8 @@ def twin(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactor
 
 
 def _readme_twin_rtol() -> str:
-    """The tolerance the README's twin-pair paragraph tells a user to pass."""
-    text = README.read_text(encoding="utf-8")
+    """The tolerance the documented twin-pair paragraph (README or docs page) tells a user to pass."""
+    text = document_with("- **A twin pair**")
     paragraph = text[text.index("- **A twin pair**") :].split("\n- ")[0]
     (value,) = set(re.findall(r"`--rtol ([0-9.e-]+)`", paragraph))
     return value

@@ -7,10 +7,10 @@ from pathlib import Path
 import pytest
 from common import display_name, dm_control_corpus, erd_corpus, project_corpus, scrub
 
+from documents import DOCUMENTS  # the README and the site's pages
+
 COMPARISONS = Path(__file__).resolve().parents[2] / "comparisons"
 OUTPUTS = sorted(p for p in COMPARISONS.iterdir() if p.suffix in (".md", ".json"))
-#: The documents that quote outputs: the README and the developer notes.
-DOCUMENTS = [COMPARISONS.parent / "README.md", *sorted((COMPARISONS.parent / "docs").glob("*.md"))]
 FORBIDDEN = ("/tmp/", "/home/", "/root/", "/work/", "site-packages/")
 
 

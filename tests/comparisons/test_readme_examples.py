@@ -1,6 +1,7 @@
-"""The README's example outputs are what the commands print today: each example is run again and compared with
-its quote, text as text and numbers within the last digit the README prints (never as text: they may differ
-with the CPU at round-off level), so that an example cannot drift from the tool again."""
+"""The example outputs quoted by the README and the documentation pages (``docs/*.md``) are what the commands print
+today: each example is run again and compared with its quote, text as text and numbers within the last digit the
+document prints (never as text: they may differ with the CPU at round-off level), so that an example cannot drift
+from the tool again.  Each quote is found in whichever document holds it (tests/documents.py)."""
 
 from __future__ import annotations
 
@@ -13,18 +14,20 @@ from pathlib import Path
 
 import pytest
 
+from documents import README, all_documents, document_with
 from koenig_check.cli import main
 from koenig_check.engines import resolve_model
+from koenig_check.roundoff import ROUNDOFF
 
 ROOT = Path(__file__).resolve().parents[2]
-README = (ROOT / "README.md").read_text(encoding="utf-8")
 NUMBER = re.compile(r"(?<![\w.])[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])")
 
 
 def _quoted(after: str, until: str) -> str:
-    """The README's text between the line ``after`` and the next ``until``."""
-    start = README.index(after) + len(after)
-    return README[start : README.index(until, start)]
+    """The text between the line ``after`` and the next ``until``, in the one document that holds ``after``."""
+    text = document_with(after)
+    start = text.index(after) + len(after)
+    return text[start : text.index(until, start)]
 
 
 def _last_digit(text: str) -> float:
@@ -47,6 +50,8 @@ def assert_same_output(quoted: str, printed: str) -> None:
         for q, p in zip(NUMBER.findall(wq), NUMBER.findall(wp), strict=True)
     ]
     for q, p in numbers:
+        if max(abs(float(q)), abs(float(p))) < ROUNDOFF:  # both round-off (printed as 0 elsewhere): CPU-dependent
+            continue
         assert abs(float(q) - float(p)) <= _last_digit(q) * (1 + 1e-9), f"README {q}, now {p}"
 
 
@@ -109,7 +114,50 @@ def test_the_plugin_example_is_what_pytest_prints(tmp_path: Path) -> None:
     [r"which\s+it replaces: ([^:]+?) get other moments", r"or a massless moving link \(([^)]+)\)"],
 )
 def test_robots_the_readme_names_are_names_the_tool_accepts(context: str) -> None:
-    """Each robot of a README list resolves (``hyq`` does not: ``hyq_no_sensors`` does)."""
-    names = [n.strip() for n in re.search(context, README, re.S).group(1).replace("\n", " ").split(",")]
+    """Each robot of a documented list resolves (``hyq`` does not: ``hyq_no_sensors`` does)."""
+    names = [n.strip() for n in re.search(context, all_documents(), re.S).group(1).replace("\n", " ").split(",")]
     for name in [n for n in names if n and n != "..."]:
         assert resolve_model(name).path.is_file(), name
+
+
+def test_the_readme_example_on_a_users_file_is_what_compare_prints(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The README's own file, written from its quote, gives the quoted table (Drake's column: with Drake)."""
+    pytest.importorskip("pydrake", reason="the README's example shows Drake's column")
+    readme = README.read_text(encoding="utf-8")
+    command = "$ koenig-check compare cartpole.xml\n"
+    xml = re.search(r"```xml\n(.*?)```", readme, re.S).group(1)
+    start = readme.index(command) + len(command)
+    quoted = readme[start : readme.index("```", start)]
+    (tmp_path / "cartpole.xml").write_text(xml, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    status = main(["compare", "cartpole.xml"])
+    captured = capsys.readouterr()
+    assert status == 1 and "The exit status is 1" in readme
+    printed = "".join(captured.out.splitlines(keepends=True)[: len(quoted.splitlines())])
+    assert_same_output(quoted, printed)
+    assert captured.err.count("\n") == 1 and "root cause" in captured.err  # the same reason, one line
+
+
+def test_the_export_example_is_what_the_command_prints(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    pytest.importorskip("pydrake", reason="the example proves the export in Drake too")
+    command = "$ koenig-check export armature_chain --to urdf --out armature_chain.urdf\n"
+    quoted = _quoted(command, "$ echo $?")
+    status = int(_quoted(command + quoted + "$ echo $?\n", "\n"))
+    monkeypatch.chdir(tmp_path)
+    assert main(["export", "armature_chain", "--to", "urdf", "--out", "armature_chain.urdf"]) == status
+    assert_same_output(quoted, capsys.readouterr().out)
+
+
+def test_the_first_robot_example_is_what_compare_prints(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The getting-started page quotes the head of ``compare serial7.urdf`` (then ``...``)."""
+    command = "$ koenig-check compare serial7.urdf\n"
+    quoted = _quoted(command, "...\n")
+    assert main(["compare", "serial7.urdf"]) == 0
+    printed = "".join(capsys.readouterr().out.splitlines(keepends=True)[: len(quoted.splitlines())])
+    assert_same_output(quoted, printed)

@@ -1,6 +1,7 @@
-"""Every figure the README gives in its findings is in the committed output it quotes.
+"""Every figure the README and the documentation pages give in their findings is in the committed output quoted.
 
-A findings line of the README ends with ``<!-- from comparisons/NAME.md -->``; every number on it (a
+A findings line of a document (the README, ``docs/*.md``: tests/documents.py)
+ends with ``<!-- from comparisons/NAME.md -->``; every number on it (a
 percentage, a decimal, a power of ten, a count) must appear, as written, in that file.  Equation numbers in
 parentheses, such as ``(38)``, are references, not figures.
 """
@@ -12,19 +13,23 @@ from pathlib import Path
 
 import pytest
 
+from documents import DOCUMENTS
+
 ROOT = Path(__file__).resolve().parents[2]
 MARK = re.compile(r"<!-- from (comparisons/[\w.]+\.md) -->")
 NUMBER = re.compile(r"(?<![\w.^])[+-]?\d+(?:\.\d+)?(?:e[+-]\d+)?(?: ?%)?(?![\w])")
 EQUATION = re.compile(r"\(\d+\)")
 
 
-def marked_lines() -> list[tuple[int, str, str]]:
+def marked_lines() -> list[tuple[str, str, str]]:
+    """Each marked line of every document: where (``README.md:243``), its text without the mark, its source."""
     out = []
-    lines = (ROOT / "README.md").read_text(encoding="utf-8").splitlines()
-    for i, line in enumerate(lines, 1):
-        m = MARK.search(line)
-        if m:
-            out.append((i, MARK.sub("", line), m.group(1)))
+    for document in DOCUMENTS:
+        lines = document.read_text(encoding="utf-8").splitlines()
+        for i, line in enumerate(lines, 1):
+            m = MARK.search(line)
+            if m:
+                out.append((f"{document.name}:{i}", MARK.sub("", line), m.group(1)))
     return out
 
 
@@ -43,11 +48,11 @@ def test_readme_findings_are_marked() -> None:
     assert sum(len(figures(t)) for _, t, _ in marked_lines()) >= 20
 
 
-@pytest.mark.parametrize(("line", "text", "source"), marked_lines(), ids=[str(n) for n, _, _ in marked_lines()])
-def test_every_figure_of_a_findings_line_is_in_its_source(line: int, text: str, source: str) -> None:
+@pytest.mark.parametrize(("line", "text", "source"), marked_lines(), ids=[n for n, _, _ in marked_lines()])
+def test_every_figure_of_a_findings_line_is_in_its_source(line: str, text: str, source: str) -> None:
     committed = (ROOT / source).read_text(encoding="utf-8")
     missing = [f for f in figures(text) if f not in committed]
-    assert not missing, f"README line {line}: {missing} not in {source}"
+    assert not missing, f"{line}: {missing} not in {source}"
 
 
 def test_figures_are_extracted_with_their_sign_and_unit() -> None:

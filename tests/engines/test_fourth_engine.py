@@ -6,10 +6,18 @@ scaled by 1.01, so that it departs.  Each declares ``SPEC = EngineSpec(...)`` in
 derived from :class:`koenig_check.engines.base.Engine`; no file of koenig_check changes.  The test then checks
 that the engine is listed, attached by ``--engines`` and ``engines=``, in the terminal table's columns, in the
 figures' legends, named by the verdict when it departs, in the export's proof and in the dynamics check.
+
+``gpu`` has traps of its own, declared in its subpackage only: its MJCF parser drops ``<geom mass>`` (density ×
+volume instead, cause ``gpu.mjcf.geom-mass``) and ignores joint armature (``gpu.mjcf.joint-armature``, which it
+declares a parser limit in ``limits.py``), each with a fixture in ``gpu/fixtures/``; it breaks no tie.  Its
+verdict, the ranking of its causes, its abstention and its hint are checked through compare, parity and the
+one-line reason (the tests at the end).
 """
 
 from __future__ import annotations
 
+import importlib
+import json
 import sys
 import textwrap
 from collections.abc import Iterator
@@ -51,6 +59,145 @@ SPEC = EngineSpec(
     color="{color}",
 )
 '''
+
+_TRAPS = '''
+"""The fake engine's MJCF parser: it drops <geom mass> (density × volume) and ignores joint armature."""
+
+import tempfile
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from koenig_check.engines.canonical import segment_of_body
+from koenig_check.findings import Finding, Kind
+
+GEOM_MASS = "gpu.mjcf.geom-mass"
+ARMATURE = "gpu.mjcf.joint-armature"
+
+
+def read_text(path):
+    """The file as this parser reads it, or None where it reads it as written (an MJCF file without the traps)."""
+    root = ET.parse(path).getroot()
+    changed = False
+    for world in root.iter("worldbody"):
+        for element, attribute in (("geom", "mass"), ("joint", "armature")):
+            for e in world.iter(element):
+                changed = e.attrib.pop(attribute, None) is not None or changed
+    return ET.tostring(root, encoding="unicode") if changed else None
+
+
+def read(path, mj_model):
+    """The parser's model of a file: MuJoCo's own where no trap is in it."""
+    text = read_text(path)
+    return mj_model if text is None else mujoco.MjModel.from_xml_string(text)
+
+
+def in_a_file(path):
+    """The file as this parser reads it, written to a temporary file (the file itself where nothing changes)."""
+    text = read_text(path)
+    if text is None:
+        return Path(path)
+    out = Path(tempfile.mkdtemp()) / Path(path).name
+    out.write_text(text)
+    return out
+
+
+def findings(mj_model, own):
+    """The traps the file springs: one root cause per body whose mass changed, per joint whose armature went."""
+    seg = segment_of_body(mj_model)
+    out = []
+    for b in range(1, mj_model.nbody):
+        written, read_ = float(mj_model.body_mass[b]), float(own.body_mass[b])
+        if not np.isclose(written, read_, rtol=1e-12, atol=0.0):
+            body = mj_model.body(b).name
+            out.append(Finding(
+                Kind.MASS, "gpu", f"body {body}", "GPU's MJCF parser drops the geoms' mass: density × volume",
+                {"mujoco": written, "gpu": read_}, affects_energy=True, root_cause=True,
+                segments=(seg[body],) if seg.get(body) else (), cause=GEOM_MASS,
+            ))
+    for j in range(mj_model.njnt):
+        dof = int(mj_model.jnt_dofadr[j])
+        if mj_model.dof_armature[dof] and not own.dof_armature[dof]:
+            joint = mj_model.joint(j).name
+            out.append(Finding(
+                Kind.ARMATURE, "gpu", f"joint {joint}", "GPU's MJCF parser ignores the joint's armature",
+                {"mujoco": [float(mj_model.dof_armature[dof])], "gpu": [0.0]}, affects_energy=True,
+                root_cause=True, segments=(joint,), cause=ARMATURE,
+            ))
+    return out
+'''
+
+_CAUSES = '''
+"""The constructs the fake engine's MJCF parser reads differently (MuJoCo and Pinocchio read them as written)."""
+
+from koenig_check.engines.cause import Cause, Reading
+from koenig_check.engines.gpu.traps import in_a_file
+from koenig_check.engines.mujoco.causes import measure as _mujoco_measure
+
+CAUSES = (
+    Cause(
+        id="gpu.mjcf.geom-mass",
+        construct="<geom mass>",
+        formats=("mjcf",),
+        readings=(
+            Reading("mujoco", "as written"),
+            Reading("pinocchio", "as written"),
+            Reading("gpu", "differently", "drops the mass: density × volume of the geom"),
+        ),
+        quantities=("mass", "inertia"),
+        brief="geom mass dropped by GPU",
+        hint="give the body an <inertial>",
+        fixture="geom_mass.xml",
+    ),
+    Cause(
+        id="gpu.mjcf.joint-armature",
+        construct="<joint armature>",
+        formats=("mjcf",),
+        readings=(
+            Reading("mujoco", "as written"),
+            Reading("pinocchio", "as written"),
+            Reading("gpu", "differently", "ignores it: no rotor inertia"),
+        ),
+        quantities=("armature",),
+        brief="joint armature ignored by GPU",
+        hint="check the model without GPU",
+        fixture="joint_armature.xml",
+    ),
+)
+
+
+def measure(path):
+    """The fake's reading of a file: MuJoCo's measurement of the file as this parser reads it."""
+    return _mujoco_measure(in_a_file(path))
+'''
+
+_LIMITS = '''
+"""What the fake engine's parser does not read: a model with joint armature is another robot in it."""
+
+from koenig_check.engines.limit import ParserLimit
+
+LIMITS = (ParserLimit("ignores armature", cause="gpu.mjcf.joint-armature"),)
+'''
+
+#: The fake's fixtures: a geom's written mass (MuJoCo: 2 kg; density × volume: 1000 × 0.2³ = 8 kg) and an armature.
+_FIXTURES = {
+    "geom_mass.xml": """<mujoco model="geom_mass">
+  <worldbody>
+    <body name="arm"><joint name="hinge" type="hinge" axis="0 1 0"/>
+      <geom type="box" size="0.1 0.1 0.1" pos="0.3 0 0" mass="2"/></body>
+  </worldbody>
+</mujoco>
+""",
+    "joint_armature.xml": """<mujoco model="joint_armature">
+  <worldbody>
+    <body name="wheel" pos="1 0 0"><joint name="spin" type="hinge" axis="0 0 1" armature="0.05"/>
+      <inertial pos="0 0 0" mass="1" diaginertia="0.2 0.3 0.4"/></body>
+  </worldbody>
+</mujoco>
+""",
+}
 
 _ADAPTER = '''
 """The fake engine's adapter: every answer is MuJoCo's (its own MjData), the rigid energy times {scale}."""
@@ -109,6 +256,16 @@ def load_alone(source, mj_model):
     return FakeEngine(mj_model, source.path)
 '''
 
+#: The trapped engine's attach: its parser's own model of the file, and the traps it springs as findings.
+_TRAPPED_ATTACH = """
+
+def attach(model):
+    from koenig_check.engines.gpu import traps
+
+    own = traps.read(model.source.path, model.mujoco.model)
+    return FakeEngine(own, model.source.path), traps.findings(model.mujoco.model, own)
+"""
+
 #: name -> (label, colour, energy factor)
 FAKES = {"gpu": ("GPU", "tab:purple", 1.0), "gpu_skewed": ("GPU-skewed", "tab:brown", SKEW)}
 
@@ -120,7 +277,15 @@ def fourth_engine(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[s
     for name, (label, color, scale) in FAKES.items():
         (root / name).mkdir(parents=True)
         (root / name / "__init__.py").write_text(textwrap.dedent(_INIT.format(name=name, label=label, color=color)))
-        (root / name / "adapter.py").write_text(textwrap.dedent(_ADAPTER.format(name=name, scale=scale)))
+        adapter = textwrap.dedent(_ADAPTER.format(name=name, scale=scale))
+        if name == "gpu":  # the trapped one: its parser's model, its causes, its limits, its fixtures
+            adapter += _TRAPPED_ATTACH
+            for module, text in (("traps", _TRAPS), ("causes", _CAUSES), ("limits", _LIMITS)):
+                (root / name / f"{module}.py").write_text(textwrap.dedent(text))
+            (root / name / "fixtures").mkdir()
+            for fixture, text in _FIXTURES.items():
+                (root / name / "fixtures" / fixture).write_text(text)
+        (root / name / "adapter.py").write_text(adapter)
     monkeypatch.setattr(koenig_check.engines, "__path__", [*koenig_check.engines.__path__, str(root)])
     yield "gpu"
     for name in FAKES:
@@ -141,7 +306,10 @@ def test_a_subpackage_is_listed_in_report_order(fourth_engine: str) -> None:
 
 
 def test_without_the_subpackage_it_is_unknown() -> None:
+    from koenig_check.causes import catalogue
+
     assert "gpu" not in registry.names()
+    assert not [c for c in catalogue() if c.engine == "gpu"]  # its causes come and go with it (the catalogue too)
     from koenig_check.engines.load_options import parse_engines
 
     with pytest.raises(ValueError, match="unknown"):
@@ -298,3 +466,126 @@ def test_a_subpackage_without_a_spec_is_refused_by_name(tmp_path: Path, monkeypa
     with pytest.raises(TypeError, match=r"koenig_check\.engines\.nospec: .*SPEC = EngineSpec"):
         specs.specs()
     sys.modules.pop("koenig_check.engines.nospec", None)
+
+
+# --- The trapped engine: its causes, verdict, ranking, abstention and hint, through the whole pipeline ------------
+
+#: The trapped engine's causes (declared in its own causes.py, with fixtures in its own fixtures/).
+GEOM_MASS, ARMATURE = "gpu.mjcf.geom-mass", "gpu.mjcf.joint-armature"
+#: The engines named in the trap's tests.
+TRAPPED = ("mujoco", "pinocchio", "gpu")
+#: Two geom masses on two bodies, the smaller change first in the file: body small, 1.5 kg written and
+#: 1000 kg/m³ × 0.1³ m³ = 1 kg read by GPU (0.5 kg); body big, 2 kg written and 1000 × 0.2³ = 8 kg read (6 kg).
+TWO_GEOM_MASSES = """<mujoco model="two_geom_masses">
+  <worldbody>
+    <body name="small"><joint name="j1" type="hinge" axis="0 1 0"/>
+      <geom type="box" size="0.05 0.05 0.05" pos="0.2 0 0" mass="1.5"/>
+      <body name="big" pos="0.4 0 0"><joint name="j2" type="hinge" axis="0 1 0"/>
+        <geom type="box" size="0.1 0.1 0.1" pos="0.3 0 0" mass="2"/></body></body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def _fixture(cause_id: str) -> Path:
+    from koenig_check.causes import cause, fixture_path
+
+    return fixture_path(cause(cause_id))
+
+
+def test_its_causes_are_catalogued_with_fixtures_in_its_subpackage(
+    fourth_engine: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from koenig_check.causes import catalogue
+
+    assert {c.id for c in catalogue() if c.engine == "gpu"} == {GEOM_MASS, ARMATURE}
+    for cause_id in (GEOM_MASS, ARMATURE):
+        path = _fixture(cause_id)
+        assert path.is_file() and path.parent.parent.name == "gpu"  # engines/gpu/fixtures/
+    assert main(["causes", "--engine", "gpu", "--json"]) == 0
+    assert {c["id"] for c in json.loads(capsys.readouterr().out)} >= {GEOM_MASS, ARMATURE}
+
+
+@pytest.mark.parametrize("cause_id", [GEOM_MASS, ARMATURE])
+def test_its_fixtures_are_read_as_declared(fourth_engine: str, cause_id: str) -> None:
+    """Re-measured: GPU's reading departs from MuJoCo's in the declared quantities, Pinocchio's does not."""
+    from koenig_check.causes import cause
+    from koenig_check.engines.measurement import differences, fields
+
+    path, declared = _fixture(cause_id), fields(cause(cause_id).quantities)
+    mj, pin, gpu = (importlib.import_module(f"koenig_check.engines.{e}.causes").measure(path) for e in TRAPPED)
+    assert differences(gpu, mj, 1e-9) & declared and not differences(pin, mj, 1e-9) & declared
+    if cause_id == GEOM_MASS:  # by hand: 2 kg written; a 0.2 m cube of density 1000 kg/m³ weighs 8 kg
+        assert mj.mass == pytest.approx(2.0, rel=1e-12) and gpu.mass == pytest.approx(8.0, rel=1e-12)
+    else:
+        assert mj.armature == {"spin": pytest.approx(0.05, rel=1e-12)} and gpu.armature == {}
+
+
+def test_its_trap_makes_it_depart_with_its_cause_named(fourth_engine: str, capsys: pytest.CaptureFixture[str]) -> None:
+    path = _fixture(GEOM_MASS)
+    check = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=TRAPPED)
+    comparison = check.comparisons[0]
+    (energy,) = [f for f in comparison.findings if f.kind is Kind.VERDICT and f.element == "rigid-body energy"]
+    assert energy.engine == "gpu" and energy.summary.startswith("GPU departs (MuJoCo and Pinocchio agree)")
+    # By hand: one hinge, a cube (side 0.2 m) 0.3 m off the axis: I = m (0.2²/6 + 0.3²) is linear in m, 8/2 = 4.
+    assert energy.values["gpu"] == pytest.approx(4 * energy.values["mujoco"], rel=1e-12)
+    (found,) = [f for f in comparison.findings if f.cause == GEOM_MASS]
+    assert found.engine == "gpu" and found.element == "body arm" and found.root_cause
+    assert check.reason().startswith("geom_mass.xml: GPU departs; root cause: body arm: ")
+    argv = ["compare", str(path), "--poses", "4", "--formulas", "exact", "--engines", ",".join(TRAPPED)]
+    assert main(argv) == 1
+    assert "geom_mass.xml: GPU departs; root cause: body arm" in capsys.readouterr().err
+
+
+def test_its_causes_are_ranked_by_their_effect(fourth_engine: str, tmp_path: Path) -> None:
+    from koenig_check.diagnosis.reason import ordered_causes
+
+    path = tmp_path / "two_geom_masses.xml"
+    path.write_text(TWO_GEOM_MASSES)
+    check = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=TRAPPED)
+    findings = check.comparisons[0].findings
+    assert [f.element for f in findings if f.cause == GEOM_MASS] == ["body small", "body big"]  # the file's order
+    assert [f.element for f in ordered_causes(findings) if f.cause == GEOM_MASS] == ["body big", "body small"]
+    reason = check.reason()
+    assert "GPU departs" in reason and reason.index("big") < reason.index("small")  # 6 kg before 0.5 kg
+
+
+def test_it_does_not_vote_where_its_parser_misreads_and_names_the_others_in_its_hint(
+    fourth_engine: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = _fixture(ARMATURE)
+    check = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=TRAPPED)
+    findings = check.comparisons[0].findings
+    assert not check.ok and not [f for f in findings if f.kind is Kind.VERDICT]
+    (unable,) = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
+    assert unable.engine == "gpu" and unable.segments == ("spin",)
+    assert check.reason() == (
+        "joint_armature.xml: GPU cannot check this model: its MJCF parser ignores armature (joints: spin); "
+        "without GPU: --engines mujoco,pinocchio"
+    )
+    both = koenig_check.compare(path, n_poses=4, formulas=["exact"], engines=(*TRAPPED, "gpu_skewed"))
+    (unable,) = [f for f in both.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]
+    assert unable.hint == "without GPU: --engines mujoco,pinocchio,gpu_skewed"  # the other engines asked stay
+    assert main(["parity", str(path), "--engines", ",".join(TRAPPED)]) == 1
+    out, err = capsys.readouterr()
+    assert err.startswith("koenig-check: joint_armature.xml: GPU cannot check this model: its MJCF parser ignores")
+    assert "gpu: joint spin: GPU's MJCF parser ignores the joint's armature" in out
+
+
+def test_it_breaks_no_tie_unless_it_declares_so(fourth_engine: str) -> None:
+    """By default only a declared tie-breaker (Drake) is consulted where MuJoCo and Pinocchio disagree."""
+    path = _fixture("pinocchio.mjcf.class-geom-mass")
+    comparison = koenig_check.compare(path, n_poses=4, formulas=["exact"]).comparisons[0]
+    assert [f for f in comparison.findings if f.kind is Kind.MASS and f.engine == "pinocchio"]  # they disagree
+    assert "gpu" not in comparison.engines and "gpu_skewed" not in comparison.engines
+    assert [f.engine for f in comparison.findings if f.kind is Kind.ENGINE_NOT_USED and f.engine.startswith("gpu")] == [
+        "gpu",
+        "gpu_skewed",
+    ]
+    from koenig_check.diagnosis.diagnose import diagnose
+    from koenig_check.run.poses import random_pose_range
+
+    model = koenig_check.engines.load_model(path)
+    poses = random_pose_range(model.mujoco.model, 0, 4, 0, 1.0)
+    consulted = diagnose(model, disagree=True, qpos=poses.qpos, qvel=poses.qvel).engines
+    assert "gpu" not in consulted and ("drake" in consulted) == registry.installed("drake")

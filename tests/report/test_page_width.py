@@ -2,48 +2,37 @@
 
 A real report (the demo's models at few poses, plus a disagreeing model) is opened in Chromium with a script
 that measures the page after it has loaded and writes the measurements into the DOM, which ``--dump-dom``
-prints.  Skipped, with the reason, where Chromium is not installed; CI installs it and sets
-``KOENIG_CHECK_REQUIRE_CHROMIUM=1``, which turns the skip into a failure.
+prints (tests/browser.py: skipped where Chromium is not installed, unless CI requires it).
 """
 
 from __future__ import annotations
 
 import base64
-import html
 import io
-import json
-import os
 import re
-import shutil
-import subprocess
-import tempfile
 from pathlib import Path
 
 import pytest
 from PIL import Image
 
+from browser import WINDOW, measure, require_chromium
 from koenig_check.api import compare_model
 from koenig_check.demo import run_demo
 from koenig_check.report import write_report
 from koenig_check.report.figures import MIN_FONT_KEY
 
 CAUSES = Path(__file__).parents[1] / "models" / "causes"
-WINDOW = 1280
 #: The smallest text a reader is asked to read, in CSS px at the page's display size.
 MIN_TEXT_PX = 10.0
 
-CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome")) if p), None)
-if CHROMIUM is None and os.environ.get("KOENIG_CHECK_REQUIRE_CHROMIUM") != "1":
-    pytest.skip(
-        "Chromium is not installed (apt-get install chromium): the page width at 1280 px is not measured",
-        allow_module_level=True,
-    )
+require_chromium()
 
 #: Run after the page has loaded: the widths, every element that reaches past the window or scrolls
 #: sideways, each image's shown and natural width, and the smallest computed font size of the page's text.
 _MEASURE = """
 <script>
 window.addEventListener("load", () => {
+  for (const d of document.querySelectorAll("details")) d.open = true;  // as a reader who unfolds every section
   const root = document.documentElement;
   const out = {scrollWidth: root.scrollWidth, clientWidth: root.clientWidth, innerWidth: window.innerWidth,
                outside: [], scrolling: [], images: [], smallestText: Infinity, smallestTextAt: ""};
@@ -74,38 +63,46 @@ window.addEventListener("load", () => {
 """
 
 
-def chromium(page: Path, *args: str) -> str:
-    """Run headless Chromium on a local page with a 1280 px wide window; return what it prints."""
-    assert CHROMIUM is not None, "KOENIG_CHECK_REQUIRE_CHROMIUM=1 and Chromium is not installed"
-    with tempfile.TemporaryDirectory() as profile:
-        flags = [
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            f"--user-data-dir={profile}",
-            f"--window-size={WINDOW},1000",
-            "--force-device-scale-factor=1",
-        ]
-        done = subprocess.run(
-            [CHROMIUM, *flags, *args, page.as_uri()], capture_output=True, text=True, timeout=120, check=False
-        )
-    assert done.returncode == 0, done.stderr[-2000:]
-    return done.stdout
+#: The first screen of a laptop: the window the matrices must fit in, unscrolled.
+FIRST_SCREEN = (WINDOW, 800)
+
+#: After load, unscrolled: where each matrix ends, and the window's size.
+_FIRST_SCREEN = """
+<script>
+window.addEventListener("load", () => {
+  const out = {innerWidth: window.innerWidth, innerHeight: window.innerHeight, matrices: []};
+  for (const table of document.querySelectorAll("table.matrix")) {
+    const box = table.getBoundingClientRect();
+    out.matrices.push({cls: table.className, top: box.top, bottom: box.bottom, right: box.right,
+                       rows: table.tBodies[0].rows.length});
+  }
+  const pre = document.createElement("pre");
+  pre.id = "measured";
+  pre.hidden = true;
+  pre.textContent = JSON.stringify(out);
+  document.body.appendChild(pre);
+});
+</script>
+"""
 
 
 @pytest.fixture(scope="module")
-def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A demo report at few poses, a robot with long joint names and a model whose engines disagree.
+def demo_report(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, object, dict]:
+    """The demo's report at few poses (its twelve runs), and the run and figures it was written from."""
+    check, figures = run_demo(n_poses=4, grid_samples=5, trajectory_samples=20)
+    out = tmp_path_factory.mktemp("demo")
+    write_report(out, check, **figures)
+    return out / "report.html", check, figures
+
+
+@pytest.fixture(scope="module")
+def report(demo_report: tuple[Path, object, dict], tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The demo, a robot with long joint names and a model whose engines disagree.
 
     example-robot-data's kinova (joints named like ``j2s7s300_joint_finger_tip_1``) made main's tables scroll
     sideways inside their column at 1280 px; class_mass.xml shows its causes and its engine gap.
     """
-    check, figures = run_demo(n_poses=4, grid_samples=5, trajectory_samples=20)
+    _, check, figures = demo_report
     check.add(compare_model("kinova", n_poses=4))
     check.add(compare_model(CAUSES / "class_mass.xml", n_poses=6))
     assert not check.parities[-1].agrees  # the page shows a disagreement
@@ -116,12 +113,7 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.fixture(scope="module")
 def measured(report: Path) -> dict:
-    page = report.with_name("measured.html")
-    page.write_text(report.read_text(encoding="utf-8").replace("</body>", _MEASURE + "</body>"), encoding="utf-8")
-    dom = chromium(page, "--dump-dom", "--virtual-time-budget=10000")
-    found = re.search(r'<pre id="measured" hidden="">(.*?)</pre>', dom, re.S)
-    assert found, "the measuring script did not run"
-    return json.loads(html.unescape(found.group(1)))
+    return measure(report, _MEASURE)
 
 
 def test_the_page_has_no_horizontal_scroll_at_1280_px(measured: dict) -> None:
@@ -154,3 +146,16 @@ def test_each_model_shows_its_engine_gap_figure(report: Path) -> None:
     text = report.read_text(encoding="utf-8")
     sections = text.split('<section class="model"')[1:]
     assert sections and all("gap between the engines" in s for s in sections)
+
+
+def test_the_first_screen_of_the_demos_report_holds_both_matrices(demo_report: tuple[Path, object, dict]) -> None:
+    page = demo_report[0]
+    width, height = FIRST_SCREEN
+    screen = measure(page, _FIRST_SCREEN, height=height)
+    assert screen["innerWidth"] == width and screen["innerHeight"] <= height
+    kinds = {m["cls"].split()[-1]: m for m in screen["matrices"]}
+    assert set(kinds) == {"engines", "errors"}
+    assert kinds["engines"]["rows"] == 12  # the demo's twelve runs, one row each
+    for m in screen["matrices"]:
+        assert 0 <= m["top"] and m["bottom"] <= screen["innerHeight"], m  # whole, without scrolling
+        assert m["right"] <= width, m

@@ -7,7 +7,8 @@ itself, ``max|a - b|`` in the cause's unit (kg for the mass causes that MJCF par
 change relative to the element: 0.54 kg that a class's ``mass="0"`` should remove weighs less in the energy
 than 2.6 kg that meshes add (dm_control's Jaco arm).  Only mass causes (kind ``MASS``, in kg) are measured, so that
 the values compared share a unit; another cause (an ``<include>`` ignored, a ``<frame>`` skipped, a joint's
-position) has no measured effect here and keeps its place.
+position) has no measured effect here and keeps its place.  The sides are the engines' (every declared engine,
+:func:`koenig_check.engines.specs.names`, or those that loaded the model), so a cause of any engine is ranked.
 """
 
 from __future__ import annotations
@@ -18,10 +19,8 @@ from typing import Any
 
 import numpy as np
 
+from koenig_check.engines.specs import names
 from koenig_check.findings import Finding, Kind
-
-#: The engines whose sides a cause's values may carry.
-_SIDES = ("mujoco", "pinocchio", "drake")
 
 
 def _numbers(value: Any) -> np.ndarray | None:
@@ -35,12 +34,14 @@ def _numbers(value: Any) -> np.ndarray | None:
     return None
 
 
-def effect(cause: Finding) -> float | None:
+def effect(cause: Finding, engines: Sequence[str] | None = None) -> float | None:
     """The change of the mass a cause names on two engines' sides, or ``None`` when it is not a mass cause.
 
     Parameters
     ----------
     cause : Finding
+    engines : sequence of str, optional
+        The engines whose sides its values may carry, in report order (default: every declared engine).
 
     Returns
     -------
@@ -49,7 +50,7 @@ def effect(cause: Finding) -> float | None:
     """
     if cause.kind is not Kind.MASS or not cause.affects_energy:  # kg only: lengths and moments do not compare
         return None
-    sides = [_numbers(cause.values[s]) for s in _SIDES if s in cause.values]
+    sides = [_numbers(cause.values[s]) for s in (names() if engines is None else engines) if s in cause.values]
     pair = [s for s in sides if s is not None]
     if len(pair) < 2 or pair[0].shape != pair[1].shape:
         return None
@@ -57,18 +58,20 @@ def effect(cause: Finding) -> float | None:
     return change if np.isfinite(change) else None
 
 
-def by_effect(causes: Sequence[Finding]) -> list[Finding]:
+def by_effect(causes: Sequence[Finding], engines: Sequence[str] | None = None) -> list[Finding]:
     """Causes with a measured effect in the order of their effect, the largest first; the others keep their place.
 
     Parameters
     ----------
     causes : sequence of Finding
+    engines : sequence of str, optional
+        The engines that loaded the model, in report order (default: every declared engine).
 
     Returns
     -------
     list of Finding
     """
-    effects = [effect(c) for c in causes]
+    effects = [effect(c, engines) for c in causes]
     slots = [k for k, e in enumerate(effects) if e is not None]
     measured = sorted(slots, key=lambda k: -float(effects[k] or 0.0))  # stable: ties keep their order
     out = list(causes)

@@ -16,56 +16,37 @@ was given another robot than the file's.  The rule, the same for every quantity 
 * Drake consulted as tie-breaker only: it breaks no tie, and never fails the model (its own findings stay, as
   data, in ``koenig-check parity``).
 
-The limits are read from the model's data: a Drake ``ANCHOR`` finding on a joint of a body with several
-joints (Drake's parser drops the body's ``pos`` for the first of them, which moves them all), a Drake
-``ARMATURE`` finding where Drake has none and MuJoCo has some, a Drake ``IGNORED_CONSTRUCT`` (a ``<frame>``,
-an ``<include>``), a Drake ``INERTIA`` finding on a link whose mass or inertia its URDF parser replaced (a
-massless link with a rotational inertia becomes a 1 kg body: Drake cannot re-express it about its COM).
+The limits are declared by each engine in its subpackage (``engines/<name>/limits.py``,
+:class:`~koenig_check.engines.limit.ParserLimit`: Drake's are an ``ANCHOR`` finding on a joint of a body with
+several joints, an ``ARMATURE`` finding where Drake has none and MuJoCo has some, an ``INERTIA`` finding on a
+link whose mass or inertia its URDF parser replaced) and read from the model's findings by their kind, cause id
+and values; an ``IGNORED_CONSTRUCT`` finding of any optional engine (a ``<frame>``, an ``<include>``, a joint
+attribute) is one too.  Nothing here names an engine.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
-import numpy as np
-
-from koenig_check.engines.registry import LABEL
+from koenig_check.engines.limit import limits
+from koenig_check.engines.registry import label, optional, required
 from koenig_check.findings import Finding, Kind
 
-#: What an engine's MJCF parser does, by the kind of the finding that shows it.
-LIMITS = {
-    Kind.ANCHOR: "drops the pos of multi-joint bodies",
-    Kind.ARMATURE: "ignores armature",
-    Kind.INERTIA: "replaces inertias it judges unphysical",
-}
 
-#: What the names after a limit are, by the limit (joints otherwise).
-_NAMED = {LIMITS[Kind.INERTIA]: "links"}
+class Limit(NamedTuple):
+    """What an engine's parser does not read on a model, and where."""
 
-
-def _of_several(mj_model: Any, joint: str) -> bool:
-    """Whether ``joint`` is one of several joints of a MuJoCo body."""
-    import mujoco
-
-    k = mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_JOINT, joint)
-    if k < 0:
-        return False
-    body = int(mj_model.jnt_bodyid[k])
-    return int(mj_model.body_jntnum[body]) > 1
+    says: str
+    """What the parser does (``"ignores armature"``, ``"ignores <frame>"``)."""
+    names: list[str]
+    """The joints, links or elements concerned."""
+    noun: str = "joints"
+    """What :attr:`names` are."""
 
 
-def _drake_has_none(finding: Finding) -> bool:
-    values = finding.values
-    if finding.engine not in values or "mujoco" not in values:
-        return False
-    return bool(np.all(np.asarray(values[finding.engine], dtype=float) == 0)) and bool(
-        np.any(np.asarray(values["mujoco"], dtype=float) != 0)
-    )
-
-
-def parser_limit(finding: Finding, mj_model: Any) -> tuple[str, list[str]] | None:
-    """What a finding shows the engine's MJCF parser does not read, and the joints concerned; ``None`` otherwise.
+def parser_limit(finding: Finding, mj_model: Any) -> Limit | None:
+    """What a finding shows the engine's parser does not read, and the joints concerned; ``None`` otherwise.
 
     Parameters
     ----------
@@ -76,26 +57,23 @@ def parser_limit(finding: Finding, mj_model: Any) -> tuple[str, list[str]] | Non
 
     Returns
     -------
-    (str, list of str) or None
-        E.g. ``("ignores armature", ["spin"])``; for a construct that is not a joint's attribute (a
-        ``<frame>``), the element itself (``("ignores <frame>", ["frame f in body b"])``).
+    Limit or None
+        E.g. ``Limit("ignores armature", ["spin"])``; for a construct that is not a joint's attribute (a
+        ``<frame>``), the element itself (``Limit("ignores <frame>", ["frame f in body b"], "elements")``).
     """
     tag, _, name = finding.element.partition(" ")
-    if finding.kind is Kind.ANCHOR and tag == "joint" and _of_several(mj_model, name):
-        return LIMITS[Kind.ANCHOR], [name]
-    if finding.kind is Kind.ARMATURE and _drake_has_none(finding):
-        return LIMITS[Kind.ARMATURE], [name]
-    if finding.kind is Kind.INERTIA and f"mass in {LABEL.get(finding.engine, finding.engine)}" in finding.values:
-        return LIMITS[Kind.INERTIA], [name]  # the link whose <inertial> the parser replaced by its own
+    for declared in limits(finding.engine):
+        if declared.shown_by(finding, mj_model):
+            return Limit(declared.says, [name], declared.names)
     if finding.kind is Kind.IGNORED_CONSTRUCT:
         joints = finding.values.get("joints")
         if tag == "joint" and name and joints:  # an attribute of joints ("joint armature")
-            return f"ignores {name}", [str(j) for j in joints]
-        return f"ignores <{tag}>", [finding.element]
+            return Limit(f"ignores {name}", [str(j) for j in joints])
+        return Limit(f"ignores <{tag}>", [finding.element], "elements")
     return None
 
 
-def limited_engines(findings: Sequence[Finding], mj_model: Any) -> dict[str, list[tuple[str, list[str]]]]:
+def limited_engines(findings: Sequence[Finding], mj_model: Any) -> dict[str, list[Limit]]:
     """The optional engines whose parser does not read a construct the model uses, each with what it does not read.
 
     Such an engine checks another robot than the file's: it does not vote in the three-engine verdicts (see the
@@ -110,13 +88,14 @@ def limited_engines(findings: Sequence[Finding], mj_model: Any) -> dict[str, lis
 
     Returns
     -------
-    dict of str to list of (str, list of str)
+    dict of str to list of Limit
         Engine -> its limits on this model (:func:`parser_limit`), in report order; engines without any are
         left out.
     """
-    out: dict[str, list[tuple[str, list[str]]]] = {}
+    out: dict[str, list[Limit]] = {}
+    engines = optional()
     for f in findings:
-        if f.engine not in LABEL or f.engine in ("mujoco", "pinocchio"):
+        if f.engine not in engines:
             continue
         if not f.affects_energy or f.kind in _NOT_READINGS:
             continue
@@ -126,16 +105,14 @@ def limited_engines(findings: Sequence[Finding], mj_model: Any) -> dict[str, lis
     return out
 
 
-def unable_findings(
-    limits: dict[str, list[tuple[str, list[str]]]], asked: Sequence[str], parser: str = "MJCF"
-) -> list[Finding]:
+def unable_findings(limits: dict[str, list[Limit]], asked: Sequence[str], parser: str = "MJCF") -> list[Finding]:
     """One ``ENGINE_UNABLE`` finding per engine the user named whose parser does not read what the model uses.
 
     Said whether or not the engine departs on the poses compared (``parity`` compares none).
 
     Parameters
     ----------
-    limits : dict of str to list of (str, list of str)
+    limits : dict of str to list of Limit
         As :func:`limited_engines` returns.
     asked : sequence of str
         The optional engines the user named (:func:`koenig_check.diagnosis.policy.asked_for`).
@@ -146,43 +123,46 @@ def unable_findings(
     -------
     list of Finding
     """
-    return [unable_finding(engine, found, parser) for engine, found in limits.items() if engine in asked]
+    return [unable_finding(engine, found, parser, asked) for engine, found in limits.items() if engine in asked]
 
 
 #: Findings that are not an engine's reading of the file.
 _NOT_READINGS = (Kind.VERDICT, Kind.ENGINE_UNABLE, Kind.ENGINE_NOT_USED)
 
 
-def unable_finding(engine: str, limits: Sequence[tuple[str, list[str]]], parser: str = "MJCF") -> Finding:
+def unable_finding(engine: str, limits: Sequence[Limit], parser: str = "MJCF", asked: Sequence[str] = ()) -> Finding:
     """The ``ENGINE_UNABLE`` finding of an engine whose parser does not read what the model uses.
 
     Parameters
     ----------
     engine : str
-    limits : sequence of (str, list of str)
+    limits : sequence of Limit
         What the engine's parser does not read and the joints (or elements, links) concerned, per finding.
     parser : str
         The file's format (``"MJCF"``, ``"URDF"``).
+    asked : sequence of str
+        The optional engines the user named: the hint keeps the others.
 
     Returns
     -------
     Finding
-        ``"Drake cannot check this model: its MJCF parser ignores armature (joints: a, b)"``.
+        ``"Drake cannot check this model: its MJCF parser ignores armature (joints: a, b)"``, with the hint
+        ``"without Drake: --engines mujoco,pinocchio"``.
     """
-    by_limit: dict[str, list[str]] = {}
-    for limit, names in limits:
-        known = by_limit.setdefault(limit, [])
-        known += [n for n in names if n not in known]
+    by_limit: dict[tuple[str, str], list[str]] = {}
+    for limit in limits:
+        known = by_limit.setdefault((limit.says, limit.noun), [])
+        known += [n for n in limit.names if n not in known]
     parts = []
-    for limit, names in by_limit.items():
+    for (says, noun), names in by_limit.items():
         shown = ", ".join(names[:2]) + (f" and {len(names) - 2} more" if len(names) > 2 else "")
-        noun = "elements" if limit.startswith("ignores <") else _NAMED.get(limit, "joints")
-        parts.append(f"{limit} ({noun}: {shown})")
+        parts.append(f"{says} ({noun}: {shown})")
+    others = [*required(), *(e for e in asked if e != engine)]
     return Finding(
         Kind.ENGINE_UNABLE,
         engine,
         "model",
-        f"{LABEL[engine]} cannot check this model: its {parser} parser " + "; ".join(parts),
+        f"{label(engine)} cannot check this model: its {parser} parser " + "; ".join(parts),
         segments=tuple(name for names in by_limit.values() for name in names),
-        hint="without Drake: --engines mujoco,pinocchio",
+        hint=f"without {label(engine)}: --engines {','.join(others)}",
     )

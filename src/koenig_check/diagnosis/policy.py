@@ -1,10 +1,11 @@
 """When an optional engine (Drake) checks a model: the checker's policy, apart from how engines load.
 
-``engines=None`` (the default): an optional engine that is installed is consulted only on a model where
-MuJoCo and Pinocchio disagree, as tie-breaker, so that agreeing models cost nothing extra.  An engine the
-user names (``engines=("mujoco", "pinocchio", "drake")``) runs on every pose of every model; when it cannot
-check a model, the check the user asked for was not made, and the model fails.  Whenever an optional
-engine is not used, an ``ENGINE_NOT_USED`` finding says why.
+``engines=None`` (the default): an optional engine that is installed and declares itself a tie-breaker
+(:attr:`~koenig_check.engines.specs.EngineSpec.tie_breaker`) is consulted only on a model where the required
+engines disagree, so that agreeing models cost nothing extra; any other optional engine runs only when named.
+An engine the user names (``engines=("mujoco", "pinocchio", "drake")``) runs on every pose of every model;
+when it cannot check a model, the check the user asked for was not made, and the model fails.  Whenever an
+optional engine is not used, an ``ENGINE_NOT_USED`` finding says why.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from koenig_check.engines import registry
-from koenig_check.engines.registry import install_hint, label, not_used, optional
+from koenig_check.engines.registry import install_hint, label, not_used, optional, required, spec
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
@@ -62,9 +63,17 @@ def to_consult(name: str, engines: Sequence[str] | None, disagree: bool) -> Find
         return not_used(name, "not asked for (engines: " + ", ".join(engines) + ")")
     if not registry.installed(name):
         return not_used(name, f"not installed ({install_hint(name)})")
+    if engines is None and not spec(name).tie_breaker:
+        return not_used(name, "not asked for (it breaks no tie: --engines names it)")
     if engines is None and not disagree:
-        return not_used(name, "not needed, MuJoCo and Pinocchio agree")
+        return not_used(name, f"not needed, {_and(required())} agree")
     return None
+
+
+def _and(engines: Sequence[str]) -> str:
+    """``"MuJoCo and Pinocchio"``: engines' labels joined for a sentence."""
+    labels = [label(e) for e in engines]
+    return ", ".join(labels[:-1]) + " and " + labels[-1] if len(labels) > 1 else "".join(labels)
 
 
 def unmade_checks(findings: Sequence[Finding], engines: Sequence[str] | None) -> list[Finding]:
@@ -90,7 +99,7 @@ def unmade_checks(findings: Sequence[Finding], engines: Sequence[str] | None) ->
             "model",
             f"{label(f.engine)} asked for (--engines) but it could not check the model: "
             + f.summary.removeprefix(f"{label(f.engine)} not used: "),
-            hint="check the model without it (--engines mujoco,pinocchio), or fix what it refuses",
+            hint=f"check the model without it (--engines {','.join(required())}), or fix what it refuses",
         )
         for f in findings
         if f.kind is Kind.ENGINE_NOT_USED and f.engine in asked

@@ -1,7 +1,8 @@
 """The catalogue: every cause declared by the engine subpackages, found once, looked up by id.
 
 An engine subpackage declares the causes it is subject to in ``engines/<name>/causes.py`` as ``CAUSES``; a new
-engine brings its causes with it and nothing here changes.
+engine brings its causes with it (and their fixtures, in ``engines/<name>/fixtures/`` or the shared
+``koenig_check/causes/fixtures/``) and nothing here changes.
 """
 
 from __future__ import annotations
@@ -18,10 +19,9 @@ from packaging.specifiers import SpecifierSet
 from packaging.version import InvalidVersion, Version
 
 from koenig_check.engines.cause import Cause
-from koenig_check.engines.specs import ENGINES_PACKAGE, spec, specs
+from koenig_check.engines.specs import ENGINES_PACKAGE, EngineSpec, spec, specs
 
 
-@cache
 def catalogue() -> tuple[Cause, ...]:
     """Every declared cause, ordered by id.
 
@@ -35,9 +35,15 @@ def catalogue() -> tuple[Cause, ...]:
         Two declarations share an id, a cause is declared by a subpackage other than its engine's, or a
         reading names an engine that does not exist.
     """
+    return _collected(specs())
+
+
+@cache
+def _collected(declared: tuple[EngineSpec, ...]) -> tuple[Cause, ...]:
+    """The causes of the engines declared (found once per set of engines: a test may add one)."""
     found: list[Cause] = []
-    engines = {s.name for s in specs()}
-    for s in specs():
+    engines = {s.name for s in declared}
+    for s in declared:
         module = f"{ENGINES_PACKAGE}.{s.name}.causes"
         if importlib.util.find_spec(module) is None:
             continue
@@ -81,6 +87,9 @@ def cause(cause_id: str) -> Cause:
 def fixture_path(c: Cause) -> Path:
     """The cause's minimal model file, shipped with the package.
 
+    In its engine's subpackage (``engines/<name>/fixtures/``) when there, else in
+    ``koenig_check/causes/fixtures/``.
+
     Parameters
     ----------
     c : Cause
@@ -89,6 +98,9 @@ def fixture_path(c: Cause) -> Path:
     -------
     pathlib.Path
     """
+    own = Path(str(importlib.resources.files(f"{ENGINES_PACKAGE}.{c.engine}").joinpath("fixtures", c.fixture)))
+    if own.is_file():
+        return own
     return Path(str(importlib.resources.files("koenig_check.causes").joinpath("fixtures", c.fixture)))
 
 

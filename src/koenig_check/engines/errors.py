@@ -7,7 +7,6 @@ from __future__ import annotations
 
 from koenig_check.exceptions import (
     CoupledJointsError,
-    DrakeLoadError,
     EngineUnavailableError,
     InertiaError,
     JointMismatch,
@@ -19,7 +18,6 @@ from koenig_check.exceptions import (
 
 __all__ = [
     "CoupledJointsError",
-    "DrakeLoadError",
     "EngineUnavailableError",
     "InertiaError",
     "JointMismatch",

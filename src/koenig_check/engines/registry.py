@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines.errors import EngineUnavailableError
-from koenig_check.engines.specs import EngineSpec, names, spec, specs
+from koenig_check.engines.specs import EngineSpec, names, reference, spec, specs
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
@@ -38,9 +38,11 @@ __all__ = [  # and ENGINE_NAMES, REQUIRED, OPTIONAL (module __getattr__)
     "installed",
     "label",
     "load_function",
+    "mjcf_mesh_formats",
     "names",
     "not_used",
     "optional",
+    "reference",
     "required",
     "spec",
     "specs",
@@ -187,6 +189,24 @@ def check_engines(engines: Sequence[str] | None) -> None:
             raise EngineUnavailableError(
                 f"engines: {name} asked for but {module} is not installed ({install_hint(name)})", engine=name
             )
+
+
+def mjcf_mesh_formats(engines: Sequence[str]) -> dict[str, tuple[str, ...]]:
+    """The mesh formats the MJCF parsers of some engines read, for those that read only some.
+
+    Parameters
+    ----------
+    engines : sequence of str
+        The engines that will read a file (unknown names are ignored).
+
+    Returns
+    -------
+    dict of str to tuple of str
+        Engine -> the mesh suffixes its MJCF parser reads (:attr:`EngineSpec.mjcf_meshes`); an engine that
+        reads every mesh MuJoCo reads is left out.
+    """
+    known = set(names())
+    return {e: spec(e).mjcf_meshes for e in engines if e in known and spec(e).mjcf_meshes}
 
 
 def not_used(name: str, why: str, **values: Any) -> Finding:

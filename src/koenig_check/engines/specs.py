@@ -56,6 +56,18 @@ class EngineSpec:
     precision : float
         The relative round-off of what it reads and computes (float32 engines about 1e-5): a difference below it
         is never called a difference.
+    tie_breaker : bool
+        An optional engine consulted, when installed, on a model where the required engines disagree (the
+        default policy, :mod:`koenig_check.diagnosis.policy`); otherwise it runs only when the user names it.
+    reference : bool
+        Its reading of a file is the reference the others are placed against (MuJoCo: it defines the canonical
+        layout); one engine declares it.
+    mjcf_meshes : tuple of str
+        The mesh file suffixes its MJCF parser reads (``(".obj",)``); empty: every format MuJoCo reads.  The
+        export writes only these for a proof that includes the engine.
+    skips_mjcf : tuple of str
+        The MJCF elements its parser skips with everything inside (``("frame",)``): the joints they hold are
+        missing from its reading, which explains a refusal of the export's proof.
     """
 
     name: str
@@ -69,6 +81,10 @@ class EngineSpec:
     distribution: str = ""
     formats: tuple[str, ...] = ("mjcf", "urdf")
     precision: float = 1e-12
+    tie_breaker: bool = False
+    reference: bool = False
+    mjcf_meshes: tuple[str, ...] = ()
+    skips_mjcf: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.distribution:
@@ -130,6 +146,24 @@ def names() -> tuple[str, ...]:
     tuple of str
     """
     return tuple(s.name for s in specs())
+
+
+def reference() -> str:
+    """The engine whose reading of a file is the reference (the one whose spec says ``reference=True``).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        Not exactly one engine declares itself the reference.
+    """
+    found = [s.name for s in specs() if s.reference]
+    if len(found) != 1:
+        raise ValueError(f"engines: exactly one spec declares reference=True, found {found}")
+    return found[0]
 
 
 def spec(name: str) -> EngineSpec:

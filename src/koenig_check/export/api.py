@@ -8,6 +8,7 @@ from pathlib import Path
 from koenig_check.arguments import ArgumentValueError
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import load_mujoco
+from koenig_check.engines.registry import mjcf_mesh_formats, names
 from koenig_check.export.carried import NotCarried
 from koenig_check.export.mjcf_from_urdf import write_mjcf_from_urdf
 from koenig_check.export.portable_mjcf import write_portable_mjcf
@@ -103,7 +104,7 @@ def export_model(
         source, floating=floating, balance_inertia=balance_inertia, repair_inertia=repair_inertia
     )
     name = source.path.stem
-    any_mesh = engines is not None and "drake" not in engines  # Drake's MJCF parser refuses meshes but .obj
+    mesh_formats = mjcf_mesh_formats(names() if engines is None else engines)  # the proof's readers
     not_carried: list[NotCarried]
     if to == "urdf":
         text, not_carried = write_urdf(
@@ -111,11 +112,17 @@ def export_model(
         )
     elif source.format == "urdf":
         text, not_carried = write_mjcf_from_urdf(
-            mj_model, findings, body_findings, out, model_name=name, model_dir=source.path.parent, any_mesh=any_mesh
+            mj_model,
+            findings,
+            body_findings,
+            out,
+            model_name=name,
+            model_dir=source.path.parent,
+            mesh_formats=mesh_formats,
         )
     else:
         text, not_carried = write_portable_mjcf(
-            mj_model, out, model_name=name, model_dir=source.path.parent, any_mesh=any_mesh
+            mj_model, out, model_name=name, model_dir=source.path.parent, mesh_formats=mesh_formats
         )
     Path(out).write_text(text, encoding="utf-8")
     proof = prove(source.path, out, options, poses=poses, seed=seed, rtol=rtol, engines=engines)

@@ -10,6 +10,7 @@ parse back to the same doubles.  What the import changed is listed: links fused 
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 
 import mujoco
 
@@ -59,7 +60,7 @@ def write_mjcf_from_urdf(
     *,
     model_name: str = "robot",
     model_dir: str | os.PathLike[str] | None = None,
-    any_mesh: bool = False,
+    mesh_formats: Mapping[str, tuple[str, ...]] | None = None,
 ) -> tuple[str, list[NotCarried]]:
     """Write MuJoCo's import of a URDF as MJCF.
 
@@ -72,8 +73,8 @@ def write_mjcf_from_urdf(
     out_file : path
     model_name : str
     model_dir : path, optional
-    any_mesh : bool
-        Write meshes of every format, not ``.obj`` only (see :func:`write_portable_mjcf`).
+    mesh_formats : mapping of str to tuple of str, optional
+        The mesh formats of the readers that read only some (see :func:`write_portable_mjcf`).
 
     Returns
     -------
@@ -81,6 +82,6 @@ def write_mjcf_from_urdf(
     not_carried : list of NotCarried
     """
     text, not_carried = write_portable_mjcf(
-        model, out_file, model_name=model_name, model_dir=model_dir, any_mesh=any_mesh
+        model, out_file, model_name=model_name, model_dir=model_dir, mesh_formats=mesh_formats
     )
     return text, import_not_carried(findings, body_findings) + not_carried

@@ -7,24 +7,27 @@ a massless body gets none and its geoms ``mass="0"`` under ``inertiafromgeom="au
 reader derives a zero mass (Drake refuses a zero-mass ``<inertial>``), and no reader derives a mass from
 geometry elsewhere.  A joint's ``ref`` is folded into its body's pose where the body has that
 one joint, so that a reader ignoring ``ref`` still puts every body where MuJoCo does at the same ``q``.
-Mesh geoms are written for ``.obj`` files only (Drake's MJCF parser refuses the whole file otherwise);
-the others are listed as not carried, unless the export is for readers other than Drake (``any_mesh``):
-then every mesh MuJoCo read is written.  Several root bodies are wrapped under one jointless root at the
-identity (unless one is free or mocap: MuJoCo holds those only at the top level).  Numbers are
-written at full precision (Python's shortest repr, which parses back to the same double).  Joint
-equalities and keyframes are kept; tendons, actuators, sensors and other equalities are listed as not
-carried.
+Mesh geoms are written only in the formats every reader's MJCF parser reads (``mesh_formats``, from the
+engines' declarations: Drake's refuses the whole file for a mesh that is not ``.obj``); the others are listed
+as not carried.  For readers that read any mesh (no ``mesh_formats``), every mesh MuJoCo read is written.
+Several root bodies are wrapped under one jointless root at the identity (unless one is free or mocap: MuJoCo
+holds those only at the top level).  Numbers are written at full precision (Python's shortest repr, which
+parses back to the same double).  Joint equalities and keyframes are kept; tendons, actuators, sensors and
+other equalities are listed as not carried.
 """
 
 from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
+from pathlib import Path
 
 import mujoco
 import numpy as np
 
 from koenig_check.engines.canonical import mujoco_joint_names
+from koenig_check.engines.registry import label
 from koenig_check.export.carried import NotCarried
 from koenig_check.export.geometry import Geom, model_geoms, relative_mesh_path
 from koenig_check.export.model_extras import extras_not_carried
@@ -65,21 +68,34 @@ def _unused(name: str, names: list[str]) -> str:
     return name
 
 
-def _why(geom: Geom) -> str:
+def _refusing(geom: Geom, mesh_formats: Mapping[str, tuple[str, ...]]) -> list[str]:
+    """The readers whose MJCF parser refuses a mesh geom's file format."""
+    suffix = Path(geom.mesh_file).suffix.lower()
+    return [e for e, formats in mesh_formats.items() if suffix not in formats]
+
+
+def _why(geom: Geom, mesh_formats: Mapping[str, tuple[str, ...]]) -> str:
     if geom.shape != "mesh":
         return f"no {geom.shape} shape written"
     if not geom.mesh_file:
         return "mesh without a file"
-    return "mesh not .obj, which Drake's MJCF parser refuses; --engines without drake writes it"
+    refusing = _refusing(geom, mesh_formats)
+    read = "/".join(sorted({f for e in refusing for f in mesh_formats[e]}))
+    parsers = (
+        f"{label(refusing[0])}'s MJCF parser refuses"
+        if len(refusing) == 1
+        else ("the MJCF parsers of " + " and ".join(label(e) for e in refusing) + " refuse")
+    )
+    return f"mesh not {read}, which {parsers}; --engines without {','.join(refusing)} writes it"
 
 
-def _written(geom: Geom, any_mesh: bool) -> bool:
-    """Whether a geom is written: a shape MJCF holds, a mesh with its file (.obj only where Drake reads it)."""
+def _written(geom: Geom, mesh_formats: Mapping[str, tuple[str, ...]]) -> bool:
+    """Whether a geom is written: a shape MJCF holds, a mesh with its file in a format every reader reads."""
     if geom.shape not in _WRITABLE:
         return False
     if geom.shape != "mesh":
         return True
-    return bool(geom.mesh_file) and (any_mesh or geom.mesh_file.lower().endswith(".obj"))
+    return bool(geom.mesh_file) and not _refusing(geom, mesh_formats)
 
 
 def _geom(parent: ET.Element, geom: Geom, meshes: dict[str, str], out_file: str | os.PathLike[str]) -> None:
@@ -143,7 +159,7 @@ def write_portable_mjcf(
     *,
     model_name: str = "robot",
     model_dir: str | os.PathLike[str] | None = None,
-    any_mesh: bool = False,
+    mesh_formats: Mapping[str, tuple[str, ...]] | None = None,
 ) -> tuple[str, list[NotCarried]]:
     """Write a compiled MuJoCo model as one self-contained MJCF document.
 
@@ -155,9 +171,10 @@ def write_portable_mjcf(
     model_name : str
     model_dir : path, optional
         Directory relative mesh paths of the model are read from.
-    any_mesh : bool
-        Write mesh geoms of every file format MuJoCo read (STL, MSH, ...), for readers other than Drake,
-        whose MJCF parser refuses a file with a mesh that is not ``.obj``.  Default: ``.obj`` meshes only.
+    mesh_formats : mapping of str to tuple of str, optional
+        Reader -> the mesh suffixes its MJCF parser reads, for the readers that read only some
+        (:func:`koenig_check.engines.registry.mjcf_mesh_formats`: Drake's refuses a file with a mesh that is
+        not ``.obj``).  Default: every reader reads every mesh MuJoCo read (STL, MSH, ...).
 
     Returns
     -------
@@ -175,8 +192,9 @@ def write_portable_mjcf(
     not_carried: list[NotCarried] = []
     by_body: dict[int, list[Geom]] = {}
     skipped: list[Geom] = []
+    readers = mesh_formats or {}
     for g in model_geoms(model, model_dir):
-        if _written(g, any_mesh):
+        if _written(g, readers):
             by_body.setdefault(g.body, []).append(g)
         else:
             skipped.append(g)
@@ -256,7 +274,7 @@ def write_portable_mjcf(
             NotCarried(
                 "geom shape",
                 "geoms " + ", ".join(g.name for g in skipped),
-                "not written (" + "/".join(sorted({_why(g) for g in skipped})) + "); the inertia is explicit",
+                "not written (" + "/".join(sorted({_why(g, readers) for g in skipped})) + "); the inertia is explicit",
             )
         )
     not_carried += [

@@ -24,6 +24,7 @@ from koenig_check.report.content import (
     run_overview,
     shared_notes,
 )
+from koenig_check.report.matrices import matrices_html, model_agrees, model_anchor
 from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.summaries import FormulaSummary
@@ -58,6 +59,25 @@ figcaption { font-size: .85em; color: #444; }
 ul.causes li { margin-bottom: .2em; }
 details summary { cursor: pointer; color: #444; }
 dl dt { font-weight: 600; } dl dd { margin: 0 0 .4em 1.5em; }
+h1 { margin: .2em 0 .3em 0; font-size: 1.6em; }
+p.lead { margin: 0 0 .5em 0; font-size: .92em; }
+.matrices { display: grid; grid-template-columns: fit-content(24em) minmax(0, 1fr); gap: 1.5em; align-items: start; }
+.matrices.many { grid-template-columns: minmax(0, 1fr); }
+.matrices h2 { margin-top: .3em; font-size: 1.15em; }
+@media (max-width: 1000px) { .matrices { grid-template-columns: minmax(0, 1fr); } }
+table.matrix { font-size: .8em; line-height: 1.25; }
+table.matrix td.cell { text-align: center; padding: .15em .25em; white-space: nowrap;
+                       font-variant-numeric: tabular-nums; }
+table.matrix td.cell a { color: #1a1a1a; text-decoration: none; display: block; }
+table.matrix th.row { font-weight: 400; background: #fafafa; overflow-wrap: anywhere; }
+table.errors th.row { white-space: nowrap; overflow-wrap: normal; }
+table.errors th.model { height: 10.5em; vertical-align: bottom; padding: .2em 0; background: #fafafa; }
+table.errors th.model span { writing-mode: vertical-rl; transform: rotate(180deg); font-weight: 400;
+                             max-height: 10.5em; overflow: hidden; white-space: nowrap; text-overflow: ellipsis; }
+p.legend { font-size: .8em; color: #333; margin: .4em 0; line-height: 1.5; }
+.key { display: inline-block; width: 1em; height: .9em; border: 1px solid #999; margin: 0 .3em -.1em 0; }
+.bar { display: inline-block; width: 9em; height: .9em; border: 1px solid #999; margin: 0 .3em -.1em .3em; }
+section.model > details > summary { margin-bottom: .5em; }
 """
 
 
@@ -165,13 +185,14 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
     )
     body = [
         "<h1>koenig-check report</h1>",
-        "<p>Kinetic energy of every moving segment of each model, computed by MuJoCo and by Pinocchio from the "
-        "same joint positions and rates, and by each formula under test (Yu. Alyushin, <em>Correction of the "
-        "Koenig formula for the kinetic energy of a rotating solid</em>) from each engine's segment states. "
-        f"Tolerance: relative {_e(f'{rtol:g}')}. Numbers below {_e(f'{ROUNDOFF:g}')} are rounding and are "
-        "printed as 0.</p>",
+        '<p class="lead">The kinetic energy of every moving segment of each model from each engine, and from each '
+        "formula under test (Yu. Alyushin, <em>Correction of the Koenig formula for the kinetic energy of a rotating "
+        f"solid</em>) on each engine's segment states. Tolerance: relative {_e(f'{rtol:g}')}; numbers below "
+        f"{_e(f'{ROUNDOFF:g}')} are rounding, printed as 0. Each cell of the matrices links to its model's "
+        "section.</p>",
+        matrices_html(check),
         "<nav><p>Models: "
-        + ", ".join(f'<a href="#{_anchor(c.model)}">{_e(c.model)}</a>' for c in check.comparisons)
+        + ", ".join(f'<a href="#{model_anchor(c.model, k)}">{_e(c.model)}</a>' for k, c in enumerate(check.comparisons))
         + "</p></nav>",
         '<section id="findings"><h2>What this run found</h2>',
         "<p>"
@@ -189,9 +210,13 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
             items.append(f"not exact: <code>{_e(name)}</code> {_e(rest)}")
         if f.refused:
             items.append("refused (does not apply): " + ", ".join(f"<code>{_e(n)}</code>" for n in f.refused))
+        shown = cls == "disagree" or not model_agrees(comp, check.parities[k], rtol)  # folded when they agree
         body.append(
-            f'<li><a href="#{_anchor(comp.model)}-{k}"><strong>{_e(comp.model)}</strong></a> ({_e(f.poses)}): '
-            f'<span class="{cls}">{_e(f.engines)}</span>.<ul>' + "".join(f"<li>{i}.</li>" for i in items) + "</ul></li>"
+            f'<li><details{" open" if shown else ""}><summary><a href="#{model_anchor(comp.model, k)}">'
+            f"<strong>{_e(comp.model)}</strong></a> ({_e(f.poses)}): "
+            f'<span class="{cls}">{_e(f.engines)}</span>.</summary><ul>'
+            + "".join(f"<li>{i}.</li>" for i in items)
+            + "</ul></details></li>"
         )
     for model, reason in check.failures:
         body.append(
@@ -211,7 +236,13 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
     body.append("</dl></section>")
     for k, comp in enumerate(check.comparisons):
         p = parity.get(comp.model)
-        body.append(f'<section class="model" id="{_anchor(comp.model)}-{k}"><h2>{_e(comp.model)}</h2>')
+        agrees = model_agrees(comp, check.parities[k], rtol)
+        body.append(f'<section class="model" id="{model_anchor(comp.model, k)}"><h2>{_e(comp.model)}</h2>')
+        body.append(
+            f"<details{'' if agrees else ' open'}><summary>"
+            + ("the engines agree: conditions, table and figures" if agrees else "conditions, causes, table, figures")
+            + "</summary>"
+        )
         body.append(f"<p>Conditions: {_e(run_conditions(comp, check.settings.get(comp.model)))}.</p>")
         if p is not None:
             verdict = (
@@ -237,7 +268,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
         refusals = refusal_lines(comp)
         if refusals:
             body.append("<ul>" + "".join(f"<li>{_e(t)}</li>" for t in refusals) + "</ul>")
-        body.append("</section>")
+        body.append("</details></section>")
     if check.failures:
         body.append('<section id="failures"><h2>Models that could not be compared</h2><ul>')
         body += [f"<li>{_e(m)}: {_e(r)}</li>" for m, r in check.failures]
@@ -265,7 +296,3 @@ def _code(text: str) -> str:
     """Escape text, turning `name` into <code>name</code>."""
     parts = _e(text).split("`")
     return "".join(f"<code>{p}</code>" if k % 2 else p for k, p in enumerate(parts))
-
-
-def _anchor(model: str) -> str:
-    return "model-" + "".join(c if c.isalnum() else "-" for c in model)

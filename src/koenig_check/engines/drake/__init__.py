@@ -11,4 +11,7 @@ SPEC = EngineSpec(
     attach="koenig_check.engines.drake.attach:attach",
     load_alone="koenig_check.engines.drake.building:load_drake_engine",
     color="tab:green",
+    tie_breaker=True,
+    mjcf_meshes=(".obj",),
+    skips_mjcf=("frame",),
 )

@@ -5,8 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
+from koenig_check.engines.armature_readings import armature_differences
 from koenig_check.engines.base import Engine
 from koenig_check.engines.registry import not_used
 from koenig_check.exceptions import one_line
@@ -64,6 +63,9 @@ def _file_causes(model: Any) -> list[Finding]:
 def armature_findings(model: Any, drake: Any) -> list[Finding]:
     """Joints whose armature MuJoCo has but Drake's model lacks (Drake's MJCF parser reads it where a motor drives).
 
+    Which joints differ is read by :func:`koenig_check.engines.armature_readings.armature_differences`, the same
+    for any engine; what the difference means is Drake's, said here.
+
     Parameters
     ----------
     model : LoadedModel
@@ -74,17 +76,8 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
     list of Finding
         One ``IGNORED_CONSTRUCT`` root cause naming the joints, when any.
     """
-    mj = model.mujoco
-    arm = np.asarray(mj.model.dof_armature, dtype=float)
-    reflected = drake.armature_per_dof()
-    joints = [
-        p.name for p in drake.state_map.pairs if arm[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
-    ]
-    extension = [
-        p.name
-        for p in drake.state_map.pairs
-        if reflected[p.vadr] > 0 and not np.isclose(reflected[p.vadr], arm[p.vadr])
-    ]
+    differences = armature_differences(model, drake)  # the engine-independent part, read the same for any engine
+    joints, extension = differences.missing, differences.added
     out = []
     if extension:
         out.append(
@@ -96,14 +89,13 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
                 "armature does not match",
                 {
                     "joints": extension,
-                    "drake": [float(reflected[p.vadr]) for p in drake.state_map.pairs if p.name in extension],
+                    "drake": [differences.engine[j] for j in extension],
                 },
                 affects_energy=True,
                 root_cause=True,
                 segments=tuple(extension),
             )
         )
-    joints = [j for j in joints if j not in extension]
     if not joints or model.source.format != "mjcf":
         return out
     return [
@@ -116,7 +108,7 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
             "reads as the motor's reflected inertia, rotor inertia × gear ratio²)",
             {
                 "joints": joints,
-                "mujoco armature": [float(arm[p.vadr]) for p in drake.state_map.pairs if p.name in joints],
+                "mujoco armature": [differences.mujoco[j] for j in joints],
             },
             affects_energy=True,
             root_cause=True,

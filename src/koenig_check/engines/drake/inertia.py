@@ -24,6 +24,8 @@ from koenig_check.modelfile.validate import parse_xml
 
 #: Relative difference above which Drake is said to have replaced a link's mass or inertia.
 REPLACED_RTOL = 1e-9
+#: The values key of a replaced link's mass as Drake built it (read by :mod:`koenig_check.engines.drake.limits`).
+MASS_IN_DRAKE = "mass in Drake"
 
 
 def _file_inertials(path: Path) -> dict[str, tuple[float, np.ndarray, np.ndarray]]:
@@ -94,7 +96,7 @@ def replaced_inertias(plant: Any, path: Path, links: list[str], segment_of: dict
                 "Drake's URDF parser replaced an inertia it judges unphysical (its parser warning names the link)",
                 {
                     "mass in the file": mass,
-                    "mass in Drake": m,
+                    MASS_IN_DRAKE: m,
                     "moments in the file": np.round(np.linalg.eigvalsh(central), 12).tolist(),
                     "moments in Drake": np.round(np.linalg.eigvalsh(drake_central), 12).tolist(),
                 },

@@ -43,11 +43,20 @@ from pathlib import Path
 from typing import Any
 
 from koenig_check.engines.drake.ignored_geoms import ignored_geom, ignored_geom_finding
-from koenig_check.exceptions import DrakeLoadError, without_build_location
+from koenig_check.exceptions import ModelLoadError, without_build_location
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.edited_copy import edited_copy
 from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
+
+
+class DrakeLoadError(ModelLoadError):
+    """Drake cannot load a model file (or its joints cannot be paired with MuJoCo's); one line naming the file.
+
+    Drake's own load error lives in Drake's subpackage; a caller that is not about Drake catches
+    :class:`~koenig_check.exceptions.ModelLoadError`.
+    """
+
 
 _LOCATION = re.compile(r"^(?P<file>[^\s:]+):(?P<line>\d+): (?:warning|error): ")
 

@@ -3,4 +3,4 @@
 from koenig_check.engines.specs import EngineSpec
 
 #: MuJoCo's facts (:mod:`koenig_check.engines.specs`): every model is loaded in it; it defines the canonical layout.
-SPEC = EngineSpec(name="mujoco", label="MuJoCo", module="mujoco", required=True, color="tab:blue")
+SPEC = EngineSpec(name="mujoco", label="MuJoCo", module="mujoco", required=True, color="tab:blue", reference=True)
