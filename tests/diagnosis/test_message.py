@@ -146,7 +146,7 @@ def test_drakes_own_words_are_on_the_terminal() -> None:
     pytest.importorskip("pydrake")
     from koenig_check.engines import load_model
     from koenig_check.engines.drake.building import load_drake_engine
-    from koenig_check.exceptions import DrakeLoadError
+    from koenig_check.engines.drake.loader import DrakeLoadError
 
     pair = load_model("talos")
     with pytest.raises(DrakeLoadError) as info:
