@@ -52,7 +52,6 @@ __all__ = [
     "PathDependentError",
     "PoseFileError",
     "RecordFileError",
-    "quote_engine",
 ]
 
 
