@@ -51,7 +51,7 @@ def test_non_finite_value_is_still_refused(value: float) -> None:
     link0 = mujoco.mj_name2id(mj_model, mujoco.mjtObj.mjOBJ_BODY, "link0")
     mj_model.body_inertia[link0, 2] = value
     with pytest.raises(ModelLoadError) as info:
-        check_finite(mj_model, pair.pinocchio.model, "far_sensors.urdf")
+        check_finite(mj_model, pair.pinocchio.model, "far_sensors.urdf", ("mujoco", "pinocchio"))
     assert "far_sensors.urdf" in str(info.value) and "link0" in str(info.value)
 
 

@@ -38,7 +38,7 @@ _MUJOCO_FIELDS = {
 _UNBOUNDED = frozenset({"jnt_range", "qpos0"})
 
 
-def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> list[Finding]:
+def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str, names: tuple[str, str]) -> list[Finding]:
     """Raise if either engine compiled a non-finite number into the model; note each large finite one.
 
     Parameters
@@ -47,6 +47,8 @@ def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> l
     pin_model : pinocchio.Model
     path : str
         The model file, for the message.
+    names : (str, str)
+        The two engines' names, as the findings carry them (MuJoCo's, Pinocchio's).
 
     Returns
     -------
@@ -80,7 +82,7 @@ def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> l
             value = float(values[tuple(np.argwhere(found)[0])])
             if refused:
                 raise ModelLoadError(f"{path}: non-finite value {value:g} in MuJoCo's model, {element}: {quantity}")
-            notes.append(_large("mujoco", element, quantity, value))
+            notes.append(_large(names[0], element, quantity, value))
     axes = np.linalg.norm(np.asarray(mj_model.jnt_axis, dtype=float).reshape(-1, 3), axis=1)
     for j in range(mj_model.njnt):
         if int(mj_model.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)):
@@ -102,7 +104,7 @@ def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> l
             raise ModelLoadError(f"{path}: non-finite value in Pinocchio's model, joint {name!r}: placement or inertia")
         largest = float(np.abs(values).max())
         if largest > MAX_MAGNITUDE and not pin_noted:
-            notes.append(_large("pinocchio", f"joint {name}", "placement or inertia", largest))
+            notes.append(_large(names[1], f"joint {name}", "placement or inertia", largest))
             pin_noted = True
     return notes
 

@@ -327,7 +327,7 @@ def load_model(
                 {"pinocchio": str(pin_source.path), "mujoco": str(source.path)},
             ),
         )
-    large_values = check_finite(mj_model, pin_model, str(source.path))
+    large_values = check_finite(mj_model, pin_model, str(source.path), ("mujoco", "pinocchio"))
     if mj_model.nv == 0:
         advice = moving_advice(mj_model, urdf=source.path.suffix.lower() == ".urdf")
         err = NoMovingSegmentError(

@@ -58,7 +58,7 @@ def attach_causes(root: ET.Element, folder: Path, mj_model: Any = None) -> list[
                     "file": files.get(model, ""),
                     "bodies": tuple(bodies),
                     "joints": tuple(joints),
-                    "mujoco": f"{len(bodies)} bodies, {len(joints)} joints",
+                    "attached": f"{len(bodies)} bodies, {len(joints)} joints",
                     "pinocchio": "not read",
                 },
                 affects_energy=bool(joints or segments),
