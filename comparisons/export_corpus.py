@@ -21,6 +21,7 @@ from pathlib import Path
 from common import HERE, display_name, dm_control_corpus, erd_corpus, progress, scrub, table
 
 from koenig_check.engines.errors import InertiaError, ModelLoadError, NotFloatableError
+from koenig_check.engines.registry import installed, names, spec
 from koenig_check.export import ExportRefusedError, export_model
 from koenig_check.modelfile.validate import ModelFileError
 
@@ -80,9 +81,12 @@ def main() -> None:
             progress(f"{display_name(path)} → {to}: {verdict}")
     directions = sorted({d for d, _ in counts})
     verdicts = ["equivalent", "refused", "not equivalent", "original does not load", "nothing moves"]
-    every = collections.Counter(r[1] for r in rows if r[2] == "equivalent" and r[3].count(",") == 2)
+    readers = {to: {n for n in names() if to in spec(n).formats and installed(n)} for to in ("mjcf", "urdf")}
+    every = collections.Counter(
+        r[1] for r in rows if r[2] == "equivalent" and set(r[3].split(", ")) == readers[r[1].split(" → ")[1]]
+    )
     summary = [[d, *(str(counts[(d, v)]) for v in verdicts), str(every[d])] for d in directions]
-    columns = ["direction", *verdicts, "equivalent in all 3 engines"]
+    columns = ["direction", *verdicts, "equivalent in every engine that reads the target"]
     lines = [
         "# Exports of robot files koenig-check was not developed on",
         "",

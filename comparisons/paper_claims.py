@@ -287,8 +287,8 @@ def claim_c(pair, out: Path) -> tuple[Claim, list[list[object]]]:
 def claim_d(pair, out: Path) -> list[Claim]:
     import matplotlib.pyplot as plt
 
+    from koenig_check.formulas.paper_section3 import concluding_energy, integrand_41
     from koenig_check.formulas.point_masses import equimomental_points
-    from koenig_check.paper_section3 import concluding_energy, integrand_41
 
     a, A, B = grid_qpos()
     s = states_at(pair, np.c_[A.ravel(), B.ravel()], np.tile(RATES, (A.size, 1)))

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from koenig_check.analytic import random_states
+from koenig_check.formulas.analytic import random_states
 from koenig_check.segments import SegmentStates
 from process_memory import peak_memory, release_memory
 

@@ -189,14 +189,14 @@ def test_engine_disagreement_names_its_import_cause(tmp_path: Path) -> None:
     import re
 
     from koenig_check.api import compare_model
-    from koenig_check.run.summaries import engine_parity
+    from koenig_check.run.summaries import engine_agreement
 
     comp = compare_model(MODELS / "serial7.urdf", n_poses=4)
-    assert engine_parity(comp).agrees and not [f for f in comp.findings if f.affects_energy]
+    assert engine_agreement(comp).agrees and not [f for f in comp.findings if f.affects_energy]
     text = (MODELS / "serial7.urdf").read_text()
     altered = re.sub(r'(<link name="link5">.*?<mass value=")1.2(")', r"\g<1>1.5\g<2>", text, count=1, flags=re.S)
     copy = tmp_path / "heavier.urdf"
     copy.write_text(altered)
-    parity = engine_parity(compare_model(MODELS / "serial7.urdf", n_poses=4, pinocchio_model=copy))
+    parity = engine_agreement(compare_model(MODELS / "serial7.urdf", n_poses=4, pinocchio_model=copy))
     assert not parity.agrees and "cause: both: link link5 (joint j5): mass differs between the engines" in parity.reason
     assert "(mujoco 1.2, pinocchio 1.5, relative difference 0.2)" in parity.reason

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.analytic import random_rotations
+from koenig_check.formulas.analytic import random_rotations
 from koenig_check.formulas.terms import SYM6
 from koenig_check.kernels import (
     body_point_velocities,

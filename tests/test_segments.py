@@ -3,7 +3,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.analytic import random_states
+from koenig_check.formulas.analytic import random_states
 from koenig_check.segments import (
     SegmentStates,
     check_physical_inertia,

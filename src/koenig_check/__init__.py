@@ -4,10 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from koenig_check import _moved
 from koenig_check.segments import SegmentStates
-
-_moved.install()
 
 if TYPE_CHECKING:
     from pathlib import Path

@@ -2,13 +2,15 @@
 
 Its result is :class:`~koenig_check.run.cross_check.CrossCheck`; poses are drawn by
 :func:`~koenig_check.run.pose_kinds.make_poses`, the load options merged by
-:func:`~koenig_check.engines.load_options.load_options_from` (the three names still import from here).
+:func:`~koenig_check.engines.load_options.load_options_from`.
 """
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -52,7 +54,7 @@ def compare_model(
     on_chunk: Callable[[int, int], None] | None = None,
     **load_kwargs: Any,
 ) -> ModelComparison:
-    """Load one model into both engines and run the comparison grid on it.
+    """Load one model into both engines and run the comparison on it.
 
     Parameters
     ----------
@@ -104,9 +106,7 @@ def compare_model(
 
     options = load_options_from(load_options, load_kwargs)
     loaded = load_model(model, options)
-    source = pipeline.WorkerModel(str(model), options)
-    for name in policy.asked_for(options.engines):  # named engines run on every pose, when they can
-        loaded.attach(name)
+    policy.attach_engines(loaded)  # the engines the user named run on every pose
     if pose_file is not None:
         from koenig_check.run.pose_file import load_pose_file
 
@@ -125,54 +125,83 @@ def compare_model(
             grid_joints=grid_joints,
             duration=duration,
         )
-    try:
-        comp = pipeline.run_model(
-            loaded,
-            source,
-            label or unique_labels([model], options.floating)[0],
-            formulas,
-            pose_set=pose_set,
-            random=random,
-            records=records,
-            rtol=rtol,
-            jobs=jobs,
-            client=client,
-            sink=sink,
-            keep_records=keep_records,
-            chunk_poses=chunk_poses,
-            on_chunk=on_chunk,
-        )
-    finally:
-        pipeline.forget()  # the run is over: the process keeps no model (only this call's `loaded`)
-    disagree = comp.stats is not None and comp.stats.parity.rigid.value > rtol
-    sample = _verdict_sample(loaded, pose_set, random)
-    diagnosis = diagnose(loaded, disagree=disagree, qpos=sample.qpos, qvel=sample.qvel, rtol=rtol)
-    comp.findings = diagnosis.findings
-    comp.segment_labels = diagnosis.parity.segment_labels if diagnosis.parity is not None else {}
-    comp.notes = (
-        [reason.as_note(f) for f in diagnosis.verdicts]
-        + [f.message() for f in diagnosis.optional_findings]
-        + comp.notes
+    run, sample = pipeline.run_model(
+        loaded,
+        pipeline.WorkerModel(str(model), options),
+        label or unique_labels([model], options.floating)[0],
+        formulas,
+        pose_set=pose_set,
+        random=random,
+        records=records,
+        rtol=rtol,
+        jobs=jobs,
+        client=client,
+        sink=sink,
+        keep_records=keep_records,
+        chunk_poses=chunk_poses,
+        on_chunk=on_chunk,
     )
-    return comp
+    disagree = run.stats is not None and run.stats.agreement.rigid.value > rtol
+    diagnosis = diagnose(
+        loaded,
+        disagree=disagree,
+        qpos=sample.qpos if sample is not None else None,
+        qvel=sample.qvel if sample is not None else None,
+        energies=sample.energies if sample is not None else None,
+        rtol=rtol,
+    )
+    return replace(
+        run,
+        findings=diagnosis.findings,
+        segment_labels=diagnosis.parity.segment_labels if diagnosis.parity is not None else {},
+        notes=[reason.as_note(f) for f in diagnosis.verdicts]
+        + [f.message() for f in diagnosis.optional_findings]
+        + run.notes,
+    )
 
 
-#: Poses on which the three engines' verdicts are computed (the first of the run's poses).
-VERDICT_POSES = 256
+@dataclass(frozen=True)
+class PreparedModels:
+    """Models checked and fetched once (:func:`prepare_models`): :func:`compare` does not prepare them again.
+
+    Attributes
+    ----------
+    models : tuple of str or Path
+    """
+
+    models: tuple[str | Path, ...]
 
 
-def _verdict_sample(loaded: Any, pose_set: poses.PoseSet | None, random: pipeline.RandomRange | None) -> poses.PoseSet:
-    """The first :data:`VERDICT_POSES` poses of the run, on which the three engines' energies are compared."""
-    if pose_set is not None:
-        return pose_set.slice(0, VERDICT_POSES)
-    assert random is not None
-    stop = min(random.stop, random.start + VERDICT_POSES)
-    return poses.random_pose_range(loaded.mujoco.model, random.start, stop, random.seed, random.velocity_scale)
+def prepare_models(
+    models: Sequence[str | Path], pinocchio_model: str | os.PathLike[str] | None = None
+) -> PreparedModels:
+    """Check and fetch the models of a batch before any is loaded (extras, names, downloads), once.
+
+    Parameters
+    ----------
+    models : sequence of str or Path
+    pinocchio_model : str or Path, optional
+        The file Pinocchio reads instead (``--pinocchio-model``), fetched too.
+
+    Returns
+    -------
+    PreparedModels
+        To pass to :func:`compare` as its ``models``.
+
+    Raises
+    ------
+    koenig_check.sources.ModelSourceError
+        The first model that cannot be had.
+    """
+    from koenig_check.sources.external import prepare
+
+    prepare([*models, *([pinocchio_model] if pinocchio_model else [])])
+    return PreparedModels(tuple(models))
 
 
 @suggest_keywords
 def compare(
-    models: str | Path | Sequence[str | Path] | Mapping[str, str | Path],
+    models: str | Path | Sequence[str | Path] | Mapping[str, str | Path] | PreparedModels,
     *,
     rtol: float = DEFAULT_RTOL,
     progress: Callable[[str], None] | None = None,
@@ -205,9 +234,10 @@ def compare(
 
     Parameters
     ----------
-    models : str, Path, sequence of them, or mapping of label to them
+    models : str, Path, sequence of them, mapping of label to them, or PreparedModels
         Model files or names (``koenig-check models``); labelled by :func:`koenig_check.run.labels.unique_labels`
-        unless given as ``{label: model}`` (the pytest plugin labels each model as the whole run does).
+        unless given as ``{label: model}`` (the pytest plugin labels each model as the whole run does).  Models
+        given as :class:`PreparedModels` (:func:`prepare_models`) were fetched already: not prepared again.
     rtol : float
         Tolerance of "agrees" (engines with each other and with ``exact``; formulas).
     progress : callable, optional
@@ -268,6 +298,9 @@ def compare(
     given = dict(locals())
     options = {name: given[name] for name in RUN_OPTIONS}
     overrides = {name: given[name] for name in LoadOptions.names() if given[name] is not None}
+    prepared = isinstance(models, PreparedModels)
+    if isinstance(models, PreparedModels):
+        models = list(models.models)
     if isinstance(models, str | Path):
         models = [models]
     given_labels = list(models.keys()) if isinstance(models, Mapping) else None
@@ -275,10 +308,9 @@ def compare(
     check_compare_arguments(rtol, options)
     load = load_options_from(load_options, overrides)
     check_engines(load.engines)
-    from koenig_check.sources.external import prepare
-
     models = list(models)
-    prepare([*models, *([load.pinocchio_model] if load.pinocchio_model else [])])  # extras, names, downloads
+    if not prepared:
+        prepare_models(models, load.pinocchio_model)  # extras, names, downloads
     result = CrossCheck(rtol=rtol)
     advance = getattr(progress, "advance", None)
     labels = given_labels or unique_labels(models, load.floating, load.xacro_args)

@@ -19,7 +19,7 @@ Hierarchy::
     │   └── InertiaError, CoupledJointsError, NoMovingSegmentError (an engine's own load error, such as
     │       DrakeLoadError, lives in its subpackage: koenig_check.engines.drake.loader)
     ├── JointMismatch (ValueError)                                       the engines' joints cannot be paired
-    ├── DrakeUnavailableError (ValueError)                               Drake asked for, not installed
+    ├── EngineUnavailableError (ValueError)                              an optional engine asked for, unusable
     ├── PoseFileError (ValueError), RecordFileError (ValueError)         input files of a run
     ├── NotPlaneParallelError (ValueError)                               eq. (16) on a motion not in a plane
     └── PathDependentError                                               a formula's energy needs the path
@@ -38,7 +38,6 @@ __all__ = [
     "ArgumentTypeError",
     "ArgumentValueError",
     "CoupledJointsError",
-    "DrakeUnavailableError",
     "EngineUnavailableError",
     "InertiaError",
     "JointMismatch",
@@ -232,10 +231,6 @@ class EngineUnavailableError(KoenigCheckError, ValueError):
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (type(self), (self.args[0] if self.args else "", self.engine))
-
-
-#: The former name of :class:`EngineUnavailableError` (Drake was the only optional engine).
-DrakeUnavailableError = EngineUnavailableError
 
 
 # ------------------------------------------------------------------------------------------ inputs of a run

@@ -17,7 +17,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from enum import Enum
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from koenig_check.engines import specs
 from koenig_check.exceptions import KoenigCheckError as KoenigCheckError  # its old import path
@@ -28,9 +28,6 @@ from koenig_check.roundoff import fmt, side_by_side
 #: construct of the file itself.
 NOT_ONE_ENGINE = ("both", "all", "file")
 
-if TYPE_CHECKING:
-    ENGINES: tuple[str, ...]  # read through __getattr__: the engines of the specs, then NOT_ONE_ENGINE
-
 
 def concerned() -> tuple[str, ...]:
     """What a finding can concern: every engine (:func:`~koenig_check.engines.specs.names`), both, all, file.
@@ -40,13 +37,6 @@ def concerned() -> tuple[str, ...]:
     tuple of str
     """
     return (*specs.names(), *NOT_ONE_ENGINE)
-
-
-def __getattr__(name: str) -> tuple[str, ...]:
-    """``ENGINES``, the tuple of earlier versions: :func:`concerned`, read when asked."""
-    if name == "ENGINES":
-        return concerned()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class Kind(str, Enum):
@@ -108,6 +98,10 @@ class Finding:
         What the user can do about it (an option, a file to load instead), or empty.
     cause : str
         The id of the catalogued cause it is an instance of (:func:`koenig_check.causes.cause`), or empty.
+    brief : str
+        For a finding without a cause: its few words in a one-line reason (``"inertia changed so that MuJoCo
+        accepts it"``); empty: the summary.  A cause's brief form is its declaration's
+        (:attr:`koenig_check.causes.Cause.brief`).  Not a record's key (the summary says it whole).
     """
 
     kind: Kind
@@ -120,6 +114,7 @@ class Finding:
     segments: tuple[str, ...] = ()
     hint: str = ""
     cause: str = ""
+    brief: str = ""
 
     def __post_init__(self) -> None:
         if not isinstance(self.kind, Kind):

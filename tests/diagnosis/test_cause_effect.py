@@ -8,6 +8,7 @@ import pytest
 from common import dm_control_root
 
 import koenig_check
+from koenig_check.causes import cause
 from koenig_check.diagnosis.cause_effect import by_effect, effect
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.reason import ordered_causes
@@ -48,13 +49,13 @@ def test_jaco_leads_with_its_meshes_not_with_a_class_mass(name: str) -> None:
     causes = ordered_causes(import_parity(pair).as_findings())
     lead = causes[0]
     # the lead cause is the meshes': every geom it names is a mesh, and it carries most of the engines' mass gap
-    assert lead.kind is Kind.MASS and set(lead.values["geoms"]) <= meshes
+    assert lead.kind is Kind.MASS and set(lead.values["geoms"]) <= meshes and lead.cause == "pinocchio.mjcf.mesh-mass"
     assert abs(lead.values["pinocchio"] - lead.values["mujoco"]) > 0.5 * abs(pin_kg - mj_kg)
-    classes = [c for c in causes if c.kind is Kind.MASS and "class" in c.values]
+    classes = [c for c in causes if c.cause == "pinocchio.mjcf.class-geom-mass"]
     assert classes and causes.index(classes[0]) > 0  # the class's mass comes after
     reason = koenig_check.compare(path, n_poses=2, formulas=["exact"]).reason()
     assert reason.startswith(f"{name}: root cause: geom {lead.element.split()[1].rstrip(',')} (+")
-    assert "geoms with a mesh" in reason.split(" and ")[0]
+    assert cause("pinocchio.mjcf.mesh-mass").brief in reason.split("; and ")[0]
 
 
 def test_the_reason_names_the_root_cause_that_changes_the_most_mass_first() -> None:

@@ -15,6 +15,7 @@ import pytest
 
 import koenig_check
 from independent_energy import engines_agree
+from koenig_check.causes import cause as catalogued
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.reason import short_cause
 from koenig_check.engines import load_model
@@ -129,7 +130,7 @@ def test_geom_mass_from_a_default_class_is_named_with_both_masses() -> None:
     assert cause.segments == ("hinge",)
     assert report.headline().startswith("root cause: " + cause.message())
     check = _compare("class_mass.xml")
-    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.parities[0].reason
+    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.agreements[0].reason
 
 
 def test_geom_mass_written_on_the_geom_is_honoured() -> None:
@@ -151,7 +152,7 @@ def test_joint_positions_from_a_default_class_are_named() -> None:
     assert cause.values["mujoco"] == pytest.approx((0.03, 0.0, -0.03))
     assert cause.values["pinocchio"] == pytest.approx((0.0, 0.0, 0.0))
     check = _compare("class_joint_pos.xml")
-    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.parities[0].reason
+    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.agreements[0].reason
 
 
 def test_joint_positions_written_on_the_joints_are_honoured() -> None:
@@ -189,7 +190,7 @@ def test_mesh_geoms_are_named_when_pinocchio_gets_another_mass() -> None:
     assert (cause.engine, cause.element, cause.segments) == ("pinocchio", "geom shell", ("jb",))
     assert cause.values["mujoco"] == pytest.approx(0.3) and cause.values["pinocchio"] == pytest.approx(1.0)
     check = _compare("mesh_geom.xml")
-    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.parities[0].reason
+    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.agreements[0].reason
 
 
 def test_a_visual_mesh_geom_is_said_to_count_as_nothing_not_1_kg(tmp_path) -> None:
@@ -214,7 +215,7 @@ def test_include_of_a_welded_part_is_named_and_changes_the_energy() -> None:
     assert (cause.element, cause.affects_energy, cause.segments) == ("include tool_part.xml", True, ("shoulder",))
     assert cause.values["bodies"] == ("tool",) and cause.values["joints"] == ()
     check = _compare("include_welded_in_body.xml")
-    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.parities[0].reason
+    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.agreements[0].reason
 
 
 def test_bodies_inside_a_frame_are_named_when_joints_do_not_pair() -> None:
@@ -275,7 +276,7 @@ def test_geom_position_from_a_default_class_is_named() -> None:
     assert cause.values["mujoco"] == pytest.approx((0.1, 0.0, 0.05))
     assert cause.values["pinocchio"] == pytest.approx((0.0, 0.0, 0.0))
     check = _compare("class_geom_pos.xml")
-    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.parities[0].reason
+    assert not check.ok and short_cause(cause) in check.reason() and cause.message() in check.agreements[0].reason
 
 
 def test_geoms_are_causes_again_when_the_compiler_takes_inertia_from_geoms(tmp_path: Path) -> None:
@@ -297,6 +298,7 @@ def test_an_include_in_a_body_and_further_root_bodies_are_both_named() -> None:
     found = {c.element: c for c in err.causes}
     assert set(found) == {"include arm_part_mujocoinclude.xml", "body kettle"}, [c.message() for c in err.causes]
     include = found["include arm_part_mujocoinclude.xml"]
+    assert (include.cause, found["body kettle"].cause) == ("pinocchio.mjcf.include", "pinocchio.mjcf.root-bodies")
     assert include.values["joints"] == ("elbow",) and include.values["bodies"] == ("forearm",)
     assert include.root_cause and include.affects_energy
     assert found["body kettle"].values["joints"] == ("lid",)
@@ -306,6 +308,6 @@ def test_an_include_in_a_body_and_further_root_bodies_are_both_named() -> None:
     assert "first root body, unnamed, with joint 'shoulder'" in found["body kettle"].message()
     check = _compare("include_and_roots.xml")
     # the first cause in a few words, the other counted as a root cause (never a name without its cause)
-    include_short = f"{include.element}: <include> ignored by Pinocchio's MJCF parser"
+    include_short = f"{include.element}: {catalogued('pinocchio.mjcf.include').brief}"
     assert not check.ok and include_short in check.reason() and "; and 1 more root cause" in check.reason()
     assert all(c.message() in check.failures[0][1] for c in err.causes)

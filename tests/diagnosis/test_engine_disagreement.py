@@ -40,12 +40,12 @@ def test_the_twin_really_changes_the_energy(heavier: Path) -> None:
 
 def test_api_engine_disagreement_is_not_ok(heavier: Path) -> None:
     check = compare(MODELS / "serial7.urdf", n_poses=4, pinocchio_model=heavier)
-    assert not check.failures and len(check.parities) == 1
+    assert not check.failures and len(check.agreements) == 1
     assert not check.ok
     reason = check.reason()
     assert "MuJoCo and Pinocchio differ by" in reason and "root cause: link link5 (joint j5): mass differs" in reason
     assert "\n" not in reason and len(reason) <= 186
-    assert "rigid-body energies differ" in check.parities[0].reason  # the details: values, pose
+    assert "rigid-body energies differ" in check.agreements[0].reason  # the details: values, pose
     assert compare(MODELS / "serial7.urdf", n_poses=4).ok  # the same file against itself agrees
 
 

@@ -60,7 +60,7 @@ def test_geoms_outside_the_range_are_the_named_cause(tmp_path: Path, groups: str
     assert cause.values["pinocchio"] == pytest.approx(BOX + BALL, rel=1e-12)
     assert cause.values["mujoco, every group"] == pytest.approx(BOX + BALL, rel=1e-12)
     assert short_cause(cause) in check.reason()
-    assert f"{cause.element}: {cause.summary}" in check.parities[0].reason  # the engine shown is the one departing
+    assert f"{cause.element}: {cause.summary}" in check.agreements[0].reason  # the engine shown is the one departing
 
 
 @pytest.mark.skipif(not HAS_DRAKE, reason="Drake (the optional extra [drake]) is not installed")

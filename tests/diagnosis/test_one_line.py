@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
+from koenig_check.causes import cause
 from koenig_check.diagnosis.one_line import short_error
 from koenig_check.exceptions import ModelLoadError
 from koenig_check.findings import Finding, Kind
@@ -16,6 +19,10 @@ def test_a_cut_never_leaves_a_bracket_open(width: int) -> None:
     line = closed_cut(text, width)
     assert len(line) <= width and line.endswith("…")
     assert line.count("(") == line.count(")") and line.count("[") == line.count("]"), line
+
+
+#: The cause the includes of these tests are instances of: the brief form is its declaration's.
+INCLUDE = "pinocchio.mjcf.include"
 
 
 def _error(message: str, causes: list[Finding]) -> ModelLoadError:
@@ -47,11 +54,13 @@ def test_a_cause_on_long_elements_is_named_by_its_first_before_it_goes_uncounted
     """Metaworld's sawyer_coffee.xml: three includes under ../objects/assets/ left "1 root cause not shown"."""
     files = [f"../objects/assets/{name}.xml" for name in ("mug", "xyz_base", "coffeemachine", "extra", "more")]
     causes = [
-        _root(f"include {f}", "<include> ignored by the parser: its bodies are missing") for f in files[:n_includes]
+        replace(_root(f"include {f}", "<include> ignored by the parser: its bodies are missing"), cause=INCLUDE)
+        for f in files[:n_includes]
     ]
-    line = short_error(_error("/some/folder/sawyer_coffee.xml: joints only in MuJoCo (a, b, c)", causes), 150)
+    width = 150 - len("<include> ignored by the parser") + len(cause(INCLUDE).brief)  # the room of the first form
+    line = short_error(_error("/some/folder/sawyer_coffee.xml: joints only in MuJoCo (a, b, c)", causes), width)
     more = n_includes - 1
     assert line == (
         "/some/folder/sawyer_coffee.xml: joints only in MuJoCo; root cause: includes ../objects/assets/mug.xml "
-        f"(+{more} more): <include> ignored by the parser"
+        f"(+{more} more): {cause(INCLUDE).brief}"
     )

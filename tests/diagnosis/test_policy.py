@@ -21,7 +21,7 @@ DRAKE_REASON = "which has 0 DOF cannot mimic joint 'gripper_left_joint'"
 @needs_drake
 def test_api_fails_a_model_drake_was_asked_for_and_cannot_check() -> None:
     check = koenig_check.compare(REFUSED_BY_DRAKE, n_poses=1, formulas=["exact"], engines=ALL)
-    assert all(p.agrees for p in check.parities)  # MuJoCo and Pinocchio agree: the failure is the unmade check
+    assert all(p.agrees for p in check.agreements)  # MuJoCo and Pinocchio agree: the failure is the unmade check
     assert not check.ok
     unable = [f for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]
     assert [f.engine for f in unable] == ["drake"] and DRAKE_REASON in unable[0].summary  # Drake's reason, whole

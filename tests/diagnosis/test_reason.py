@@ -13,7 +13,7 @@ from koenig_check.diagnosis.reason import (
     REASON_WIDTH,
     ROUNDING_LEVEL,
     ordered_causes,
-    short_cause,
+    root_cause_groups,
     short_reason,
 )
 from koenig_check.findings import Finding, Kind
@@ -70,10 +70,10 @@ def test_reasons_of_the_corpus_are_one_short_sentence_leading_with_the_root_caus
     if check.failures:
         return  # a file an engine refuses: its whole reason, on one line
     (line,) = check.reasons()
-    assert line.startswith(f"{check.parities[0].model}: ")
-    causes = ordered_causes(check.comparisons[0].findings)
-    if causes and len(short_cause(causes[0])) < 100:
-        assert f"root cause: {short_cause(causes[0])}" in line
+    assert line.startswith(f"{check.agreements[0].model}: ")
+    groups = root_cause_groups(check.comparisons[0].findings)  # the same cause on several elements is one
+    if groups and len(groups[0].short()) < 100:
+        assert f"root cause: {groups[0].short()}" in line
     rounding = [
         f for f in check.comparisons[0].findings if 0 < float(f.values.get("relative difference", 0)) <= ROUNDING_LEVEL
     ]

@@ -16,8 +16,11 @@ import numpy as np
 import pytest
 
 import koenig_check
+from koenig_check.causes import cause as catalogued
 from koenig_check.cli import main
 from koenig_check.diagnosis.reason import REASON_WIDTH
+from koenig_check.engines import load_model
+from koenig_check.exceptions import KoenigCheckError
 from koenig_check.report.terminal import WIDTH, terminal_table
 from koenig_check.testing import assert_energy_parity
 
@@ -111,9 +114,13 @@ def test_root_bodies_pinocchio_does_not_read_are_one_cause_naming_the_bodies_wit
     check = koenig_check.compare(path, **ONE)
     (line,) = check.reasons()
     _one_sentence(line)
+    with pytest.raises(KoenigCheckError) as refused:
+        load_model(path)
+    named = {c.element.removeprefix("body ") for c in refused.value.causes if c.cause == "pinocchio.mjcf.root-bodies"}
+    assert named == set(roots), named  # one finding of the cause per root body after the first
     tag = "body" if len(moving) == 1 else "bodies"
     shown = ", ".join(moving[:4]) + (f" (+{len(moving) - 4} more)" if len(moving) > 4 else "")
-    cause = f"root cause: {tag} {shown}: Pinocchio's MJCF parser reads only the first root body"
+    cause = f"root cause: {tag} {shown}: {catalogued('pinocchio.mjcf.root-bodies').brief}"
     assert cause in line and line.count("root cause") == 1 and "more root cause" not in line, line
     assert not any(re.search(rf"\b{b}\b", line) for b in still), line
     lost = [j for b in moving for j in joints[b]]
@@ -196,7 +203,9 @@ def test_a_file_with_one_cause_counts_no_more() -> None:
     assert total is not None
     check = koenig_check.compare(path, **ONE)
     line = check.reason()
-    assert f"root cause: compiler settotalmass: settotalmass={total}" in line, line
+    (option,) = [f for f in check.comparisons[0].findings if f.cause == "pinocchio.mjcf.settotalmass"]
+    assert option.values["mujoco"] == pytest.approx(float(total), rel=1e-12)  # MuJoCo's total mass: the file's
+    assert f"root cause: compiler settotalmass: {catalogued('pinocchio.mjcf.settotalmass').brief}" in line, line
     assert "more" not in line and not line.endswith(" and 2 more"), line
     _one_sentence(line)
 
@@ -214,7 +223,10 @@ def test_two_massless_feet_are_one_cause() -> None:
                 feet.append(link.get("name"))
     assert len(feet) == 2
     line = refused.reason()
-    assert f"root cause: links {', '.join(feet)}: fusestatic dropped the rotational inertia" in line, line
+    assert f"root cause: links {', '.join(feet)}: {catalogued('mujoco.any.fusestatic-massless-inertia').brief}" in line
+    assert {
+        f.element for f in refused.comparisons[0].findings if f.cause == "mujoco.any.fusestatic-massless-inertia"
+    } == {f"link {foot}" for foot in feet}
     engines = {"drake"} & {f.engine for f in refused.comparisons[0].findings}
     assert _more(line) <= len(engines) and " and 5 more" not in line, line
     _one_sentence(line)

@@ -10,7 +10,7 @@ import pytest
 import koenig_check
 from koenig_check.cli import main
 from koenig_check.diagnosis.reason import REASON_WIDTH
-from koenig_check.engines.errors import EngineUnavailableError as DrakeUnavailableError
+from koenig_check.engines.errors import EngineUnavailableError
 from koenig_check.findings import Kind
 from koenig_check.testing import assert_energy_parity
 
@@ -124,8 +124,9 @@ def test_drake_refusal_reaches_the_user_whole_on_one_line(model: str, text: str)
     assert "\n" not in message and message.startswith(str(pair.source.path)) and message.endswith(text)
     reason = message.removeprefix(f"{pair.source.path}: ")  # the model's row and label name the file already
     check = koenig_check.compare(model, n_poses=1, formulas=["exact"], engines=ALL)
-    found = [f.summary for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_NOT_USED]
-    assert found == [f"Drake not used: {reason}"]
+    findings = check.comparisons[0].findings
+    found = [f.summary for f in findings if f.kind is Kind.ENGINE_NOT_USED and f.engine == "drake"]
+    assert found == [f"Drake not used: {reason}"]  # the other optional engines: "not asked for"
     # Drake was asked for and could not check the model: the check asked for was not made, and says why: whole
     # in its finding (the verdict table's row), and first in the one-line reason, cut to fit its line.
     (unable,) = [f for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]
@@ -160,7 +161,7 @@ def test_without_drake_two_engines_and_the_report_says_so(monkeypatch: pytest.Mo
     check = koenig_check.compare(HERE / "models" / "causes" / "class_mass.xml", n_poses=2, formulas=["exact"])
     assert set(check.comparisons[0].engines) == {"mujoco", "pinocchio"}
     assert any("Drake not used: not installed" in note for note in check.comparisons[0].notes)
-    with pytest.raises(DrakeUnavailableError, match="pydrake is not installed"):
+    with pytest.raises(EngineUnavailableError, match="pydrake is not installed"):
         koenig_check.compare("gimbal.xml", engines=ALL)
     with pytest.raises(SystemExit) as usage:  # a usage error, before any work (like argparse's)
         main(["compare", "gimbal.xml", "--engines", "mujoco,pinocchio,drake"])
@@ -216,6 +217,9 @@ def test_a_construct_both_other_engines_skip_is_named_not_blamed_on_mujoco(engin
     check = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=engines)
     drake = [f for f in check.comparisons[0].findings if f.engine == "drake" and f.kind is Kind.IGNORED_CONSTRUCT]
     assert drake and not _verdicts(check) and not check.ok  # Drake used (its finding), and no vote
+    assert [f.cause for f in drake] == ["drake.mjcf.frame"]
+    frames = [f.engine for f in check.comparisons[0].findings if f.cause.endswith(".mjcf.frame")]
+    assert sorted(frames) == ["drake", "pinocchio"]
     reason = check.reason()
     assert reason.startswith("frame_geom.xml: root cause: frame #1 in body base: <frame> not read by Pinocchio's")
     assert "departs" not in reason and "engines differ" not in reason

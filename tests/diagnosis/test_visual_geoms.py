@@ -98,8 +98,8 @@ def test_visual_geoms_are_the_named_cause(tmp_path: Path, case: str) -> None:
     assert cause.values["pinocchio"] == pytest.approx(sum(pinocchio_mass[s] for s in segments), rel=1e-12)
     assert cause.values["mujoco, visual geoms left out"] == pytest.approx(cause.values["pinocchio"], abs=1e-9)
     assert short_cause(cause) in check.reason()
-    assert f"{cause.element}: {cause.summary}" in check.parities[0].reason
-    assert "massless" not in check.parities[0].reason  # the symptom is not a second root cause
+    assert f"{cause.element}: {cause.summary}" in check.agreements[0].reason
+    assert "massless" not in check.agreements[0].reason  # the symptom is not a second root cause
 
 
 @pytest.mark.skipif(not HAS_DRAKE, reason="Drake (the optional extra [drake]) is not installed")

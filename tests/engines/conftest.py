@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from engine_helpers import CASES, N_POSES, SEED, Case
 
-from koenig_check.engines import ModelPair, load_model, random_states
+from koenig_check.engines import LoadedModel, load_model, random_states
 
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
@@ -26,7 +26,7 @@ def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
         metafunc.parametrize("case", CASES, ids=[c.id for c in CASES], scope="module")
 
 
-def _load(case: Case) -> ModelPair:
+def _load(case: Case) -> LoadedModel:
     return load_model(
         case.model,
         floating=case.floating,
@@ -41,10 +41,10 @@ def load_pair():
 
 
 @pytest.fixture(scope="module")
-def pair(case: Case, load_pair) -> ModelPair:
+def pair(case: Case, load_pair) -> LoadedModel:
     return load_pair(case)
 
 
 @pytest.fixture
-def pose_batch(pair: ModelPair) -> tuple[np.ndarray, np.ndarray]:
+def pose_batch(pair: LoadedModel) -> tuple[np.ndarray, np.ndarray]:
     return random_states(pair.mujoco.model, N_POSES, seed=SEED)

@@ -40,7 +40,7 @@ def test_mass_in_one_engine_only_is_a_disagreement_not_a_refusal(tmp_path: Path)
     assert float(loaded.mujoco.model.body_mass[1]) == 2.0 and loaded.pinocchio.model.inertias[1].mass == 0.0
     check = koenig_check.compare([heavy], pinocchio_model=str(massless), n_poses=3)
     assert not check.failures, check.failures
-    (parity,) = check.parities
+    (parity,) = check.agreements
     assert not parity.agrees and parity.rigid_max_rel == pytest.approx(1.0)  # |T_mj - 0| / T_mj
 
 

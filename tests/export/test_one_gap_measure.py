@@ -47,4 +47,4 @@ def test_export_and_compare_give_one_number_for_one_gap(tmp_path: Path) -> None:
     assert f"up to {expected:.2g} relative to MuJoCo's" in note
     np.savez(tmp_path / "poses.npz", qpos=qpos, qvel=qvel)  # compare at the same states says the same
     check = koenig_check.compare(CARTPOLE, pose_file=tmp_path / "poses.npz", formulas=["exact"])
-    assert check.parities[0].rigid_max_rel == pytest.approx(expected, rel=1e-9)
+    assert check.agreements[0].rigid_max_rel == pytest.approx(expected, rel=1e-9)

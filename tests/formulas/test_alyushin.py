@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.analytic import random_physical_inertia, random_rotations, rigid_states, rotation_about
 from koenig_check.formulas import FORMULAS, integrate_angular_velocity
 from koenig_check.formulas.alyushin import alyushin_pole, centrifugal_update_33, double_angle_trig
+from koenig_check.formulas.analytic import random_physical_inertia, random_rotations, rigid_states, rotation_about
 from koenig_check.formulas.angles import CONVENTIONS
 
 #: Index of the centrifugal moment of the plane normal to world axis k in ``(I_yz, I_zx, I_xy)``.

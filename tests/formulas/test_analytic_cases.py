@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.analytic import box_inertia, constant_rotation_states, cylinder_inertia
 from koenig_check.formulas import FORMULAS, integrate_angular_velocity
+from koenig_check.formulas.analytic import box_inertia, constant_rotation_states, cylinder_inertia
 
 # Formulas that must give the textbook values in these one-axis cases.
 ONE_AXIS_FORMULAS = sorted(FORMULAS)

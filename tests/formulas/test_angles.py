@@ -3,14 +3,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.analytic import constant_rotation_states, random_rotations, rigid_states
+from koenig_check.formulas.analytic import constant_rotation_states, random_rotations, rigid_states
 from koenig_check.formulas.angles import (
     euler_xyz_angles,
     integrate_angular_velocity,
     paper_angles,
     rotvec_angles,
 )
-from koenig_check.paper_section3 import angular_velocity_39, rotation_39
+from koenig_check.formulas.paper_section3 import angular_velocity_39, rotation_39
 
 
 def _single(R: np.ndarray, R_ref: np.ndarray | None = None):

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from koenig_check.analytic import random_rotations, random_states
 from koenig_check.formulas import FORMULAS, integrate_angular_velocity
+from koenig_check.formulas.analytic import random_rotations, random_states
 from koenig_check.formulas.angles import euler_xyz_of, quaternion_of, rotvec_of
 from koenig_check.formulas.cache import SharedStates
 

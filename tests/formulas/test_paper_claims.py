@@ -6,7 +6,9 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from koenig_check.analytic import (
+from koenig_check.formulas import FORMULAS, integrate_angular_velocity
+from koenig_check.formulas.alyushin import alyushin_current, alyushin_paper, alyushin_pole
+from koenig_check.formulas.analytic import (
     box_inertia,
     constant_rotation_states,
     random_physical_inertia,
@@ -14,10 +16,8 @@ from koenig_check.analytic import (
     random_states,
     rigid_states,
 )
-from koenig_check.formulas import FORMULAS, integrate_angular_velocity
-from koenig_check.formulas.alyushin import alyushin_current, alyushin_paper, alyushin_pole
 from koenig_check.formulas.angles import CONVENTIONS
-from koenig_check.paper_section3 import angular_velocity_39, rotation_39
+from koenig_check.formulas.paper_section3 import angular_velocity_39, rotation_39
 
 ASYMMETRIC_BOX = box_inertia(2.0, 0.5, 0.3, 0.1)
 

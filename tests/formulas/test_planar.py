@@ -3,8 +3,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.analytic import random_physical_inertia, random_rotations, rigid_states
 from koenig_check.formulas import FORMULAS
+from koenig_check.formulas.analytic import random_physical_inertia, random_rotations, rigid_states
 from koenig_check.formulas.planar import NotPlaneParallelError, planar
 
 

@@ -1,4 +1,4 @@
-"""point_masses reads the point velocities the engine gives the grid, not ones it recomputes.
+"""point_masses reads the point velocities the engine gives the comparison, not ones it recomputes.
 
 The grid's point velocities of every segment are shifted by a known vector u; eq. (10) over the
 six equimomental points (total mass m, centre of mass C) then moves by exactly

@@ -6,8 +6,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from koenig_check.analytic import random_states
 from koenig_check.formulas import FORMULAS
+from koenig_check.formulas.analytic import random_states
 from koenig_check.segments import SegmentStates
 
 EXACT_EQUIVALENTS = ["koenig_principal", "alyushin_current", "point_masses"]

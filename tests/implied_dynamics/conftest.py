@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from dynamics_helpers import MIXED_JOINTS_MJCF
 
-from koenig_check.engines import ModelPair, load_model
+from koenig_check.engines import LoadedModel, load_model
 
 
 @pytest.fixture(scope="session")
@@ -19,7 +19,7 @@ def mixed_joints_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @cache
-def _load(model: str, floating: bool) -> ModelPair:
+def _load(model: str, floating: bool) -> LoadedModel:
     return load_model(model, floating=floating)
 
 
@@ -27,7 +27,7 @@ def _load(model: str, floating: bool) -> ModelPair:
 def load_pair():
     """``load_pair(model, floating=False)``: one load per session."""
 
-    def load(model: str | Path, floating: bool = False) -> ModelPair:
+    def load(model: str | Path, floating: bool = False) -> LoadedModel:
         return _load(str(model), floating)
 
     return load

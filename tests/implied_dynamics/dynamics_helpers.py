@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from koenig_check.engines import ModelPair, random_states
+from koenig_check.engines import LoadedModel, random_states
 
 # Free root, a ball joint, a body with three joints (hinge with ref, slide, hinge on a tilted axis
 # with an offset anchor: a Pinocchio composite), armature on several dofs, a welded child body,
@@ -38,7 +38,7 @@ MIXED_JOINTS_MJCF = """
 SEED = 20261121
 
 
-def states_with_accelerations(pair: ModelPair, n: int, seed: int = SEED) -> tuple[np.ndarray, ...]:
+def states_with_accelerations(pair: LoadedModel, n: int, seed: int = SEED) -> tuple[np.ndarray, ...]:
     """Seeded random canonical states and accelerations."""
     qpos, qvel = random_states(pair.mujoco.model, n, seed=seed)
     qacc = np.random.default_rng(seed + 1).normal(size=qvel.shape)

@@ -69,11 +69,12 @@ def test_settotalmass_reads_the_same_in_the_parity_notes_and_the_cause() -> None
         "MJCF parser does the same (total masses below)"
     ) in report.findings
     (cause,) = [c for c in report.causes if c.kind is Kind.COMPILER]
-    assert (cause.engine, cause.element, cause.root_cause, cause.hint) == (
+    assert (cause.engine, cause.element, cause.root_cause, cause.hint, cause.cause) == (
         "pinocchio",
         "compiler settotalmass",
         True,
         "",
+        "pinocchio.mjcf.settotalmass",
     )
     assert cause.summary == "settotalmass=14: MuJoCo rescales every mass and inertia to this total, Pinocchio does not"
     assert cause.values["mujoco"] == pytest.approx(14.0, rel=1e-12)

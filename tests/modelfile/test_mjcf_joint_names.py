@@ -14,6 +14,7 @@ import mujoco
 import pytest
 
 import koenig_check
+from koenig_check.causes import cause
 from koenig_check.engines.parser_traps import file_causes
 from koenig_check.modelfile.mjcf import includes, read_mjcf
 
@@ -81,5 +82,6 @@ def test_an_include_of_classes_loses_no_joint_and_the_one_line_names_the_include
     assert not classes.affects_energy and classes.segments == () and classes.values["joints"] == ()
     assert causes[f"include {fragment}"].affects_energy and "include links.xml" not in causes  # nothing kinematic
     reason = koenig_check.compare(path, n_poses=2, formulas=["exact"]).reason()
-    assert f"root cause: include {fragment}: <include> ignored by Pinocchio's MJCF parser" in reason
+    assert causes[f"include {fragment}"].cause == classes.cause == "pinocchio.mjcf.include"
+    assert f"root cause: include {fragment}: {cause('pinocchio.mjcf.include').brief}" in reason
     assert "?" not in reason and "not shown" not in reason

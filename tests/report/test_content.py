@@ -58,7 +58,7 @@ def test_the_overview_names_the_largest_error_of_the_run() -> None:
     worst = max(own, key=lambda s: s.max_rel_error)
     assert worst.formula == "koenig_world" and not worst.agrees  # eq. (1) in world axes drops the products
     assert max(s.max_rel_error for s in own if s.model != worst.model) < worst.max_rel_error  # one model is worse
-    lines = run_overview(check.comparisons, check.summaries, check.parities)
+    lines = run_overview(check.comparisons, check.summaries, check.agreements)
     (largest,) = [line for line in lines if line.startswith("Largest error:")]
     assert "`koenig_world`" in largest and f" on {worst.model} at pose {worst.worst_pose} " in largest
 
@@ -75,7 +75,7 @@ def test_a_models_findings_give_the_worst_engines_error_and_median(order: tuple[
         "mujoco": _summary("mujoco", 3e-4, 1e-4, 0.2, "random-1", False),
         "pinocchio": _summary("pinocchio", 7e-2, 5e-3, 0.6, "random-7", False),
     }
-    found = model_findings(check.comparisons[0], [given[e] for e in order], check.parities[0], 1e-9)
+    found = model_findings(check.comparisons[0], [given[e] for e in order], check.agreements[0], 1e-9)
     assert found.exact == []
     (line,) = found.inexact
     assert line.startswith("koenig_world: up to 7 % (median 0.5 %), always over: over on 60% of poses")

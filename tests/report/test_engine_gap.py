@@ -69,7 +69,7 @@ def test_one_point_per_pose_at_the_engines_gap(model, drawn, tmp_path: Path) -> 
 
 def test_the_largest_gap_and_its_pose_are_the_parity_statistics(drawn, tmp_path: Path) -> None:
     check = koenig_check.compare([CAUSES / "class_mass.xml"], n_poses=12, seed=1)
-    comp, parity = check.comparisons[0], check.parities[0]
+    comp, parity = check.comparisons[0], check.agreements[0]
     energies = engine_energies(energy_chunks(comp.records), comp.model, comp.engines, comp.n_poses)
     assert energies is not None
     figure_module.engine_gap_figure(comp.model, energies, tmp_path / "g.png", RTOL)

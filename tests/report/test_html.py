@@ -169,7 +169,7 @@ def test_the_disagreement_is_not_a_paragraph_of_the_whole_reason(report) -> None
     text = (out / "report.html").read_text(encoding="utf-8")
     k = next(k for k, c in enumerate(check.comparisons) if c.model == "class_mass.xml")
     section = text.split(f'id="model-class-mass-xml-{k}"', 1)[1].split("</section>", 1)[0]
-    parity = next(p for p in check.parities if p.model == "class_mass.xml")
+    parity = next(p for p in check.agreements if p.model == "class_mass.xml")
     assert "DISAGREE" in section and html.escape(parity.reason) not in section
     assert section.count('<ul class="causes">') == 1 and "geom pole" in section.split('<ul class="causes">')[1]
 

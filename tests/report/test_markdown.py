@@ -23,7 +23,7 @@ def check():
 
 @pytest.fixture(scope="module")
 def text(check) -> str:
-    return summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol)
+    return summary_markdown(check.comparisons, check.summaries, check.agreements, check.failures, check.rtol)
 
 
 def _sections(text: str) -> list[str]:

@@ -240,5 +240,5 @@ def test_models_that_agree_are_folded_and_the_others_open(page) -> None:
     check, parsed = page
     for k, comp in enumerate(check.comparisons):
         section = next(s for s in parsed.sections.values() if s["h2"] == comp.model)
-        agrees = check.parities[k].agrees and comp.model != "class_mass.xml"
+        agrees = check.agreements[k].agrees and comp.model != "class_mass.xml"
         assert section["open"] is (not agrees), comp.model

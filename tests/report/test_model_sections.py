@@ -75,7 +75,7 @@ def _md_section(text: str, model: str) -> str:
 
 
 def test_markdown_sections_show_their_own_models_parity_verdict_and_table(check, alone) -> None:
-    text = summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol)
+    text = summary_markdown(check.comparisons, check.summaries, check.agreements, check.failures, check.rtol)
     for comp, model in zip(check.comparisons, MODELS, strict=True):
         section = _md_section(text, comp.model)
         verdict = re.search(r"Engine parity: the engines (agree|DISAGREE)", section)
@@ -131,14 +131,14 @@ def _parity_numbers(section: str) -> tuple[float, str, float]:
 def test_parity_lines_give_the_models_own_largest_difference_its_pose_and_the_armature_gap(check, alone, page) -> None:
     """class_mass: MuJoCo and Pinocchio differ by several times the energy (6 kg of pole in Pinocchio) at some
     pose, and no joint has armature in either engine (0 J), as in a run of the model alone."""
-    text = summary_markdown(check.comparisons, check.summaries, check.parities, check.failures, check.rtol)
+    text = summary_markdown(check.comparisons, check.summaries, check.agreements, check.failures, check.rtol)
     for k, comp in enumerate(check.comparisons):
-        (own,) = alone[comp.model].parities
+        (own,) = alone[comp.model].agreements
         anchor = "model-" + "".join(c if c.isalnum() else "-" for c in comp.model)
         html_section = html.unescape(page.split(f'id="{anchor}-{k}"', 1)[1].split("</section>", 1)[0])
         for section in (_md_section(text, comp.model), re.sub(r"<[^>]+>", "", html_section)):
             rigid, pose, armature = _parity_numbers(section)
             assert _close(str(rigid), own.rigid_max_rel) and pose == own.worst_pose, (comp.model, section[:300])
             assert armature == own.armature_max_abs == 0.0, comp.model
-    (class_mass,) = alone[check.comparisons[1].model].parities
+    (class_mass,) = alone[check.comparisons[1].model].agreements
     assert class_mass.rigid_max_rel > 1.0  # the test can tell the rigid gap from the armature gap

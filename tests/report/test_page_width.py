@@ -105,7 +105,7 @@ def report(demo_report: tuple[Path, object, dict], tmp_path_factory: pytest.Temp
     _, check, figures = demo_report
     check.add(compare_model("kinova", n_poses=4))
     check.add(compare_model(CAUSES / "class_mass.xml", n_poses=6))
-    assert not check.parities[-1].agrees  # the page shows a disagreement
+    assert not check.agreements[-1].agrees  # the page shows a disagreement
     out = tmp_path_factory.mktemp("page")
     write_report(out, check, **figures)
     return out / "report.html"

@@ -34,7 +34,7 @@ def test_demo_verdict_fits_100_columns(demo_table: str) -> None:
 
 def test_one_row_per_model_with_its_full_name(demo_check, demo_table: str) -> None:
     rows = demo_table.split("\n\n")[0].splitlines()[2:]
-    assert [r.split("  ")[0] for r in rows] == [p.model for p in demo_check.parities]
+    assert [r.split("  ")[0] for r in rows] == [p.model for p in demo_check.agreements]
     assert "armature_chain.xml" in demo_table and "armature_chain.urdf" in demo_table and "…" not in demo_table
 
 
@@ -111,16 +111,10 @@ def test_a_model_changed_to_be_loaded_says_so_on_its_row(model, element: str, ef
     check = koenig_check.compare(
         model, repair_inertia=True, n_poses=2, formulas=["exact"], engines=("mujoco", "pinocchio")
     )
-    label = check.parities[0].model
+    label = check.agreements[0].model
     row = " ".join(" ".join(line.split()) for line in terminal_table(check).split("\n\n")[0].splitlines()[2:])
     assert row.startswith(label) and "changed so that MuJoCo loads it" in row
     assert element in row and effect in row
-
-
-def test_the_former_name_and_module_give_the_same_table() -> None:
-    from koenig_check.verdict import verdict_table  # type: ignore[import-not-found]  # the module's old name
-
-    assert verdict_table is terminal_table
 
 
 def _drake_installed() -> bool:

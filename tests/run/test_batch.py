@@ -19,7 +19,7 @@ OPTIONS = dict(
 
 def _by_model(check: koenig_check.api.CrossCheck) -> dict[str, tuple]:
     out = {}
-    for comp, agreement in zip(check.comparisons, check.parities, strict=True):
+    for comp, agreement in zip(check.comparisons, check.agreements, strict=True):
         rec = comp.records.columns
         out[comp.model] = (
             [s for s in check.summaries if s.model == comp.model],
@@ -36,7 +36,7 @@ def _fresh_process() -> None:
 
     engine_runs._POINTS.clear()
     chunks._CODES.clear()
-    pipeline._MODELS.clear()
+    pipeline._WORKER.models.clear()
 
 
 @pytest.fixture(scope="module")

@@ -1,18 +1,18 @@
-"""The comparison grid on synthetic engine runs (no engine needed): records, summaries, parity."""
+"""The comparison on synthetic engine runs (no engine needed): records, summaries, the engines' agreement."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from koenig_check.analytic import random_states
 from koenig_check.formulas import FORMULAS
+from koenig_check.formulas.analytic import random_states
 from koenig_check.formulas.point_masses import equimomental_points, rigid_point_velocities
 from koenig_check.run.comparison import compare_runs
 from koenig_check.run.engine_runs import EngineRun
 from koenig_check.run.poses import PoseSet
 from koenig_check.run.stats import relative_error
-from koenig_check.run.summaries import engine_parity, summarize
+from koenig_check.run.summaries import engine_agreement, summarize
 
 
 def _run(engine: str, states, rigid_scale: float = 1.0, armature: float = 0.0) -> EngineRun:
@@ -100,14 +100,14 @@ def test_engine_parity_detects_disagreement(synthetic) -> None:
         {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states)},
         formulas=["exact"],
     )
-    assert engine_parity(same).agrees
+    assert engine_agreement(same).agrees
     off = compare_runs(
         "toy",
         poses,
         {"mujoco": _run("mujoco", states), "pinocchio": _run("pinocchio", states, 1.001)},
         formulas=["exact"],
     )
-    parity = engine_parity(off)
+    parity = engine_agreement(off)
     assert not parity.agrees
     assert "rigid-body energies differ by 0.001" in parity.reason and "pinocchio: exact" in parity.reason
     arm = compare_runs(
@@ -116,7 +116,7 @@ def test_engine_parity_detects_disagreement(synthetic) -> None:
         {"mujoco": _run("mujoco", states, armature=0.5), "pinocchio": _run("pinocchio", states)},
         formulas=["exact"],
     )
-    assert "armature energies differ by 0.5 J" in engine_parity(arm).reason
+    assert "armature energies differ by 0.5 J" in engine_agreement(arm).reason
 
 
 def test_relative_error_edge_cases() -> None:

@@ -43,7 +43,7 @@ def same_name(tmp_path: Path) -> tuple[Path, Path]:
 
 def test_api_keeps_two_files_with_one_name_apart(same_name: tuple[Path, Path]) -> None:
     check = koenig_check.compare(list(same_name), n_poses=2, formulas=["exact"], engines=("mujoco", "pinocchio"))
-    agrees = {p.model: p.agrees for p in check.parities}
+    agrees = {p.model: p.agrees for p in check.agreements}
     assert agrees == {"a/robot.xml": False, "b/robot.xml": True}
     assert set(check.settings) == {"a/robot.xml", "b/robot.xml"}
     assert {s.model for s in check.summaries} == {"a/robot.xml", "b/robot.xml"}

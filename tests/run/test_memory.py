@@ -6,19 +6,19 @@ from __future__ import annotations
 import gc
 import weakref
 
-import koenig_check
-from koenig_check.run import pipeline
-
 
 def test_a_finished_compare_holds_no_model(monkeypatch) -> None:
+    import koenig_check.engines
+
     kept: list[weakref.ref] = []
-    remember = pipeline.remember
+    load_model = koenig_check.engines.load_model
 
-    def watched(source, model):
+    def watched(*args, **kwargs):
+        model = load_model(*args, **kwargs)
         kept.append(weakref.ref(model.mujoco))
-        remember(source, model)
+        return model
 
-    monkeypatch.setattr(pipeline, "remember", watched)
+    monkeypatch.setattr(koenig_check.engines, "load_model", watched)
     check = koenig_check.compare(["serial7.urdf", "gimbal.xml"], n_poses=4)
     assert check.ok, check.reason()
     gc.collect()

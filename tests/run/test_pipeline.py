@@ -221,9 +221,9 @@ def test_no_writing_thread_is_alive_when_jobs_fork_their_workers(tmp_path: Path,
     alive_at_fork: list[list[str]] = []
     pool = pipeline._pool
 
-    def watched(jobs):
+    def watched(jobs, *model):
         alive_at_fork.append([t.name for t in threading.enumerate() if t.name == "records-parquet"])
-        return pool(jobs)
+        return pool(jobs, *model)
 
     monkeypatch.setattr(pipeline, "_pool", watched)
     code = main(["compare", "gimbal.xml", "serial7.urdf", "--poses", "24", "--jobs", "2", "--out", str(tmp_path / "r")])
@@ -262,11 +262,11 @@ def test_an_interrupted_run_leaves_no_partial_record_file_and_no_writing_thread(
 
     run_chunk, started = pipeline.run_chunk, []
 
-    def interrupted_at_third_chunk(task):
+    def interrupted_at_third_chunk(task, model=None):
         started.append(task)
         if len(started) == 3:
             raise KeyboardInterrupt
-        return run_chunk(task)
+        return run_chunk(task, model)
 
     monkeypatch.setattr(chunk_tasks, "chunk_size", lambda n_segments: 8)
     monkeypatch.setattr(pipeline, "run_chunk", interrupted_at_third_chunk)

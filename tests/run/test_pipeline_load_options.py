@@ -43,7 +43,9 @@ def test_jobs_workers_load_the_model_with_the_callers_options(serial, method, mo
     if method not in multiprocessing.get_all_start_methods():
         pytest.skip(f"no {method} start method here")
     context = multiprocessing.get_context(method)
-    monkeypatch.setattr(pipeline, "_pool", lambda jobs: ProcessPoolExecutor(max_workers=jobs, mp_context=context))
+    monkeypatch.setattr(
+        pipeline, "_pool", lambda jobs, *model: ProcessPoolExecutor(max_workers=jobs, mp_context=context)
+    )
     _assert_same(serial, compare_model(MODEL, chunk_poses=9, jobs=2, **OPTIONS))
 
 

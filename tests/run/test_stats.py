@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check import stats
+from koenig_check.run import stats
 from koenig_check.run.stats import Extreme, QuantileSketch
 
 
@@ -99,7 +99,7 @@ def test_an_armature_difference_in_an_early_chunk_survives_the_merge(chunk_poses
         formulas=["exact"],
         chunk_poses=chunk_poses,
     )
-    (parity,) = check.parities
+    (parity,) = check.agreements
     assert parity.armature_max_abs == pytest.approx(0.5 * armature @ qvel[0] ** 2, rel=1e-12)
     assert not parity.agrees and "armature energies differ" in parity.reason
     assert parity.rigid_max_rel < 1e-12 and not check.ok

@@ -53,3 +53,18 @@ def test_a_formula_agrees_only_when_its_largest_error_is_within_rtol(tilted_hing
         assert s.agrees is agrees, (rtol, s)
         assert s.under_fraction == (0.0 if agrees else 1.0) and s.over_fraction == 0.0  # it always falls short
     assert all(s.agrees and s.max_rel_error < 1e-12 for s in check.summaries if s.formula == "exact")
+
+
+def test_the_parity_record_carries_the_ids_of_the_causes(tmp_path: Path) -> None:
+    """records.json's parity row of a model the engines disagree on names its causes by id, in the reason's order."""
+    import json
+
+    from koenig_check.causes import cause, fixture_path
+    from koenig_check.cli import main
+
+    path = fixture_path(cause("pinocchio.mjcf.class-geom-mass"))
+    assert main(["compare", str(path), "--poses", "3", "--formulas", "exact", "--out", str(tmp_path / "out")]) == 1
+    (row,) = json.loads((tmp_path / "out" / "records.json").read_text())["parity"]
+    assert not row["agrees"] and row["causes"] == ["pinocchio.mjcf.class-geom-mass"]
+    agreeing = koenig_check.compare("double_pendulum", n_poses=3, formulas=["exact"])
+    assert agreeing.ok and [p.causes for p in agreeing.agreements] == [()]

@@ -1,4 +1,4 @@
-"""How a worker process gets its model (``WorkerModel``): one name, one meaning, the former name still importable."""
+"""How a worker process gets its model (``WorkerModel``): one name, one meaning (the former name is gone)."""
 
 from __future__ import annotations
 
@@ -10,16 +10,16 @@ import koenig_check
 from koenig_check.engines.load_options import LoadOptions
 
 
-def test_worker_model_is_the_run_s_model_and_the_former_name_is_an_alias() -> None:
+def test_worker_model_is_the_run_s_model_and_has_no_former_name() -> None:
     from koenig_check.run import chunk_tasks, pipeline
     from koenig_check.sources.catalogue import ModelSource as FileSource
 
     assert chunk_tasks.WorkerModel.__name__ == "WorkerModel"
-    assert chunk_tasks.ModelSource is chunk_tasks.WorkerModel  # the former name, kept importable
-    assert pipeline.WorkerModel is pipeline.ModelSource is chunk_tasks.WorkerModel
+    assert not hasattr(chunk_tasks, "ModelSource") and not hasattr(pipeline, "ModelSource")
+    assert pipeline.WorkerModel is chunk_tasks.WorkerModel
     assert FileSource is not chunk_tasks.WorkerModel  # where a file comes from: another thing, its own name
     a = chunk_tasks.WorkerModel("gimbal.xml", LoadOptions(floating=True))
-    assert a == chunk_tasks.ModelSource("gimbal.xml", LoadOptions(floating=True)) and hash(a) == hash(
+    assert a == chunk_tasks.WorkerModel("gimbal.xml", LoadOptions(floating=True)) and hash(a) == hash(
         chunk_tasks.WorkerModel("gimbal.xml", LoadOptions(floating=True))
     )  # a process loads each once: it keys the models it keeps
 

@@ -47,12 +47,12 @@ def test_the_engines_gap_names_its_pose_whole_and_its_values(keyed_class_mass: P
     pn = float(model.pinocchio.kinetic_energy(pose.qpos, pose.qvel).rigid[0])
     assert abs(mj - pn) > 1e-3 * max(mj, pn)  # they disagree: Pinocchio ignores the class's geom mass
     assert line.endswith(f"at pose key:{KEY} (MuJoCo {mj:.9g} J, Pinocchio {pn:.9g} J)"), line
-    cause = check.parities[0].cause
+    cause = check.agreements[0].cause
     assert cause and cause not in line  # the cause has its own line ("root cause: ..."), not repeated here
     assert any(cause in other for other in _unfolded(verdict_lines(check)) if other.startswith("  root cause: "))
 
 
 def test_the_agreement_s_reason_is_built_from_its_symptoms_and_cause(keyed_class_mass: Path) -> None:
-    agreement = compare([keyed_class_mass], pose_kind="keyframes", engines=("mujoco", "pinocchio")).parities[0]
+    agreement = compare([keyed_class_mass], pose_kind="keyframes", engines=("mujoco", "pinocchio")).agreements[0]
     assert not agreement.agrees and agreement.symptoms and agreement.cause
     assert agreement.reason == "; ".join([*agreement.symptoms, f"cause: {agreement.cause}"])

@@ -146,15 +146,13 @@ def _check_compare_usage(args: argparse.Namespace) -> None:
 
 
 def _cmd_compare(args: argparse.Namespace) -> int:
-    from koenig_check.api import compare
+    from koenig_check.api import compare, prepare_models
     from koenig_check.report.progress import Progress
 
     _check_compare_usage(args)
     load_options = load_options_of(args)
     check_models(args, [*args.models, *([load_options.pinocchio_model] if load_options.pinocchio_model else [])])
-    from koenig_check.sources.external import prepare
-
-    prepare([*args.models, *([load_options.pinocchio_model] if load_options.pinocchio_model else [])])
+    models = prepare_models(args.models, load_options.pinocchio_model)  # once, before any file is written
     client = None
     if args.scheduler:
         try:
@@ -174,7 +172,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     figures_need_records = args.pose_kind in ("grid", "trajectory")
     with Progress(len(args.models), "models", quiet=args.quiet) as bar, _aborted_on_error(sink):
         check = compare(
-            args.models,
+            models,
             rtol=args.rtol,
             progress=bar,
             pose_kind=args.pose_kind,

@@ -17,7 +17,7 @@ from koenig_check.engines.load_options import add_load_arguments
 from koenig_check.exceptions import JointMismatch
 
 #: Random states on which a third engine's energies are compared by default (``compare``'s default poses; not
-#: :data:`koenig_check.api.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
+#: :data:`koenig_check.run.engine_runs.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
 DEFAULT_POSES = 20
 
 
@@ -82,7 +82,7 @@ def parity_diagnosis(model: Any, rtol: float, poses: int = DEFAULT_POSES, seed: 
 
 
 def _cmd_parity(args: argparse.Namespace) -> int:
-    from koenig_check.diagnosis.policy import asked_for
+    from koenig_check.diagnosis.policy import attach_engines
     from koenig_check.diagnosis.reason import ROUNDING_LEVEL, as_note, lead_line, rounding_hint, short_reason
     from koenig_check.engines import load_model
     from koenig_check.findings import Kind
@@ -99,8 +99,7 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         if not any(c.root_cause and c.affects_energy for c in err.causes):
             raise  # no construct of the file explains it: an error
         return _unpaired_report(args, err)  # a parser that ignores a construct: a disagreement with its root cause
-    for name in asked_for(options.engines):
-        model.attach(name)
+    attach_engines(model)  # the engines the user named
     diagnosis = parity_diagnosis(model, args.rtol, args.poses, args.seed)
     report = diagnosis.parity
     assert report is not None
@@ -124,8 +123,10 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         and not (f.kind is Kind.ENGINE_NOT_USED and f.engine in unable)
     ]
     if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
-        names = ", ".join(engine_label(e) for e in optional())
-        print(f"\nThe third engine ({names}): verdicts and what its parser said")
+        used = [e for e in optional() if e in model.engines or model.refusal(e) is not None] or list(optional())
+        names = ", ".join(engine_label(e) for e in used)
+        head = "The third engine" if len(used) == 1 else "The other engines"
+        print(f"\n{head} ({names}): verdicts and what {'its parser' if len(used) == 1 else 'their parsers'} said")
         print("\n".join(shown(f"  {line}") for line in third))
     lead = lead_line(diagnosis.findings)
     if report.clean and not lead:

@@ -26,7 +26,7 @@ def add(sub: argparse._SubParsersAction) -> None:
 
 
 def _cmd_selfcheck(args: argparse.Namespace) -> int:
-    from koenig_check.selfcheck import format_table, run_selfcheck
+    from koenig_check.formulas.selfcheck import format_table, run_selfcheck
 
     print(format_table(run_selfcheck(seed=args.seed), rtol=args.rtol))
     return 0

@@ -7,7 +7,6 @@ not the elements they were found on.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
@@ -21,8 +20,10 @@ SHOWN_ELEMENTS = 4
 SHOWN_JOINTS = 6
 
 
-def clause(f: Finding) -> str:
-    """A finding's summary in a few words: its first clause, without parentheses (which hold its values).
+def brief_form(f: Finding) -> str:
+    """A finding in a few words: its cause's brief form (:attr:`~koenig_check.causes.Cause.brief`), else its own.
+
+    A finding without a cause gives its :attr:`~koenig_check.findings.Finding.brief`, else its summary.
 
     Parameters
     ----------
@@ -32,12 +33,19 @@ def clause(f: Finding) -> str:
     -------
     str
     """
-    return re.sub(r" \([^()]*\)", "", f.summary.split("; ")[0])
+    if f.cause:
+        from koenig_check.engines.catalogue import cause
+
+        return cause(f.cause).brief
+    return f.brief or f.summary
 
 
 def element_words(f: Finding) -> str:
     """A finding's element, one that lists several names by the first and how many more.
 
+    The names are the finding's values under the plural of the element's tag (``geom`` -> ``geoms``,
+    ``segment`` -> ``segments``), never read back from the element's text.
+
     Parameters
     ----------
     f : Finding
@@ -46,14 +54,31 @@ def element_words(f: Finding) -> str:
     -------
     str
     """
-    element = f.element
-    more = re.search(r" \(\+(\d+) more\)$", element)
-    listed = element[: more.start()] if more else element
-    if ", " in listed:
-        first, rest = listed.split(", ", 1)
-        extra = rest.count(", ") + 1 + (int(more.group(1)) if more else 0)
-        element = f"{first} (+{extra} more)"
-    return element
+    tag = f.element.partition(" ")[0]
+    names = f.values.get(_PLURAL.get(tag, tag + "s"), ())
+    if isinstance(names, (tuple, list)) and len(names) > 1 and all(isinstance(n, str) for n in names):
+        return f"{tag} {names[0]} (+{len(names) - 1} more)"
+    return f.element
+
+
+def lost_joints(f: Finding) -> list[str]:
+    """The joints a finding's engine lacks because of its cause: its ``joints`` when the cause loses joints.
+
+    Parameters
+    ----------
+    f : Finding
+
+    Returns
+    -------
+    list of str
+    """
+    if not f.cause:
+        return []
+    from koenig_check.engines.catalogue import cause
+
+    if not cause(f.cause).loses_joints:
+        return []
+    return [j for j in f.values.get("joints", ()) if isinstance(j, str)]
 
 
 @dataclass(frozen=True)
@@ -96,24 +121,21 @@ class CauseGroup:
         return shown_names([element_words(f) for f in self.findings], shown)
 
     def lost_joints(self) -> list[str]:
-        """The joints the engine concerned does not read because of this cause (``joints`` and ``not read``)."""
+        """The joints the engine concerned does not read because of this cause (:func:`lost_joints`)."""
         joints: list[str] = []
         for f in self.findings:
-            if f.values.get(f.engine) == "not read":
-                listed = f.values.get("joints", ())
-                joints += [j for j in listed if isinstance(j, str) and j not in joints]
+            joints += [j for j in lost_joints(f) if j not in joints]
         return joints
 
     def short(self, joints: bool = True, brief: bool = False, shown: int = SHOWN_ELEMENTS) -> str:
-        """The cause in a few words: its elements, the first clause of its summary, and the joints it loses.
+        """The cause in a few words: its elements, its brief form (:func:`brief_form`), and the joints it loses.
 
         Parameters
         ----------
         joints : bool
             Name the joints it loses (False: a message before it names them).
         brief : bool
-            Only what the summary says before its first colon (``<include> ignored by Pinocchio's MJCF parser``),
-            without the joints it loses, for a line that cannot hold more.
+            Without the joints it loses, for a line that cannot hold more.
         shown : int
             How many elements are named before "(+N more)".
 
@@ -121,8 +143,7 @@ class CauseGroup:
         -------
         str
         """
-        said = clause(self.findings[0])
-        text = f"{self.elements(shown)}: {said.split(': ')[0] if brief else said}"
+        text = f"{self.elements(shown)}: {brief_form(self.findings[0])}"
         lost = self.lost_joints() if joints and not brief else []
         if lost:
             from koenig_check.engines.registry import label
@@ -135,7 +156,9 @@ class CauseGroup:
         """The cause in full: engine, elements, summary, the values the elements share, and the hint.
 
         One finding gives its own :meth:`Finding.message`; several give the values equal on all of them (the
-        values of each are in ``koenig-check parity`` and the report).
+        values of each are in ``koenig-check parity`` and the report), and the cause's brief form (:func:`brief_form`)
+        for a catalogued cause (its findings may say it of different elements: two default classes), else the
+        summary they share.  The hint is theirs when they share it, else the cause's.
 
         Returns
         -------
@@ -144,7 +167,7 @@ class CauseGroup:
         first = self.findings[0]
         if len(self.findings) == 1:
             return first.message()
-        text = f"{first.engine}: {self.elements()}: {first.summary}"
+        text = f"{first.engine}: {self.elements()}: {brief_form(first) if first.cause else first.summary}"
         shared = {k: v for k, v in first.values.items() if all(f.values.get(k) == v for f in self.findings)}
         texts = {k: value_text(v) for k, v in shared.items()}
         shown = {k: t for k, t in texts.items() if t}
@@ -153,13 +176,21 @@ class CauseGroup:
         lost = self.lost_joints()
         if lost:
             text += f"; lacks joints {shown_names(lost, SHOWN_JOINTS)}"
-        if first.hint:
-            text += f"; {first.hint}"
+        hint = first.hint if all(f.hint == first.hint for f in self.findings) else _cause_hint(first)
+        if hint:
+            text += f"; {hint}"
         return text
 
 
-def _key(f: Finding) -> tuple[str, str, str, str]:
-    return (f.kind.value, f.engine, clause(f), f.hint)
+def _cause_hint(f: Finding) -> str:
+    from koenig_check.engines.catalogue import cause
+
+    return cause(f.cause).hint if f.cause else f.hint
+
+
+def _key(f: Finding) -> tuple[str, ...]:
+    """What makes two root causes one: the same cause on the same engine; without a cause, the same finding's words."""
+    return ("cause", f.cause, f.engine) if f.cause else ("kind", f.kind.value, f.engine, f.summary, f.hint)
 
 
 def cause_groups(causes: Iterable[Finding]) -> list[CauseGroup]:

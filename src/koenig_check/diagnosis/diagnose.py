@@ -8,6 +8,7 @@ which engine departs (:mod:`koenig_check.diagnosis.three_way`).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -18,7 +19,6 @@ from koenig_check.diagnosis import policy, three_way
 from koenig_check.diagnosis.engine_limits import limited_engines, unable_findings
 from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
-from koenig_check.diagnosis.root_frame import root_frame_offset
 from koenig_check.engines import registry
 from koenig_check.engines.catalogue import applies
 from koenig_check.exceptions import one_line
@@ -62,6 +62,7 @@ def diagnose(
     qvel: np.ndarray | None = None,
     rtol: float = PARITY_RTOL,
     include_armature: bool = True,
+    energies: Mapping[str, Any] | None = None,
 ) -> Diagnosis:
     """Diagnose a loaded model: import parity, the optional engines where used, the three-engine verdicts.
 
@@ -80,6 +81,9 @@ def diagnose(
         Relative tolerance of the import parity and of the verdicts.
     include_armature : bool
         Compare the engines' armature energies too.
+    energies : mapping of str to energies, optional
+        Per engine, its energies (``rigid``, ``armature``) at ``qpos``, ``qvel`` as the run computed them: not
+        computed again (an engine attached here is asked for its own).
 
     Returns
     -------
@@ -89,22 +93,15 @@ def diagnose(
     if disagree is None:
         disagree = not parity.clean
     engines = model.options.engines
-    optional: list[Finding] = []
-    for name in registry.optional():
-        if name in model.engines:
-            continue
-        why = policy.to_consult(name, engines, disagree)
-        if why is None:
-            model.attach(name)
-        elif name not in policy.asked_for(engines):
-            optional.append(why)
-    optional = model.optional_findings + optional
+    asked = policy.asked_for(engines)
+    not_consulted = [f for f in policy.attach_engines(model, disagree) if f.engine not in asked]
+    optional = model.optional_findings + not_consulted
     findings = [f for f in list(model.findings) + parity.as_findings() + optional if _applies(f)]
     limits = limited_engines(findings, model.mujoco.model)  # engines given another robot: they do not vote
     voters = [name for name in model.engines if name not in limits]
     verdicts: list[Finding] = []
     if len(voters) >= 3:  # a majority can then say which engine departs
-        verdicts = _verdicts(model, voters, parity.segment_labels, findings, qpos, qvel, rtol, include_armature)
+        verdicts = _verdicts(model, voters, parity, findings, (qpos, qvel, energies or {}), rtol, include_armature)
     parser = "URDF" if Path(model.path).suffix.lower() == ".urdf" else "MJCF"
     unmade = unable_findings(limits, policy.asked_for(engines), parser) + policy.unmade_checks(optional, engines)
     findings, parity = _blamed_as_verdicts_say(verdicts, findings, parity)
@@ -142,19 +139,22 @@ def _blamed_as_verdicts_say(
 def _verdicts(
     model: Any,
     voters: list[str],
-    labels: dict[str, str],
+    parity: ParityReport,
     findings: list[Finding],
-    qpos: np.ndarray | None,
-    qvel: np.ndarray | None,
+    sample: tuple[np.ndarray | None, np.ndarray | None, Mapping[str, Any]],
     rtol: float,
     include_armature: bool,
 ) -> list[Finding]:
-    """Which of the ``voters`` departs: on the energies at the given states, on the mass properties at ``qpos0``."""
+    """Which of the ``voters`` departs: on the energies at the given states, on the mass properties at ``qpos0``.
+
+    ``sample`` is the states and the energies the run computed there (an engine not run on them is asked here).
+    """
     engines = {name: model.engines[name] for name in voters}
+    qpos, qvel, known = sample
     out: list[Finding] = []
     if qpos is not None and qvel is not None:
         try:
-            energies = {name: e.kinetic_energy(qpos, qvel) for name, e in engines.items()}
+            energies = {n: known[n] if n in known else e.kinetic_energy(qpos, qvel) for n, e in engines.items()}
         except ValueError as err:  # an engine produced an invalid state: name the file
             raise ValueError(f"{model.path}: {one_line(err)}") from err
         if not include_armature:
@@ -163,10 +163,9 @@ def _verdicts(
     q0 = np.asarray(model.mujoco.model.qpos0, dtype=float)[None]
     zero = np.zeros((1, model.mujoco.nv))
     states = {name: e.segment_states(q0, zero) for name, e in engines.items()}
-    offset, _ = root_frame_offset(model)
-    if offset is not None:  # Pinocchio dropped a jointless root body's pose: compare in MuJoCo's world
-        states["pinocchio"] = offset.segment_states(states["pinocchio"])
-    return out + three_way.import_verdicts(states, findings, rtol, labels)
+    if parity.frame_offset is not None:  # Pinocchio dropped a jointless root body's pose: compare in MuJoCo's world
+        states["pinocchio"] = parity.frame_offset.segment_states(states["pinocchio"])
+    return out + three_way.import_verdicts(states, findings, rtol, parity.segment_labels)
 
 
 @dataclass(frozen=True)

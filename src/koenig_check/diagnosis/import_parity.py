@@ -88,7 +88,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
         From :func:`koenig_check.engines.load_model`.
     rtol : float
         Relative tolerance; lengths are compared with ``rtol`` × the model's size,
@@ -107,6 +107,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     nv = mj_model.nv
     report = ParityReport(model=str(getattr(pair, "path", getattr(mj, "path", "?"))), rtol=rtol)
     report.causes, offset = model_causes(pair)
+    report.frame_offset = offset
     report.segment_labels = segment_labels(pair)
     sa = _unit_rate_states(mj, qpos0, nv)
     sb = _unit_rate_states(pn, qpos0, nv)

@@ -31,7 +31,7 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
         MuJoCo and Pinocchio loaded from the same MJCF file.
 
     Returns
@@ -85,5 +85,6 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
+            cause="pinocchio.mjcf.inertiagrouprange",
         )
     ]

@@ -11,7 +11,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 
-from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, clause, more_causes
+from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, more_causes
 from koenig_check.line_width import LINE_LIMIT, closed_cut
 
 #: The longest one-line message (characters): with the command line's ``koenig-check: `` before it, 200.
@@ -28,7 +28,7 @@ def short_error(
     others only when none does), each once (the same cause on several elements is one cause naming them), in a
     few words each, never one the message already says.  To fit, whole parts go, never half of one: a keyword's
     Python spelling in parentheses (``(repair_inertia=True)``), then the causes after the first ("; and N more
-    root causes"), then each cause's explanation after its first clause, then the engine's own detail in
+    root causes"), then the joints each cause loses, then the engine's own detail in
     parentheses (its verbatim reason), the last first, then "and N more", then the first cause naming only its first
     element ("includes a.xml (+2 more)"), then the causes (counted); only then are the last parts left out (whole:
     the lines after a message's first line give them), and only a first part too long alone is cut at a word
@@ -56,7 +56,7 @@ def short_error(
     found = list(getattr(err, "causes", ()))
     energy = [c for c in found if c.affects_energy]
     head = tidy(getattr(err, "brief", "") or (getattr(err, "head", "") if found else "") or one_line(err))
-    groups = [g for g in cause_groups(energy or found) if not _said(g, head)]
+    groups = [g for g in cause_groups(energy or found) if not _said(g, err)]
     shorts = [tidy(g.short(joints=not any(j in head for j in g.lost_joints()))) for g in groups]
     plain = _PYTHON_SPELLING.sub("", head)
     heads = (plain, *_without_details(plain))
@@ -64,7 +64,7 @@ def short_error(
     n = min(limit, len(shorts))
     counts = range(n, 0, -1)
     tries = [(h, k, True, shorts) for h in dict.fromkeys((head, plain)) for k in counts]  # causes -> "and N more"
-    tries += [(plain, k, True, briefs) for k in counts]  # then each cause's explanation after its first clause
+    tries += [(plain, k, True, briefs) for k in counts]  # then without the joints each cause loses
     tries += [(h, 1, True, said) for h in heads[1:] for said in (shorts, briefs)]  # then the engine's detail
     tries += [(h, min(n, 1), False, briefs) for h in heads]  # then "and N more"
     firsts = [tidy(g.short(joints=False, brief=True, shown=1)) for g in groups]  # one element, "(+N more)"
@@ -94,13 +94,12 @@ def _whole_parts(text: str, width: int) -> str:
     return first if len(first) <= width else closed_cut(first, width)
 
 
-def _said(group: CauseGroup, head: str) -> bool:
-    """Whether an error's message already says a cause (``nothing moves (no joint)`` and ``no joint: ...``)."""
-    first = group.findings[0]
-    if clause(first) in head:
-        return True
-    lead = clause(first).split(":")[0].split(",")[0].strip()
-    return first.element == "model" and len(lead) > 3 and lead in head
+def _said(group: CauseGroup, err: BaseException) -> bool:
+    """Whether an error already says a cause: a model without a joint, which its error is about."""
+    from koenig_check.exceptions import NoMovingSegmentError
+    from koenig_check.findings import Kind
+
+    return group.findings[0].kind is Kind.NOTHING_MOVES and isinstance(err, NoMovingSegmentError)
 
 
 #: A parenthesis holding a keyword's Python spelling (``(repair_inertia=True)``, ``(pinocchio_model=...)``).

@@ -73,7 +73,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     explained : set of str
         Segments whose missing mass another cause already explains: a finding only on such segments is not a root
         cause (the segments stay massless, not missing).
@@ -112,6 +112,7 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
                 affects_energy=True,
                 root_cause=not set(names) <= explained,
                 segments=tuple(names),
+                brief=f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'}",
             )
         )
     return out
@@ -135,7 +136,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     offset : FrameOffset, optional
         A dropped root pose to remove before comparing positions.
 
@@ -207,7 +208,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
                 affects_energy=True,
                 root_cause=True,
                 segments=segments,
-                cause="pinocchio.mjcf.class-geom-mass" if attr == "mass" else "",
+                cause=f"pinocchio.mjcf.class-{tag}-{'mass' if attr == 'mass' else 'pos'}",
             )
         )
     return out
@@ -255,7 +256,7 @@ def compiler_causes(pair: Any) -> list[Finding]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
 
     Returns
     -------
@@ -278,6 +279,7 @@ def compiler_causes(pair: Any) -> list[Finding]:
                     root_cause=True,
                     segments=tuple(pair.mujoco.segment_names),
                     hint="",
+                    cause="pinocchio.mjcf.settotalmass",
                 )
             )
     return out
@@ -292,7 +294,7 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     explained : set of str
         Segments whose mass difference another cause already explains.
 
@@ -343,6 +345,7 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
+            cause="pinocchio.mjcf.mesh-mass",
         )
     ]
 
@@ -352,7 +355,7 @@ def model_causes(pair: Any) -> tuple[list[Finding], FrameOffset | None]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
 
     Returns
     -------

@@ -7,6 +7,7 @@ is clean, which symptoms a root cause explains, its findings and its one-line he
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -128,6 +129,9 @@ class ParityReport:
     mass_matrix_max_rel : float
         Largest relative difference of the two mass matrices over the checked poses.
     rtol : float
+    frame_offset : FrameOffset or None
+        ``world_mujoco <- world_pinocchio`` when Pinocchio dropped a jointless root body's pose (computed once,
+        with the causes: :func:`koenig_check.diagnosis.root_frame.root_frame_offset`).
     """
 
     model: str
@@ -144,6 +148,7 @@ class ParityReport:
     massless_in_pinocchio: list[str] = field(default_factory=list)
     massless_in_mujoco: list[str] = field(default_factory=list)
     segment_labels: dict[str, str] = field(default_factory=dict)
+    frame_offset: Any = field(default=None, repr=False, compare=False)
 
     def label(self, segment: str) -> str:
         """A segment as the user wrote it: its link or body, and the joint that keys it.
@@ -301,7 +306,7 @@ class ParityReport:
         """One line: root causes that change the energy first, then symptoms no root cause explains.
 
         A symptom is a differing segment or dof, or a segment one engine lacks or gives no mass.  ``brief``
-        names each root cause in a few words (its element and first clause), for a view that lists them whole.
+        names each root cause in a few words (its element and brief form), for a view that lists them whole.
         """
         from koenig_check.diagnosis.reason import short_cause
 

@@ -11,21 +11,11 @@ optional engine is not used, an ``ENGINE_NOT_USED`` finding says why.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import Any
 
 from koenig_check.engines import registry
 from koenig_check.engines.registry import install_hint, label, not_used, optional, required, spec
 from koenig_check.findings import Finding, Kind
-
-if TYPE_CHECKING:
-    OPTIONAL: tuple[str, ...]  # read through __getattr__, from the specs
-
-
-def __getattr__(name: str) -> tuple[str, ...]:
-    """``OPTIONAL``, the tuple of earlier versions: the optional engines in report order, read when asked."""
-    if name == "OPTIONAL":
-        return optional()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def asked_for(engines: Sequence[str] | None) -> tuple[str, ...]:
@@ -104,3 +94,36 @@ def unmade_checks(findings: Sequence[Finding], engines: Sequence[str] | None) ->
         for f in findings
         if f.kind is Kind.ENGINE_NOT_USED and f.engine in asked
     ]
+
+
+def attach_engines(model: Any, disagree: bool | None = None, names: Sequence[str] | None = None) -> list[Finding]:
+    """Attach to a loaded model the optional engines the policy chooses: the one place they are attached.
+
+    What attaching an engine found (its load findings, or ``ENGINE_NOT_USED`` when it cannot check the model) is
+    in the model's :attr:`~koenig_check.engines.LoadedModel.optional_findings`.
+
+    Parameters
+    ----------
+    model : koenig_check.engines.LoadedModel
+    disagree : bool, optional
+        ``None`` before the run: only the engines the user named (they run on every pose).  Otherwise whether
+        MuJoCo and Pinocchio disagree: the engines consulted then (:func:`to_consult`) are attached too.
+    names : sequence of str, optional
+        Only these optional engines (default: every optional engine).
+
+    Returns
+    -------
+    list of Finding
+        Per optional engine not consulted (in report order), the ``ENGINE_NOT_USED`` finding saying why.
+    """
+    engines = model.options.engines
+    why_not: list[Finding] = []
+    for name in optional():
+        if name in model.engines or (names is not None and name not in names):
+            continue
+        why = None if name in asked_for(engines) else to_consult(name, engines, bool(disagree))
+        if why is None and (disagree is not None or name in asked_for(engines)):
+            model.attach(name)
+        elif why is not None and disagree is not None:
+            why_not.append(why)
+    return why_not

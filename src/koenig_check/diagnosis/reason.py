@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 
 from koenig_check.diagnosis.cause_effect import by_effect
-from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, clause, element_words, more_causes
+from koenig_check.diagnosis.cause_groups import CauseGroup, brief_form, cause_groups, element_words, more_causes
 from koenig_check.diagnosis.one_line import short_error
 from koenig_check.findings import Finding, Kind, root_causes
 from koenig_check.line_width import closed_cut
@@ -135,9 +134,7 @@ def cause_lines(findings: Sequence[Finding], limit: int = 3) -> list[str]:
 
 
 def short_cause(f: Finding) -> str:
-    """A cause in a few words: its element and the first clause of its summary, without parentheses or values.
-
-    An element that lists several names keeps the first and says how many more.
+    """A cause in a few words: its element and its brief form (:func:`~koenig_check.diagnosis.cause_groups.brief_form`).
 
     Parameters
     ----------
@@ -147,17 +144,17 @@ def short_cause(f: Finding) -> str:
     -------
     str
     """
-    return f"{element_words(f)}: {clause(f)}"
+    return f"{element_words(f)}: {brief_form(f)}"
 
 
 def _departures(findings: Sequence[Finding]) -> str:
     """The three-engine verdicts in a few words: which engine departs (once each), or that all differ."""
+    from koenig_check.diagnosis.three_way import verdict_head
+
     heads = []
     for f in findings:
         if f.kind is Kind.VERDICT:
-            head = re.sub(
-                r" \([^)]*\)", "", f.summary.split("; ")[0]
-            )  # "Pinocchio departs", "all three engines differ"
+            head = verdict_head(f)  # "Pinocchio departs", "all three engines differ"
             if head not in heads:
                 heads.append(head)
     return ", ".join(heads)

@@ -68,7 +68,7 @@ def root_frame_offset(pair: Any, atol: float = 1e-9) -> tuple[FrameOffset | None
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     atol : float
         Under this (rotation entries, metres) the poses are the same.
 
@@ -117,6 +117,7 @@ def root_frame_offset(pair: Any, atol: float = 1e-9) -> tuple[FrameOffset | None
         affects_energy=False,
         root_cause=True,
         segments=tuple(pair.pinocchio.segment_names),
+        cause="pinocchio.mjcf.root-pose",
     )
     return offset, finding
 

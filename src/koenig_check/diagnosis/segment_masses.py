@@ -56,7 +56,7 @@ def pinocchio_segment_masses(pair: Any) -> dict[str, float]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
 
     Returns
     -------

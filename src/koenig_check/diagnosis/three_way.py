@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.registry import label, names
+from koenig_check.engines.registry import label, names, spec
 from koenig_check.findings import Finding, Kind
 
 #: Default relative tolerance under which two engines "agree".
@@ -34,15 +34,25 @@ def _close(a: np.ndarray, b: np.ndarray, rtol: float, scale: np.ndarray | float 
     return np.abs(a - b) <= rtol * np.maximum(ref, 1e-300)
 
 
+def _pair_rtol(rtol: float, *engines: str) -> float:
+    """The tolerance two engines agree within: ``rtol``, or the coarser precision either declares (its spec's)."""
+    declared = [spec(e).precision for e in engines if e in names()]
+    return max([rtol, *declared])
+
+
 def _departing(values: dict[str, np.ndarray], rtol: float, scale: Any = None) -> tuple[str, ...] | None:
     """``None`` when all agree; the engines that depart when the others, a majority, agree; ``("all",)`` else.
+
+    Two engines agree within ``rtol`` or the coarser of their declared precisions (PyBullet's diagonalized
+    inertias, a float32 engine), so that an engine's round-off is never called a departure.
 
     The fewest departing engines are looked for first, in report order (of three: the first engine whose two
     others agree).
     """
     engines = list(values)
     agree: dict[frozenset[str], bool] = {
-        frozenset((a, b)): bool(np.all(_close(values[a], values[b], rtol, scale))) for a, b in combinations(engines, 2)
+        frozenset((a, b)): bool(np.all(_close(values[a], values[b], _pair_rtol(rtol, a, b), scale)))
+        for a, b in combinations(engines, 2)
     }
     if all(agree.values()):
         return None
@@ -127,7 +137,7 @@ def _verdicts(
     if tuple(departing) == ("all",):
         causes = {e: departure_cause(findings, e, segments) for e in values}
         known = "; ".join(f"{label(e)}: {_construct(c)} ({c.kind.value})" for e, c in causes.items() if c is not None)
-        head = "all three engines differ" if len(values) == 3 else f"no majority of the {len(values)} engines agrees"
+        head = _no_majority(len(values))
         return [
             Finding(
                 Kind.VERDICT,
@@ -143,6 +153,29 @@ def _verdicts(
     return [_departure(what, odd, agreeing, values, findings, segments) for odd in departing]
 
 
+def _no_majority(voters: int) -> str:
+    return "all three engines differ" if voters == 3 else f"no majority of the {voters} engines agrees"
+
+
+def _departs(engine: str) -> str:
+    return f"{label(engine)} departs"
+
+
+def verdict_head(verdict: Finding) -> str:
+    """A ``VERDICT`` in a few words, from its engine and values: ``Pinocchio departs``, ``all three engines differ``.
+
+    Parameters
+    ----------
+    verdict : Finding
+        A finding of kind ``VERDICT`` (its values hold one entry per voting engine).
+
+    Returns
+    -------
+    str
+    """
+    return _no_majority(len(verdict.values)) if verdict.engine == "all" else _departs(verdict.engine)
+
+
 def _departure(
     what: str,
     odd: str,
@@ -154,7 +187,7 @@ def _departure(
     """One ``VERDICT`` finding: ``odd`` departs on ``what`` from the engines that agree, and why."""
     others = _listed(agreeing)
     cause = departure_cause(findings, odd, segments)
-    summary = f"{label(odd)} departs ({others} agree)"
+    summary = f"{_departs(odd)} ({others} agree)"
     if cause is not None:
         summary += f"; construct responsible: {_construct(cause)}"
     else:  # the engines that agree may skip the same construct: then the odd one reads the file as written

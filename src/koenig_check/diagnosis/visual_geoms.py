@@ -36,7 +36,7 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
         MuJoCo and Pinocchio loaded from the same MJCF file.
 
     Returns
@@ -94,5 +94,6 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
+            cause="pinocchio.mjcf.visual-geoms",
         )
     ]

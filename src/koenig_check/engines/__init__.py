@@ -40,19 +40,17 @@ if TYPE_CHECKING:
         NoMovingSegmentError,
     )
     from koenig_check.engines.load_options import LoadOptions
-    from koenig_check.engines.loading import LoadedModel, ModelPair, load_model
+    from koenig_check.engines.loading import LoadedModel, load_model
     from koenig_check.engines.mujoco.adapter import MujocoEngine
     from koenig_check.engines.mujoco.loader import ROOT_JOINT_NAME
     from koenig_check.engines.pinocchio.adapter import PinocchioEngine
     from koenig_check.engines.pinocchio.state_map import StateMap
-    from koenig_check.engines.registry import ENGINE_NAMES
     from koenig_check.engines.sampling import random_states
     from koenig_check.sources.catalogue import ModelSource, list_models, resolve_model
 
 #: Public name -> the module that defines it.
 _HOME = {
     "Engine": "base",
-    "EngineModel": "base",
     "mujoco_coordinate_names": "canonical",
     "mujoco_joint_names": "canonical",
     "EnergyParts": "energy",
@@ -64,7 +62,6 @@ _HOME = {
     "NoMovingSegmentError": "errors",
     "LoadOptions": "load_options",
     "LoadedModel": "loading",
-    "ModelPair": "loading",
     "load_model": "loading",
     "CONSISTENCY_POSES": "loading",
     "POSE_ATOL": "loading",
@@ -72,7 +69,6 @@ _HOME = {
     "ROOT_JOINT_NAME": "mujoco.loader",
     "PinocchioEngine": "pinocchio.adapter",
     "StateMap": "pinocchio.state_map",
-    "ENGINE_NAMES": "registry",
     "random_states": "sampling",
     "ModelSource": "koenig_check.sources.catalogue",
     "list_models": "koenig_check.sources.catalogue",
@@ -81,20 +77,17 @@ _HOME = {
 
 __all__ = [
     "CONSISTENCY_POSES",
-    "ENGINE_NAMES",
     "POSE_ATOL",
     "ROOT_JOINT_NAME",
     "CoupledJointsError",
     "EnergyParts",
     "Engine",
-    "EngineModel",
     "EngineUnavailableError",
     "InertiaError",
     "JointMismatch",
     "LoadOptions",
     "LoadedModel",
     "ModelLoadError",
-    "ModelPair",
     "ModelSource",
     "MujocoEngine",
     "NoMovingSegmentError",

@@ -66,6 +66,7 @@ def bare_body_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                     affects_energy=moves,
                     root_cause=True,
                     segments=segments,
+                    cause="pinocchio.mjcf.bare-body",
                     hint=f"give it a name (or any attribute); joints below: {shown_names(joints)}"
                     if joints
                     else "give it a name (or any attribute)",

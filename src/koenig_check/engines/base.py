@@ -23,7 +23,7 @@ class Engine(ABC):
     Attributes
     ----------
     engine : str
-        The engine's name (a key of :data:`koenig_check.engines.registry.ENGINE_NAMES`).
+        The engine's name (one of :func:`koenig_check.engines.registry.names`).
     path : Path
         The file the engine read.
     findings : list of Finding
@@ -216,10 +216,6 @@ class Engine(ABC):
         -------
         dict of str to ndarray of int
         """
-
-
-#: The former name of :class:`Engine`.
-EngineModel = Engine
 
 
 def as_batch(x: np.ndarray, n: int, what: str) -> np.ndarray:

@@ -11,7 +11,7 @@ import numpy as np
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
-    from koenig_check.engines.base import EngineModel
+    from koenig_check.engines.base import Engine
 
 #: Default relative tolerance of the self-consistency checks.
 CONSISTENCY_RTOL = 1e-9
@@ -50,7 +50,7 @@ def _close(a: np.ndarray, b: np.ndarray, rtol: float) -> bool:
 
 
 def _kinds_concerned(
-    engine: EngineModel,
+    engine: Engine,
     qpos: np.ndarray,
     qvel: np.ndarray,
     test: Callable[[np.ndarray, np.ndarray, float], bool],
@@ -66,11 +66,11 @@ def _kinds_concerned(
     return bad
 
 
-def _fact(engine: EngineModel, summary: str, **values: object) -> Finding:
+def _fact(engine: Engine, summary: str, **values: object) -> Finding:
     return Finding(Kind.SELF_CONSISTENCY, engine.engine, "model", summary, values)
 
 
-def _armature_inclusion(engine: EngineModel, qpos: np.ndarray, qvel: np.ndarray, rtol: float) -> list[Finding]:
+def _armature_inclusion(engine: Engine, qpos: np.ndarray, qvel: np.ndarray, rtol: float) -> list[Finding]:
     """Say, joint kind by joint kind, whether the engine's energy includes the armature term."""
     parts = engine.kinetic_energy(qpos, qvel)
     if _close(parts.reported, parts.total, rtol):
@@ -103,13 +103,13 @@ def _armature_inclusion(engine: EngineModel, qpos: np.ndarray, qvel: np.ndarray,
 
 
 def self_consistency(
-    engine: EngineModel, qpos: np.ndarray, qvel: np.ndarray, rtol: float = CONSISTENCY_RTOL
+    engine: Engine, qpos: np.ndarray, qvel: np.ndarray, rtol: float = CONSISTENCY_RTOL
 ) -> list[Finding]:
     """Describe what an engine's energy, mass matrix and inverse dynamics include, and where they disagree.
 
     Parameters
     ----------
-    engine : EngineModel
+    engine : Engine
     qpos : ndarray, shape (P, nq)
     qvel : ndarray, shape (P, nv)
     rtol : float

@@ -12,12 +12,9 @@ import os
 import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from koenig_check.engines import specs as engine_specs
-
-if TYPE_CHECKING:
-    ENGINE_NAMES: tuple[str, ...]  # read through __getattr__, from the specs
 
 #: What the deprecated ``allow_coupled`` / ``--allow-coupled`` is told.
 ALLOW_COUPLED_DEPRECATION = (
@@ -149,13 +146,6 @@ def parse_engines(text: str) -> tuple[str, ...]:
         whole = ",".join(n for n in known if n in {*asked, *required})
         raise ValueError(f"engines: {' and '.join(required)} are always run and named: write {whole!r}, not {text!r}")
     return tuple(n for n in known if n in asked)
-
-
-def __getattr__(name: str) -> tuple[str, ...]:
-    """``ENGINE_NAMES``, the tuple of earlier versions: every engine, in report order, read when asked."""
-    if name == "ENGINE_NAMES":
-        return engine_specs.names()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def parse_xacro_args(value: Mapping[str, Any] | Iterable[Any] | None) -> tuple[tuple[str, str], ...]:

@@ -166,10 +166,6 @@ class LoadedModel:
         return engine
 
 
-#: The former name of :class:`LoadedModel`.
-ModelPair = LoadedModel
-
-
 def _armature_findings(mj: MujocoEngine, pn: PinocchioEngine, state_map: StateMap) -> list[Finding]:
     """Compare the armature each engine was given, joint by joint (canonical dofs)."""
     arm_pin = np.zeros(state_map.nv)

@@ -32,6 +32,9 @@ class Measurement:
         The gravity vector the engine uses for this model (zero when gravity is disabled).
     armature : mapping of str to float
         Rotor inertia per one-degree-of-freedom joint as the engine holds it (empty: none).
+    com : tuple of float
+        The centre of mass of the bodies that move, in the world, at the reference configuration (empty: not
+        measured).
     """
 
     joints: tuple[str, ...]
@@ -39,13 +42,14 @@ class Measurement:
     mass_matrix: Mapping[tuple[str, str], float] = field(default_factory=dict)
     gravity: tuple[float, ...] = (0.0, 0.0, -9.81)
     armature: Mapping[str, float] = field(default_factory=dict)
+    com: tuple[float, ...] = ()
 
 
 #: The quantity of a cause each measured field stands for.
 _FIELD_OF = {
     "joints": "joints",
     "mass": "mass",
-    "com": "mass_matrix",
+    "com": "com",
     "inertia": "mass_matrix",
     "kinematics": "mass_matrix",
     "armature": "armature",
@@ -65,7 +69,7 @@ def differences(a: Measurement, b: Measurement, rtol: float) -> set[str]:
     Returns
     -------
     set of str
-        Among ``joints``, ``mass``, ``mass_matrix``, ``gravity``, ``armature``.
+        Among ``joints``, ``mass``, ``mass_matrix``, ``gravity``, ``armature``, ``com``.
     """
     out = set()
     if a.joints != b.joints:
@@ -78,6 +82,8 @@ def differences(a: Measurement, b: Measurement, rtol: float) -> set[str]:
         out.add("mass_matrix")
     if not np.allclose(a.gravity, b.gravity, rtol=rtol, atol=rtol * 9.81):
         out.add("gravity")
+    if a.com and b.com and not np.allclose(a.com, b.com, rtol=rtol, atol=rtol * max(1.0, *map(abs, a.com))):
+        out.add("com")
     joints = set(a.armature) | set(b.armature)
     if any(not _close(a.armature.get(j, 0.0), b.armature.get(j, 0.0), rtol) for j in joints):
         out.add("armature")

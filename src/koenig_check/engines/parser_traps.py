@@ -57,8 +57,12 @@ def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocc
     Returns
     -------
     list of Finding
-        One ``IGNORED_CONSTRUCT`` root cause per outermost frame that holds a body or a geom.
+        One ``IGNORED_CONSTRUCT`` root cause per outermost frame that holds a body or a geom, an instance of
+        :func:`frame_cause`; none for an engine the catalogue does not say skips ``<frame>``.
     """
+    cause_id = frame_cause(engine)
+    if not cause_id:
+        return []
     parser = f"{label(engine)}'s"
     out = []
     for fr in frames(root):
@@ -80,9 +84,27 @@ def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocc
                 segments=moved or fr.joints,
                 hint="give the bodies and geoms inside it the frame's pose and remove the <frame> "
                 "(MuJoCo resolves it at compile time)",
+                cause=cause_id,
             )
         )
     return out
+
+
+def frame_cause(engine: str) -> str:
+    """The id of the cause "``<frame>`` not read by this engine's MJCF parser", or empty when none is declared.
+
+    Parameters
+    ----------
+    engine : str
+
+    Returns
+    -------
+    str
+    """
+    from koenig_check.engines.catalogue import catalogue
+
+    cause_id = f"{engine}.mjcf.frame"
+    return cause_id if any(c.id == cause_id for c in catalogue()) else ""
 
 
 def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = None) -> list[Finding]:
@@ -140,6 +162,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 root_cause=True,
                 segments=moved or inc.joints,
                 hint="load a file without <include> (e.g. the robot's own file)" if inc.bodies else "",
+                cause="pinocchio.mjcf.include",
             )
         )
     out += frame_causes(root, seg_of)
@@ -159,6 +182,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
                 affects_energy=bool(joints),
                 root_cause=True,
                 segments=joints,
+                cause="pinocchio.mjcf.root-bodies",
             )
         )
     return out
@@ -214,6 +238,7 @@ def nothing_moves(path: str | os.PathLike[str], has_body: bool = True, advice: s
         values={"file": str(path)},
         root_cause=True,
         hint=(advice or "--floating (floating=True) gives the root body a free joint") if has_body else "",
+        brief="no joint: nothing moves, so there is no kinetic energy to compare",
     )
 
 
@@ -283,6 +308,7 @@ def planar_cause(joint: str, axis: tuple[float, ...] = (1.0, 0.0, 0.0)) -> Findi
         root_cause=True,
         segments=parts,
         hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
+        cause="pinocchio.urdf.planar-axis",
     )
 
 

@@ -6,8 +6,7 @@ declarations.  MuJoCo and Pinocchio load every model (:func:`koenig_check.engine
 engine is attached to a loaded model by the function its spec names (:func:`attach`).  A new engine is one
 subpackage under ``engines/``: nothing here changes.
 
-The tables of earlier versions (:data:`ENGINE_NAMES`, :data:`REQUIRED`, :data:`OPTIONAL`, :data:`LABEL`,
-:data:`ATTACH`) are still here, derived from the specs each time they are read.
+The tables :data:`LABEL` and :data:`ATTACH` are derived from the specs each time they are read.
 """
 
 from __future__ import annotations
@@ -24,11 +23,8 @@ from koenig_check.findings import Finding, Kind
 if TYPE_CHECKING:
     from koenig_check.engines.base import Engine
 
-    ENGINE_NAMES: tuple[str, ...]  # read through __getattr__, from the specs
-    REQUIRED: tuple[str, ...]
-    OPTIONAL: tuple[str, ...]
 
-__all__ = [  # and ENGINE_NAMES, REQUIRED, OPTIONAL (module __getattr__)
+__all__ = [
     "ATTACH",
     "LABEL",
     "EngineSpec",
@@ -115,14 +111,6 @@ ATTACH: Mapping[str, str] = _Table(lambda s: s.attach)
 #: The Python module each engine needs, and how to install an optional one.
 _MODULE: Mapping[str, str] = _Table(lambda s: s.module)
 _INSTALL: Mapping[str, str] = _Table(lambda s: s.install_hint)
-
-
-def __getattr__(name: str) -> tuple[str, ...]:
-    """The tuples of earlier versions, derived from the specs: ``ENGINE_NAMES``, ``REQUIRED``, ``OPTIONAL``."""
-    derived = {"ENGINE_NAMES": names, "REQUIRED": required, "OPTIONAL": optional}
-    if name in derived:
-        return derived[name]()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def load_function(path: str) -> Callable[..., Any]:

@@ -73,6 +73,7 @@ def replicate_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                         root_cause=True,
                         segments=moved or tuple(joints),
                         hint="koenig-check export MODEL --to mjcf writes the copies out (no <replicate>, no <frame>)",
+                        cause="pinocchio.mjcf.replicate",
                     )
                 )
             elif child.tag == "body":

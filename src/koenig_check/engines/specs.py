@@ -65,9 +65,6 @@ class EngineSpec:
     mjcf_meshes : tuple of str
         The mesh file suffixes its MJCF parser reads (``(".obj",)``); empty: every format MuJoCo reads.  The
         export writes only these for a proof that includes the engine.
-    skips_mjcf : tuple of str
-        The MJCF elements its parser skips with everything inside (``("frame",)``): the joints they hold are
-        missing from its reading, which explains a refusal of the export's proof.
     """
 
     name: str
@@ -84,7 +81,6 @@ class EngineSpec:
     tie_breaker: bool = False
     reference: bool = False
     mjcf_meshes: tuple[str, ...] = ()
-    skips_mjcf: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.distribution:

@@ -89,6 +89,7 @@ def axisangle_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
                             affects_energy=bool(segments) or not seg_of,
                             root_cause=True,
                             segments=segments,
+                            cause="pinocchio.mjcf.axisangle-length",
                         )
                     )
             if child.tag == "body":

@@ -16,13 +16,6 @@ from koenig_check.exceptions import one_line
 from koenig_check.sources.catalogue import resolve_model
 
 
-def __getattr__(name: str) -> tuple[str, ...]:
-    """``PROOF_ENGINES``, the engines a proof compares by default: every engine, in report order, read when asked."""
-    if name == "PROOF_ENGINES":
-        return registry.names()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 @dataclass
 class EngineSide:
     """One file loaded in each engine: adapters answering canonical (MuJoCo-layout) states.

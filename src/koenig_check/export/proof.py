@@ -118,9 +118,10 @@ def compare_engine(
     own = np.nan
     if engine in original.adapters:  # the engine's reading of the original against MuJoCo's, as compare measures
         own = _energy_difference(reference, original.adapters[engine], states)
-    ok = max(dm, de, di) <= rtol
+    tolerance = max(rtol, registry.spec(engine).precision)  # an engine's declared round-off is no difference
+    ok = max(dm, de, di) <= tolerance
     proof = EngineProof(engine, dm, de, int(qpos.shape[0]), ok, own_reading=own, inverse_dynamics=di)
-    segments = _segments(engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, rtol)
+    segments = _segments(engine, reference, b, export, (qpos[:1], qvel[:1]), (qx[:1], vx[:1]), original, tolerance)
     return proof, segments
 
 
@@ -217,15 +218,19 @@ def prove(
     rtol : float
         Relative tolerance on the mass matrix, the energy and each segment's mass properties.
     engines : tuple of str, optional
-        Default: every engine (:func:`koenig_check.engines.registry.names`), each compared where it loads both
-        files.  Engines named here are asked for: one that cannot compare the files fails the proof.
+        Default: every engine whose parser reads the export's format (its spec's ``formats``), each compared where
+        it loads both files.  Engines named here are asked for: one that cannot compare the files fails the proof.
 
     Returns
     -------
     Proof
     """
     asked = () if engines is None else tuple(engines)
-    engines = registry.names() if engines is None else tuple(engines)
+    if engines is None:  # every engine whose parser reads the export's format (PyBullet, iDynTree: URDF only)
+        target = detect_format(Path(export))
+        engines = tuple(n for n in registry.names() if target in registry.spec(n).formats)
+    else:
+        engines = tuple(engines)
     opts = options or LoadOptions()
     side_a = load_side(original, opts, engines)
     side_b = load_side(export, export_options(opts, side_a, export), engines)

@@ -1,7 +1,7 @@
 """Why an engine could not load an MJCF file of a proof: the ``<frame>`` elements its parser skips.
 
-An engine whose MJCF parser skips a ``<frame>`` with everything inside it (its declaration says so,
-:attr:`~koenig_check.engines.specs.EngineSpec.skips_mjcf`: Pinocchio's and Drake's) misses the joints of the
+An engine whose MJCF parser skips a ``<frame>`` with everything inside it (the catalogue declares its cause
+``<engine>.mjcf.frame``: Pinocchio's and Drake's) misses the joints of the
 bodies it holds, and the engine's joints do not match MuJoCo's.  When an engine refuses a file of a
 proof (``koenig-check export --check-only``), the frames of that file that hold joints are named with what
 they hold: data read from the file (:func:`koenig_check.engines.parser_traps.frame_causes`), not from the
@@ -27,19 +27,18 @@ def unread_frames(path: str | os.PathLike[str], mj_model: Any, engine: str) -> l
     mj_model : mujoco.MjModel
         MuJoCo's model of the file.
     engine : str
-        Any engine; only one whose MJCF parser skips ``<frame>`` has such causes.
+        An engine whose ``<frame>`` cause the catalogue declares (``<engine>.mjcf.frame``); any other gives none.
 
     Returns
     -------
     list of Finding
-        ``IGNORED_CONSTRUCT`` root causes, one per outermost frame holding joints.
+        ``IGNORED_CONSTRUCT`` root causes (that cause), one per outermost frame holding joints.
     """
     from koenig_check.engines.canonical import segment_of_body
     from koenig_check.engines.parser_traps import frame_causes
-    from koenig_check.engines.specs import names, spec
     from koenig_check.modelfile.mjcf import read_mjcf
 
-    if engine not in names() or "frame" not in spec(engine).skips_mjcf or not Path(path).is_file():
+    if not Path(path).is_file():
         return []
     root = read_mjcf(Path(path))
     if root is None:

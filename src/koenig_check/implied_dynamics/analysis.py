@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.arguments import suggest_keywords
-from koenig_check.engines import ModelPair, load_model
+from koenig_check.engines import LoadedModel, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.exceptions import KoenigCheckError, one_line
@@ -213,7 +213,7 @@ def _random_accelerations(nv: int, n: int, seed: int) -> np.ndarray:
 
 
 def dynamics_of_pair(
-    pair: ModelPair,
+    pair: LoadedModel,
     qpos: np.ndarray,
     qvel: np.ndarray,
     qacc: np.ndarray,
@@ -225,7 +225,7 @@ def dynamics_of_pair(
 
     Parameters
     ----------
-    pair : ModelPair
+    pair : LoadedModel
     qpos : ndarray, shape (P, nq)
     qvel, qacc : ndarray, shape (P, nv)
     formulas : list of str, optional

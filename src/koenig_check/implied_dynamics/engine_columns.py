@@ -37,10 +37,9 @@ def add_engine_columns(result: Any, pair: Any, engines: Sequence[str] | None, pa
     # Whether MuJoCo and Pinocchio disagree: read before any optional engine adds its own comparisons.
     disagree = any(e.formula == parity_label and e.max_rel_error > result.tolerance(e) for e in result.errors)
     for name in optional():
-        why = policy.to_consult(name, engines, disagree)
         before = len(pair.optional_findings)
-        engine = pair.attach(name) if why is None else None
-        found = [why] if why is not None else list(pair.optional_findings[before:])
+        found = policy.attach_engines(pair, disagree, names=(name,)) or list(pair.optional_findings[before:])
+        engine = pair.engines.get(name)
         found = policy.unmade_checks(found, engines) + found
         result.findings += found
         result.notes += [f.message() for f in found]
@@ -58,7 +57,3 @@ def _add_column(result: Any, name: str, engine: Any, parity_label: str) -> None:
         result.errors.append(discrepancy(r.Q, Q, formula, route, name))
     result.errors.append(discrepancy(result.engine_mass["mujoco"], M, parity_label, "mujoco", name))
     result.errors.append(discrepancy(result.engine_forces["mujoco"], Q, parity_label, "mujoco", name))
-
-
-#: The former name of :func:`add_engine_columns` (Drake was the only optional engine).
-add_drake_column = add_engine_columns

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from koenig_check.formulas import FORMULAS
 from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 #: Plain-words description of each formula family (the registry name's part before the first ':').
 _BASE_TEXT = {
@@ -126,7 +126,7 @@ def describe_poses(comp: ModelComparison) -> str:
 
 
 def model_findings(
-    comp: ModelComparison, summaries: Sequence[FormulaSummary], parity: EngineParity | None, rtol: float
+    comp: ModelComparison, summaries: Sequence[FormulaSummary], parity: EngineAgreement | None, rtol: float
 ) -> ModelFindings:
     """The plain-words findings of one model.
 
@@ -135,7 +135,7 @@ def model_findings(
     comp : ModelComparison
     summaries : sequence of FormulaSummary
         This model's summaries.
-    parity : EngineParity, optional
+    parity : EngineAgreement, optional
     rtol : float
 
     Returns
@@ -310,7 +310,7 @@ def run_conditions(comp: ModelComparison, settings: dict | None = None) -> str:
 def run_overview(
     comparisons: Sequence[ModelComparison],
     summaries: Sequence[FormulaSummary],
-    parities: Sequence[EngineParity],
+    agreements: Sequence[EngineAgreement],
     failures: Sequence[tuple[str, str]] = (),
 ) -> list[str]:
     """The run in a few sentences: engines, formulas exact everywhere, exact nowhere, the largest error.
@@ -319,7 +319,7 @@ def run_overview(
     ----------
     comparisons : sequence of ModelComparison
     summaries : sequence of FormulaSummary
-    parities : sequence of EngineParity
+    agreements : sequence of EngineAgreement
     failures : sequence of (model, reason)
 
     Returns
@@ -329,12 +329,12 @@ def run_overview(
     n = len(comparisons)
     if not n:
         return [f"No model could be compared ({len(failures)} failed)."]
-    agree = sum(p.agrees for p in parities)
+    agree = sum(p.agrees for p in agreements)
     lines = [
         f"{n} model run(s) compared"
         + (f", {len(failures)} could not be" if failures else "")
-        + f". MuJoCo and Pinocchio agree on {agree} of {len(parities)}"
-        + ("." if agree == len(parities) else ": see the models marked DISAGREE.")
+        + f". MuJoCo and Pinocchio agree on {agree} of {len(agreements)}"
+        + ("." if agree == len(agreements) else ": see the models marked DISAGREE.")
     ]
     groups = _by_formula(summaries)
     models_of = {f: {s.model for s in rows} for f, rows in groups.items()}

@@ -24,7 +24,7 @@ from matplotlib.figure import Figure
 from matplotlib.text import Text
 from matplotlib.ticker import MaxNLocator
 
-from koenig_check.engines.specs import spec, specs
+from koenig_check.engines.specs import spec
 from koenig_check.report.engine_energies import EngineEnergies
 from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
@@ -47,13 +47,6 @@ def engine_color(engine: str) -> str:
         return spec(engine).color
     except KeyError:
         return "tab:gray"
-
-
-def __getattr__(name: str) -> dict[str, str]:
-    """``ENGINE_COLORS``, the table of earlier versions (engine -> colour), read from the specs when asked."""
-    if name == "ENGINE_COLORS":
-        return {s.name: s.color for s in specs()}
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 #: Where the rounding band is drawn (log10 units), left of the axis proper.

@@ -176,7 +176,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
     str
     """
     rtol = check.rtol
-    parity = {p.model: p for p in check.parities}
+    parity = {p.model: p for p in check.agreements}
     by_model: dict[str, list[FormulaSummary]] = {}
     for s in check.summaries:
         by_model.setdefault(s.model, []).append(s)
@@ -196,7 +196,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
         + "</p></nav>",
         '<section id="findings"><h2>What this run found</h2>',
         "<p>"
-        + _code(" ".join(run_overview(check.comparisons, check.summaries, check.parities, check.failures)))
+        + _code(" ".join(run_overview(check.comparisons, check.summaries, check.agreements, check.failures)))
         + "</p><ul>",
     ]
     for k, comp in enumerate(check.comparisons):
@@ -210,7 +210,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
             items.append(f"not exact: <code>{_e(name)}</code> {_e(rest)}")
         if f.refused:
             items.append("refused (does not apply): " + ", ".join(f"<code>{_e(n)}</code>" for n in f.refused))
-        shown = cls == "disagree" or not model_agrees(comp, check.parities[k], rtol)  # folded when they agree
+        shown = cls == "disagree" or not model_agrees(comp, check.agreements[k], rtol)  # folded when they agree
         body.append(
             f'<li><details{" open" if shown else ""}><summary><a href="#{model_anchor(comp.model, k)}">'
             f"<strong>{_e(comp.model)}</strong></a> ({_e(f.poses)}): "
@@ -236,7 +236,7 @@ def report_html(check: CrossCheck, figures: Mapping[int | None, Sequence[tuple[P
     body.append("</dl></section>")
     for k, comp in enumerate(check.comparisons):
         p = parity.get(comp.model)
-        agrees = model_agrees(comp, check.parities[k], rtol)
+        agrees = model_agrees(comp, check.agreements[k], rtol)
         body.append(f'<section class="model" id="{model_anchor(comp.model, k)}"><h2>{_e(comp.model)}</h2>')
         body.append(
             f"<details{'' if agrees else ' open'}><summary>"

@@ -17,13 +17,13 @@ from koenig_check.report.content import (
 )
 from koenig_check.roundoff import ROUNDOFF, fmt
 from koenig_check.run.comparison import ModelComparison
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 
 def summary_markdown(
     comparisons: Sequence[ModelComparison],
     summaries: Sequence[FormulaSummary],
-    parities: Sequence[EngineParity],
+    agreements: Sequence[EngineAgreement],
     failures: Sequence[tuple[str, str]] = (),
     rtol: float = 1e-9,
     settings: dict[str, dict] | None = None,
@@ -39,7 +39,7 @@ def summary_markdown(
     ----------
     comparisons : sequence of ModelComparison
     summaries : sequence of FormulaSummary
-    parities : sequence of EngineParity
+    agreements : sequence of EngineAgreement
     failures : sequence of (model, reason)
         Models that could not be compared.
     rtol : float
@@ -51,7 +51,7 @@ def summary_markdown(
     str
     """
     settings = settings or {}
-    parity = {p.model: p for p in parities}
+    parity = {p.model: p for p in agreements}
     by_model: dict[str, list[FormulaSummary]] = {}
     for s in summaries:
         by_model.setdefault(s.model, []).append(s)
@@ -68,7 +68,7 @@ def summary_markdown(
         "",
         "## What this run found",
         "",
-        *[" ".join(run_overview(comparisons, summaries, parities, failures))],
+        *[" ".join(run_overview(comparisons, summaries, agreements, failures))],
         "",
     ]
     for comp in comparisons:

@@ -154,7 +154,7 @@ def engine_matrix(check: CrossCheck) -> tuple[list[str], list[tuple[str, list[Ce
     (list of str, list of (str, list of Cell))
         The engines (columns, in registry order) and, per model (then per model that failed), its label and cells.
     """
-    parity = {id(c): p for c, p in zip(check.comparisons, check.parities, strict=True)}
+    parity = {id(c): p for c, p in zip(check.comparisons, check.agreements, strict=True)}
     engines = [
         s.name
         for s in specs()

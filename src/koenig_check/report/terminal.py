@@ -76,7 +76,7 @@ def optional_gap(comparison: ModelComparison, engine: str | None = None) -> tupl
     from koenig_check.findings import Kind
 
     engine = engine or optional()[0]
-    gap = comparison.stats.parity.gaps.get(engine) if comparison.stats is not None else None
+    gap = comparison.stats.agreement.gaps.get(engine) if comparison.stats is not None else None
     if gap is not None and gap.where:
         return gap.value, True
     for f in comparison.findings:
@@ -112,7 +112,7 @@ def _cause(check: CrossCheck, model: str) -> str:
     from koenig_check.engines.mujoco.meshes import dropped_meshes_line
     from koenig_check.run.summaries import gap_words
 
-    for comparison, parity in zip(check.comparisons, check.parities, strict=True):
+    for comparison, parity in zip(check.comparisons, check.agreements, strict=True):
         if parity.model == model:
             short = ""
             if lead_line(comparison.findings) or not parity.agrees:  # the one-line reason, without the label
@@ -192,7 +192,7 @@ def terminal_table(check: CrossCheck) -> str:
     str
     """
     rtol = check.rtol
-    names = [p.model for p in check.parities] + [m for m, _ in check.failures]
+    names = [p.model for p in check.agreements] + [m for m, _ in check.failures]
     mw = min(max([len(n) for n in names] + [5]), 40)
     gaps = {e: [optional_gap(c, e) for c in check.comparisons] for e in optional()}
     ran = [e for e, per_model in gaps.items() if any(g is not None for g in per_model)]  # a column each
@@ -213,7 +213,7 @@ def terminal_table(check: CrossCheck) -> str:
         ]
     tiebreak: list[str] = []  # the engines that ran as tie-breaker on some model
 
-    for i, (p, comparison) in enumerate(zip(check.parities, check.comparisons, strict=True)):
+    for i, (p, comparison) in enumerate(zip(check.agreements, check.comparisons, strict=True)):
         # The row says what the exit status says: an engine that departs, or a check asked for and not made,
         # fails the model even where MuJoCo and Pinocchio agree.
         status = _status(p.agrees, comparison.findings)
@@ -257,7 +257,3 @@ def terminal_table(check: CrossCheck) -> str:
         "over/under: share of poses where the formula over- / under-estimates the engine's energy.",
     ]
     return "\n".join(lines)
-
-
-#: The former name of :func:`terminal_table` ("verdict" now means only the three-engine ``Kind.VERDICT``).
-verdict_table = terminal_table

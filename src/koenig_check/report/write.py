@@ -17,7 +17,7 @@ from koenig_check.report.markdown import summary_markdown
 from koenig_check.report.record_files import RecordFiles
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.records import RECORD_FIELDS, RecordTable
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 if TYPE_CHECKING:
     from koenig_check.run.cross_check import CrossCheck
@@ -39,7 +39,7 @@ def write_json(
     path: Path,
     records: RecordTable | None,
     summaries: Sequence[FormulaSummary],
-    parities: Sequence[EngineParity],
+    agreements: Sequence[EngineAgreement],
     failures: Sequence[tuple[str, str]] = (),
     extra: dict[str, Any] | None = None,
 ) -> Path:
@@ -54,7 +54,7 @@ def write_json(
     path : Path
     records : RecordTable or None
     summaries : sequence of FormulaSummary
-    parities : sequence of EngineParity
+    agreements : sequence of EngineAgreement
     failures : sequence of (model, reason)
     extra : dict, optional
         Anything else to store (e.g. load notes).
@@ -67,7 +67,7 @@ def write_json(
         "record_fields": list(RECORD_FIELDS),
         "records": records.rows() if records is not None else None,
         "summaries": [asdict(s) for s in summaries],
-        "parity": [asdict(p) for p in parities],
+        "parity": [asdict(p) for p in agreements],
         "failures": [{"model": m, "reason": r} for m, r in failures],
         **(extra or {}),
     }
@@ -141,7 +141,7 @@ def write_report(
         _write_text(
             out / "summary.md",
             summary_markdown(
-                check.comparisons, check.summaries, check.parities, check.failures, check.rtol, check.settings
+                check.comparisons, check.summaries, check.agreements, check.failures, check.rtol, check.settings
             ),
         ),
         *records.close(),
@@ -151,7 +151,7 @@ def write_report(
             out / "records.json",
             records.small,
             check.summaries,
-            check.parities,
+            check.agreements,
             check.failures,
             extra={
                 "rtol": check.rtol,

@@ -15,7 +15,8 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.load_options import LoadOptions
-from koenig_check.engines.registry import REQUIRED as ENGINES
+from koenig_check.engines.registry import required
+from koenig_check.run.engine_runs import VERDICT_POSES
 from koenig_check.run.poses import PoseSet, random_pose_range
 
 #: Segment-poses per chunk (poses × segments): memory per chunk stays near constant across models.
@@ -42,7 +43,7 @@ def chunk_size(n_segments: int) -> int:
 class WorkerModel:
     """How a worker process gets the model of its chunks: the model file or name, and how it is loaded.
 
-    Hashable: a process loads each once (:func:`koenig_check.run.pipeline.loaded`).  Not where a model file comes
+    Hashable: a worker process loads each once (:mod:`koenig_check.run.pipeline`).  Not where a model file comes
     from: that is :class:`koenig_check.sources.catalogue.ModelSource`.
 
     Attributes
@@ -53,11 +54,6 @@ class WorkerModel:
 
     model: str
     options: LoadOptions = field(default_factory=LoadOptions)
-
-
-#: The former name of :class:`WorkerModel` (until it was renamed: "model source" means where a file comes from,
-#: :class:`koenig_check.sources.catalogue.ModelSource`), kept importable.
-ModelSource = WorkerModel
 
 
 @dataclass(frozen=True)
@@ -90,6 +86,9 @@ class ChunkTask:
         Per engine, the plane normals of eq. (16) for every chunk of the model (see :func:`probe_normals`).
     engines : tuple of str
         The engines run on every pose (MuJoCo, Pinocchio, and Drake when asked for).
+    verdict_poses : int
+        How many of the chunk's first poses are among the run's first :data:`VERDICT_POSES` (the poses the
+        verdicts compare): the chunk returns them with its engines' energies on them.
     """
 
     source: WorkerModel
@@ -100,7 +99,8 @@ class ChunkTask:
     index: int
     poses: RandomRange | PoseSet
     planar_normals: dict[str, np.ndarray] | None = None
-    engines: tuple[str, ...] = ENGINES
+    engines: tuple[str, ...] = field(default_factory=required)
+    verdict_poses: int = 0
 
 
 #: Poses from which the plane normals of eq. (16) are inferred, the same for every chunking.
@@ -146,7 +146,7 @@ def plan(
     random: RandomRange | None = None,
     size: int | None = None,
     planar_normals: dict[str, np.ndarray] | None = None,
-    engines: tuple[str, ...] = ENGINES,
+    engines: tuple[str, ...] | None = None,
 ) -> list[ChunkTask]:
     """Cut a model's poses into chunk tasks.
 
@@ -176,24 +176,30 @@ def plan(
     list of ChunkTask
     """
     size = size or chunk_size(n_segments)
+    engines = required() if engines is None else engines
     if size < 1:
         raise ValueError(f"chunk size must be >= 1, got {size}")
     formulas = tuple(formulas)
 
-    def task(index: int, chunk: RandomRange | PoseSet) -> ChunkTask:
-        return ChunkTask(source, label, formulas, records, rtol, index, chunk, planar_normals, tuple(engines))
+    def task(index: int, chunk: RandomRange | PoseSet, offset: int) -> ChunkTask:
+        verdict = max(VERDICT_POSES - offset, 0)  # a chunk returns at most its own poses
+        return ChunkTask(source, label, formulas, records, rtol, index, chunk, planar_normals, tuple(engines), verdict)
 
     if poses is not None:
         if poses.times is not None or poses.n_poses <= size:
-            return [task(0, poses)]
+            return [task(0, poses, 0)]
         return [
-            task(k, poses.slice(start, min(start + size, poses.n_poses)))
+            task(k, poses.slice(start, min(start + size, poses.n_poses)), start)
             for k, start in enumerate(range(0, poses.n_poses, size))
         ]
     if random is None:
         raise ValueError("plan needs poses or a random range")
     return [
-        task(k, RandomRange(start, min(start + size, random.stop), random.seed, random.velocity_scale))
+        task(
+            k,
+            RandomRange(start, min(start + size, random.stop), random.seed, random.velocity_scale),
+            start - random.start,
+        )
         for k, start in enumerate(range(random.start, random.stop, size))
     ]
 

@@ -19,7 +19,7 @@ import pyarrow as pa
 from koenig_check.arguments import RECORD_MODES as RECORD_MODES  # its home: what a user may ask for
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.cache import SharedStates
-from koenig_check.run.engine_runs import EngineRun
+from koenig_check.run.engine_runs import EngineRun, VerdictPoses
 from koenig_check.run.poses import PoseSet
 from koenig_check.run.records import STORED_SCHEMA, categorical
 from koenig_check.run.stats import DEFAULT_RTOL, Extreme, ModelStats, relative_error
@@ -64,11 +64,16 @@ def formula_names(formulas: Iterable[str] | None, path: bool) -> tuple[list[str]
 
 @dataclass
 class ChunkResult:
-    """What one chunk of poses contributes: its statistics and, when asked, its records."""
+    """What one chunk of poses contributes: its statistics, its records when asked, its verdict poses.
+
+    ``verdict``: the chunk's share of the run's first poses, which the verdicts compare
+    (:class:`~koenig_check.run.engine_runs.VerdictPoses`).
+    """
 
     index: int
     stats: ModelStats
     records: pa.Table | None
+    verdict: VerdictPoses | None = None
 
 
 def evaluate_chunk(
@@ -148,27 +153,27 @@ def evaluate_chunk(
             if records == "segments":
                 blocks.append((f_code, s_code, len(engines) + s_code, seg_codes, per_segment, exact_seg))
     if "mujoco" in runs and "pinocchio" in runs:
-        _parity_stats(stats, runs, ids, exact_totals)
+        _agreement_stats(stats, runs, ids, exact_totals)
     table = None
     if records != "none":
         table = _chunk_table(label, ids, P, blocks, list(names), engines, references, list(scopes))
     return ChunkResult(index, stats, table)
 
 
-def _parity_stats(
+def _agreement_stats(
     stats: ModelStats, runs: dict[str, EngineRun], ids: Sequence[str], exact_totals: dict[str, np.ndarray]
 ) -> None:
     mj, pn = runs["mujoco"], runs["pinocchio"]
-    parity = stats.parity
-    parity.rigid.offer(np.abs(relative_error(pn.rigid, mj.rigid)), ids, extra=(mj.rigid, pn.rigid))
+    agreement = stats.agreement
+    agreement.rigid.offer(np.abs(relative_error(pn.rigid, mj.rigid)), ids, extra=(mj.rigid, pn.rigid))
     arm = np.abs(pn.armature - mj.armature)
-    parity.armature.offer(arm, ids, extra=(mj.armature, pn.armature))
+    agreement.armature.offer(arm, ids, extra=(mj.armature, pn.armature))
     scale = np.maximum(np.abs(mj.rigid) + np.abs(mj.armature), 1e-300)
-    parity.armature_scaled = max(parity.armature_scaled, float((arm / scale).max()))
+    agreement.armature_scaled = max(agreement.armature_scaled, float((arm / scale).max()))
     for name, run in runs.items():
-        parity.self_rel[name] = float(np.abs(relative_error(exact_totals[name], run.rigid)).max())
+        agreement.self_rel[name] = float(np.abs(relative_error(exact_totals[name], run.rigid)).max())
         if name != "mujoco":  # each engine's gap to MuJoCo (Drake's too, when it runs on every pose)
-            parity.gaps.setdefault(name, Extreme()).offer(np.abs(relative_error(run.rigid, mj.rigid)), ids)
+            agreement.gaps.setdefault(name, Extreme()).offer(np.abs(relative_error(run.rigid, mj.rigid)), ids)
 
 
 def _chunk_table(

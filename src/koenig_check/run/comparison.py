@@ -6,7 +6,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from koenig_check.engines.registry import REQUIRED as ENGINES
+from koenig_check.engines.registry import required
 from koenig_check.findings import Finding
 from koenig_check.run.chunks import evaluate_chunk, formula_names
 from koenig_check.run.engine_runs import EngineRun
@@ -15,9 +15,9 @@ from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL, ModelStats
 
 
-@dataclass
+@dataclass(frozen=True)
 class ModelComparison:
-    """Everything the grid produced for one model and one pose set.
+    """Everything the comparison produced for one model and one pose set; immutable once built.
 
     Attributes
     ----------
@@ -59,7 +59,7 @@ class ModelComparison:
     stats: ModelStats | None = None
     n_poses: int = 0
     pose_kind: str = ""
-    engines: tuple[str, ...] = ENGINES
+    engines: tuple[str, ...] = field(default_factory=required)
     segment_labels: dict[str, str] = field(default_factory=dict)
 
     def __repr__(self) -> str:

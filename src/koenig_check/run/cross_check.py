@@ -12,7 +12,7 @@ from koenig_check.run.comparison import ModelComparison, records_for
 from koenig_check.run.lookup import ResultLookup
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL
-from koenig_check.run.summaries import EngineParity, FormulaSummary
+from koenig_check.run.summaries import EngineAgreement, FormulaSummary
 
 
 @dataclass(repr=False)
@@ -26,7 +26,7 @@ class CrossCheck(ResultLookup):
     ----------
     comparisons : list of ModelComparison
     summaries : list of FormulaSummary
-    parities : list of EngineParity
+    agreements : list of EngineAgreement
     failures : list of (str, str)
         Models that could not be compared, with a one-line reason each (the engine's whole reason).
     failure_lines : dict of str to str
@@ -46,7 +46,7 @@ class CrossCheck(ResultLookup):
 
     comparisons: list[ModelComparison] = field(default_factory=list)
     summaries: list[FormulaSummary] = field(default_factory=list)
-    parities: list[EngineParity] = field(default_factory=list)
+    agreements: list[EngineAgreement] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
     failure_lines: dict[str, str] = field(default_factory=dict)
     failure_parts: dict[str, dict[str, Any]] = field(default_factory=dict)
@@ -67,10 +67,10 @@ class CrossCheck(ResultLookup):
         an engine the user named that could not check a model (``ENGINE_UNABLE``: the check asked for was not made).
         """
         verdicts = any(f.kind in reason.LEADING_KINDS for c in self.comparisons for f in c.findings)
-        return not self.failures and all(p.agrees for p in self.parities) and not verdicts
+        return not self.failures and all(p.agrees for p in self.agreements) and not verdicts
 
-    def add(self, comparison: ModelComparison) -> EngineParity:
-        """Record one model's comparison with its summaries and engine parity.
+    def add(self, comparison: ModelComparison) -> EngineAgreement:
+        """Record one model's comparison with its summaries and the engines' agreement.
 
         Parameters
         ----------
@@ -78,14 +78,14 @@ class CrossCheck(ResultLookup):
 
         Returns
         -------
-        EngineParity
-            The parity just recorded.
+        EngineAgreement
+            The agreement just recorded.
         """
         self.comparisons.append(comparison)
         self.summaries += summaries.summarize(comparison, self.rtol)
-        parity = summaries.engine_agreement(comparison, self.rtol)
-        self.parities.append(parity)
-        return parity
+        agreement = summaries.engine_agreement(comparison, self.rtol)
+        self.agreements.append(agreement)
+        return agreement
 
     def reasons(self, cli: bool = False) -> list[str]:
         """Why :attr:`ok` is False, one sentence per failing model (empty when it is True).
@@ -106,7 +106,7 @@ class CrossCheck(ResultLookup):
         """
         lines = [(m, self.failure_lines.get(m, r)) for m, r in self.failures]
         parts = [r if r.startswith(f"{m}: ") else f"{m}: {r}" for m, r in lines]  # once, not twice
-        for comparison, agreement in zip(self.comparisons, self.parities, strict=True):
+        for comparison, agreement in zip(self.comparisons, self.agreements, strict=True):
             lead = reason.lead_line(comparison.findings)
             if lead or not agreement.agrees:
                 gap = summaries.gap_words(comparison, self.rtol, cli) if not agreement.agrees else ""
@@ -164,7 +164,7 @@ class CrossCheck(ResultLookup):
             parts = self.failure_parts.get(model)
             out.append("\n".join([line, *(detail_lines(parts, line, cli=cli, width=width) if parts else [])]))
         compared = lines[len(self.failures) :]
-        failing = [c for c, a in zip(self.comparisons, self.parities, strict=True) if _fails(c, a)]
+        failing = [c for c, a in zip(self.comparisons, self.agreements, strict=True) if _fails(c, a)]
         for comparison, line in zip(failing, compared, strict=True):
             out.append("\n".join([line, *finding_lines(comparison.findings, line, width)]))
         return out
@@ -174,6 +174,6 @@ class CrossCheck(ResultLookup):
         return "; ".join(self.reasons())
 
 
-def _fails(comparison: ModelComparison, agreement: EngineParity) -> bool:
+def _fails(comparison: ModelComparison, agreement: EngineAgreement) -> bool:
     """Whether a compared model has a reason in :meth:`CrossCheck.reasons` (as that method decides)."""
     return bool(reason.lead_line(comparison.findings)) or not agreement.agrees

@@ -64,3 +64,58 @@ def _points_for(engine: Engine) -> np.ndarray | None:
         _POINTS.clear()
     _POINTS[key] = offsets
     return offsets
+
+
+#: Poses on which the engines' verdicts are computed: the first of the run's poses.
+VERDICT_POSES = 256
+
+
+@dataclass(frozen=True)
+class RunEnergies:
+    """One engine's energies on some of the run's poses (what :meth:`Engine.kinetic_energy` gives the verdicts)."""
+
+    rigid: np.ndarray
+    armature: np.ndarray
+
+
+@dataclass(frozen=True)
+class VerdictPoses:
+    """The first :data:`VERDICT_POSES` poses of a run and each engine's energies there, as the run computed them.
+
+    The verdicts of three engines or more compare these energies: the run's own, not computed again.
+
+    Attributes
+    ----------
+    qpos, qvel : ndarray, shape (P, nq) and (P, nv)
+    energies : dict of str to RunEnergies
+        Per engine run on every pose.
+    """
+
+    qpos: np.ndarray
+    qvel: np.ndarray
+    energies: dict[str, RunEnergies]
+
+    @classmethod
+    def of_runs(cls, poses: PoseSet, runs: dict[str, EngineRun], n: int) -> VerdictPoses:
+        """The first ``n`` poses of a chunk and its engines' energies on them."""
+        return cls(
+            poses.qpos[:n],
+            poses.qvel[:n],
+            {name: RunEnergies(run.rigid[:n], run.armature[:n]) for name, run in runs.items()},
+        )
+
+    @classmethod
+    def concat(cls, parts: list[VerdictPoses]) -> VerdictPoses | None:
+        """The parts of several chunks, in pose order (None without any)."""
+        if not parts:
+            return None
+        if len(parts) == 1:
+            return parts[0]
+        energies = {
+            name: RunEnergies(
+                np.concatenate([p.energies[name].rigid for p in parts]),
+                np.concatenate([p.energies[name].armature for p in parts]),
+            )
+            for name in parts[0].energies
+        }
+        return cls(np.concatenate([p.qpos for p in parts]), np.concatenate([p.qvel for p in parts]), energies)

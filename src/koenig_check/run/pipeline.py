@@ -25,7 +25,6 @@ from koenig_check.run.chunk_tasks import (
     CHUNK_SEGMENT_POSES,
     PROBE_POSES,
     ChunkTask,
-    ModelSource,
     RandomRange,
     WorkerModel,
     chunk_poses_of,
@@ -35,7 +34,7 @@ from koenig_check.run.chunk_tasks import (
 )
 from koenig_check.run.chunks import ChunkResult, evaluate_chunk, formula_names
 from koenig_check.run.comparison import ModelComparison, finish_comparison
-from koenig_check.run.engine_runs import EngineRun, run_engine
+from koenig_check.run.engine_runs import EngineRun, VerdictPoses, run_engine
 from koenig_check.run.poses import PoseSet, random_pose_range
 from koenig_check.run.records import RecordTable, without_refused
 
@@ -45,60 +44,48 @@ __all__ = [
     "CHUNK_SEGMENT_POSES",
     "PROBE_POSES",
     "ChunkTask",
-    "ModelSource",
     "RandomRange",
     "WorkerModel",
     "chunk_poses_of",
     "chunk_size",
-    "forget",
-    "loaded",
     "plan",
     "probe_normals",
-    "remember",
     "run_chunk",
     "run_model",
     "run_tasks",
 ]
 
 
-_MODELS: dict[WorkerModel, Any] = {}
+class _WorkerModels:
+    """A worker process's models: each loaded once per process, the last one kept (memory stays bounded).
 
-
-def remember(source: WorkerModel, model: Any) -> None:
-    """Let this process's chunks reuse a model already loaded (with the optional engines attached to it).
-
-    Parameters
-    ----------
-    source : WorkerModel
-    model : koenig_check.engines.LoadedModel
+    Only worker processes (``--jobs``, Dask) hold one: chunks run in the process that loaded the model are
+    handed that model (:func:`run_tasks`), and a local worker forked from it starts with it (:func:`_adopt`).
     """
-    _MODELS.clear()  # one model at a time: memory stays bounded over many models
-    _MODELS[source] = model
+
+    def __init__(self) -> None:
+        self.models: dict[WorkerModel, Any] = {}
+
+    def adopt(self, source: WorkerModel, model: Any) -> None:
+        self.models = {source: model}  # one model at a time
+
+    def get(self, source: WorkerModel) -> Any:
+        model = self.models.get(source)
+        if model is None:
+            from koenig_check.engines import load_model
+
+            model = load_model(source.model, source.options)
+            self.adopt(source, model)
+        return model
 
 
-def forget() -> None:
-    """Drop the model this process remembered: once its run is over, its engines are memory held for nothing."""
-    _MODELS.clear()
+#: This process's models when it is a worker (empty in the process that runs the comparison).
+_WORKER = _WorkerModels()
 
 
-def loaded(source: WorkerModel) -> Any:
-    """The model of a source, loaded once per process (its optional engines are attached on first use).
-
-    Parameters
-    ----------
-    source : WorkerModel
-
-    Returns
-    -------
-    koenig_check.engines.LoadedModel
-    """
-    model = _MODELS.get(source)
-    if model is None:
-        from koenig_check.engines import load_model
-
-        model = load_model(source.model, source.options)
-        remember(source, model)
-    return model
+def _adopt(source: WorkerModel, model: Any) -> None:
+    """A local worker's initializer: the model its parent loaded, inherited by the fork (not loaded again)."""
+    _WORKER.adopt(source, model)
 
 
 def _check_finite(path: Any, runs: dict[str, EngineRun], poses: PoseSet) -> None:
@@ -122,12 +109,14 @@ def _check_finite(path: Any, runs: dict[str, EngineRun], poses: PoseSet) -> None
 _ENGINES_LOCK = threading.Lock()
 
 
-def run_chunk(task: ChunkTask) -> ChunkResult:
+def run_chunk(task: ChunkTask, model: Any = None) -> ChunkResult:
     """Evaluate one chunk: both engines' states and energies, every formula, statistics and records.
 
     Parameters
     ----------
     task : ChunkTask
+    model : koenig_check.engines.LoadedModel, optional
+        The model of ``task.source``, loaded in this process; a worker loads it once (without it).
 
     Returns
     -------
@@ -136,7 +125,7 @@ def run_chunk(task: ChunkTask) -> ChunkResult:
     # The engines of a process's model are shared by its chunks, and their data (MuJoCo's MjData, Pinocchio's
     # Data) is scratch memory: chunks run in threads (a Dask worker's) take turns with the engines.
     with _ENGINES_LOCK:
-        model = loaded(task.source)
+        model = model if model is not None else _WORKER.get(task.source)
         poses = task.poses
         if isinstance(poses, RandomRange):
             poses = random_pose_range(model.mujoco.model, poses.start, poses.stop, poses.seed, poses.velocity_scale)
@@ -146,9 +135,12 @@ def run_chunk(task: ChunkTask) -> ChunkResult:
         except ValueError as err:  # an engine produced an invalid state: name the file
             raise ValueError(f"{model.path}: {one_line(err)}") from err
     _check_finite(model.path, runs, poses)
-    return evaluate_chunk(
+    result = evaluate_chunk(
         task.label, poses, runs, task.formulas, task.records, task.rtol, task.index, task.planar_normals
     )
+    if task.verdict_poses:
+        result.verdict = VerdictPoses.of_runs(poses, runs, task.verdict_poses)
+    return result
 
 
 def _windowed(submit: Callable[[ChunkTask], Any], result: Callable[[Any], ChunkResult], tasks, window: int):
@@ -161,7 +153,7 @@ def _windowed(submit: Callable[[ChunkTask], Any], result: Callable[[Any], ChunkR
         yield result(pending.popleft())
 
 
-def run_tasks(tasks: list[ChunkTask], jobs: int = 1, client: Any = None) -> Iterator[ChunkResult]:
+def run_tasks(tasks: list[ChunkTask], jobs: int = 1, client: Any = None, model: Any = None) -> Iterator[ChunkResult]:
     """Run chunk tasks and yield their results in task order.
 
     At most about two chunks per worker are in flight, so memory stays bounded whatever the
@@ -174,6 +166,9 @@ def run_tasks(tasks: list[ChunkTask], jobs: int = 1, client: Any = None) -> Iter
         Local processes (1: this process).
     client : dask.distributed.Client, optional
         Run the chunks on this Dask cluster instead.
+    model : koenig_check.engines.LoadedModel, optional
+        The tasks' model, loaded in this process: the chunks run here use it, and local workers forked from
+        this process inherit it (otherwise each worker loads it once).
 
     Yields
     ------
@@ -187,15 +182,19 @@ def run_tasks(tasks: list[ChunkTask], jobs: int = 1, client: Any = None) -> Iter
         return
     if jobs <= 1 or len(tasks) <= 1:
         for t in tasks:
-            yield run_chunk(t)
+            yield run_chunk(t, model)
         return
-    with _pool(jobs) as pool:
+    with _pool(jobs, tasks[0].source, model) as pool:
         yield from _windowed(lambda t: pool.submit(run_chunk, t), lambda f: f.result(), tasks, 2 * jobs)
 
 
-def _pool(jobs: int) -> Executor:
-    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
-    return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context(method))
+def _pool(jobs: int, source: WorkerModel, model: Any) -> Executor:
+    if "fork" not in multiprocessing.get_all_start_methods():
+        return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"))
+    context = multiprocessing.get_context("fork")  # the workers inherit the loaded model: not pickled, not loaded
+    if model is None:
+        return ProcessPoolExecutor(max_workers=jobs, mp_context=context)
+    return ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=_adopt, initargs=(source, model))
 
 
 def run_model(
@@ -214,7 +213,7 @@ def run_model(
     keep_records: bool | None = None,
     chunk_poses: int | None = None,
     on_chunk: Callable[[int, int], None] | None = None,
-) -> ModelComparison:
+) -> tuple[ModelComparison, VerdictPoses | None]:
     """Run a loaded model's poses chunk by chunk; merge the statistics, stream the records.
 
     Parameters
@@ -246,9 +245,10 @@ def run_model(
 
     Returns
     -------
-    ModelComparison
+    comparison : ModelComparison
+    verdict : VerdictPoses or None
+        The run's first poses with each engine's energies there (what the verdicts compare).
     """
-    remember(source, pair)
     names, skipped = formula_names(formulas, pose_set is not None and pose_set.times is not None)
     tasks = plan(
         source,
@@ -266,7 +266,10 @@ def run_model(
     keep = sink is None if keep_records is None else keep_records
     stats, kept = None, []
     sizes = [chunk_poses_of(t) for t in tasks]
-    for result in run_tasks(tasks, jobs=jobs, client=client):
+    verdict = []
+    for result in run_tasks(tasks, jobs=jobs, client=client, model=pair):
+        if result.verdict is not None:
+            verdict.append(result.verdict)
         if on_chunk is not None:
             on_chunk(sizes[result.index], sum(sizes))
         if stats is None:
@@ -293,4 +296,5 @@ def run_model(
     kept_records = without_refused(RecordTable.concat(RecordTable(t) for t in kept), refused)
     notes = list(pair.notes) + list(pose_set.notes if pose_set is not None else ()) + skipped
     kind = pose_set.kind if pose_set is not None else "random"
-    return finish_comparison(label, pose_set, stats, kept_records, notes, tuple(pair.engines), pose_kind=kind)
+    comparison = finish_comparison(label, pose_set, stats, kept_records, notes, tuple(pair.engines), pose_kind=kind)
+    return comparison, VerdictPoses.concat(verdict)

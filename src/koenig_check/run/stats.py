@@ -293,7 +293,7 @@ class GroupStats:
 
 
 @dataclass
-class ParityStats:
+class AgreementStats:
     """The engines' agreement with each other and each with ``exact`` on its own states."""
 
     rigid: Extreme = field(default_factory=Extreme)  # extra: (MuJoCo, Pinocchio) rigid energies
@@ -302,12 +302,12 @@ class ParityStats:
     self_rel: dict[str, float] = field(default_factory=dict)
     gaps: dict[str, Extreme] = field(default_factory=dict)  # engine to its rigid energy's largest gap to MuJoCo's
 
-    def merge(self, other: ParityStats) -> None:
+    def merge(self, other: AgreementStats) -> None:
         """Merge a later chunk's statistics.
 
         Parameters
         ----------
-        other : ParityStats
+        other : AgreementStats
         """
         self.rigid.merge(other.rigid)
         self.armature.merge(other.armature)
@@ -320,7 +320,7 @@ class ParityStats:
 
 @dataclass
 class ModelStats:
-    """Everything a model's summaries and engine parity need, mergeable chunk by chunk.
+    """Everything a model's summaries and the engines' agreement need, mergeable chunk by chunk.
 
     Attributes
     ----------
@@ -332,7 +332,8 @@ class ModelStats:
     worst_segments : dict
         ``(formula, source)`` to the largest per-segment absolute error against ``exact`` on the
         same states (:class:`Extreme`, located as ``"segment @ pose"``).
-    parity : ParityStats
+    agreement : AgreementStats
+        The engines' energies against each other (not the import parity of :mod:`koenig_check.diagnosis`).
     refusals : dict
         ``(formula, source)`` to the first refusal's reason.
     """
@@ -341,7 +342,7 @@ class ModelStats:
     n_poses: int = 0
     groups: dict[tuple[str, str, str], GroupStats] = field(default_factory=dict)
     worst_segments: dict[tuple[str, str], Extreme] = field(default_factory=dict)
-    parity: ParityStats = field(default_factory=ParityStats)
+    agreement: AgreementStats = field(default_factory=AgreementStats)
     refusals: dict[tuple[str, str], str] = field(default_factory=dict)
 
     def group(self, key: tuple[str, str, str]) -> GroupStats:
@@ -373,7 +374,7 @@ class ModelStats:
             self.group(key).merge(g)
         for segment_key, w in other.worst_segments.items():
             self.worst_segments.setdefault(segment_key, Extreme()).merge(w)
-        self.parity.merge(other.parity)
+        self.agreement.merge(other.agreement)
         for refusal_key, reason in other.refusals.items():
             self.refusals.setdefault(refusal_key, reason)
 

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.diagnosis.reason import disagreement_cause, rounding_hint
+from koenig_check.diagnosis.reason import disagreement_cause, ordered_causes, rounding_hint
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import DEFAULT_RTOL, ModelStats
@@ -153,7 +153,8 @@ class EngineAgreement:
     ``reason`` says in full why they do not agree (with the cause's values); ``gap`` says it in a few words, for
     the one-line reason (:func:`koenig_check.diagnosis.reason.short_reason`).  ``reason`` is built from
     ``symptoms`` (each way the engines differ, one sentence each) and ``cause`` (the known cause, or empty):
-    read those, never ``reason`` cut apart.
+    read those, never ``reason`` cut apart.  ``causes`` holds the ids of the catalogued causes among them
+    (:func:`koenig_check.causes.cause`), the most important first.
     """
 
     model: str
@@ -166,6 +167,7 @@ class EngineAgreement:
     gap: str = ""
     symptoms: tuple[str, ...] = ()
     cause: str = ""
+    causes: tuple[str, ...] = ()
 
 
 def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) -> EngineAgreement:
@@ -178,12 +180,12 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
 
     Returns
     -------
-    EngineParity
+    EngineAgreement
         ``agrees`` with a one-line ``reason`` when it does not.
     """
     if comparison.stats is None:
-        raise ValueError(f"{comparison.model}: no statistics to read the engine parity from")
-    p = comparison.stats.parity
+        raise ValueError(f"{comparison.model}: no statistics to read the engines' agreement from")
+    p = comparison.stats.agreement
     reasons = []
     if p.rigid.value > rtol:
         mj, pn = p.rigid.extra
@@ -213,6 +215,7 @@ def engine_agreement(comparison: ModelComparison, rtol: float = DEFAULT_RTOL) ->
         gap,
         tuple(reasons),
         cause,
+        tuple(dict.fromkeys(f.cause for f in ordered_causes(comparison.findings) if f.cause)) if reasons else (),
     )
 
 
@@ -230,7 +233,7 @@ def gap_words(comparison: ModelComparison, rtol: float = DEFAULT_RTOL, cli: bool
     -------
     str
     """
-    return _gap(comparison.stats.parity, rtol, cli) if comparison.stats is not None else ""
+    return _gap(comparison.stats.agreement, rtol, cli) if comparison.stats is not None else ""
 
 
 def _gap(p: Any, rtol: float, cli: bool = False) -> str:
@@ -243,8 +246,3 @@ def _gap(p: Any, rtol: float, cli: bool = False) -> str:
     parts += [f"{name}'s exact differs from its own energy by {v:.2g}" for name, v in p.self_rel.items() if v > rtol]
     hint = rounding_hint(float(p.rigid.value), rtol, cli=cli) if len(parts) == 1 else ""
     return hint or ", ".join(parts)  # within a written file's rounding, the hint says the gap and what to do
-
-
-#: Former names of :class:`EngineAgreement` and :func:`engine_agreement` ("parity" now means import parity only).
-EngineParity = EngineAgreement
-engine_parity = engine_agreement

@@ -84,8 +84,7 @@ def assert_energy_parity(
         pair = load_model(model, options)
     except KoenigCheckError as refused:  # the file's own problem in one message, no frame of the library below
         raise AssertionError(_refusal(refused)) from None
-    for name in policy.asked_for(options.engines):  # named engines are compared on every pose
-        pair.attach(name)
+    policy.attach_engines(pair)  # named engines are compared on every pose
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     sa = pair.mujoco.segment_states(poses.qpos, poses.qvel)
     sb = pair.pinocchio.segment_states(poses.qpos, poses.qvel)

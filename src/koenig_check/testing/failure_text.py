@@ -29,7 +29,7 @@ def verdict_lines(check: CrossCheck) -> list[str]:
     for (label, _), message in zip(check.failures, check.messages(width=FAILURE_WIDTH), strict=False):
         first, *rest = message.split("\n")  # its reason, then the engine's own words and the hint, indented
         lines += [f"{label}: failed: {first.removeprefix(f'{label}: ')}", *rest]
-    for comparison, parity in zip(check.comparisons, check.parities, strict=True):
+    for comparison, parity in zip(check.comparisons, check.agreements, strict=True):
         verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
         unmade = [f for f in comparison.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked for, not made
         if parity.agrees and not verdicts and not unmade:

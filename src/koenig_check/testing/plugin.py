@@ -184,7 +184,7 @@ class ModelItem(pytest.Item):
         """Check the model; raise :class:`ModelCheckError` with the verdict, or skip for a missing engine."""
         __tracebackhide__ = True
         from koenig_check import compare, dynamics
-        from koenig_check.exceptions import EngineUnavailableError as DrakeUnavailableError
+        from koenig_check.exceptions import EngineUnavailableError
         from koenig_check.sources import ModelSourceError
         from koenig_check.testing.failure_text import verdict_lines
 
@@ -195,7 +195,7 @@ class ModelItem(pytest.Item):
         records = "totals" if run.report else "none"
         try:
             check = compare({self.name: entry.model}, records=records, **entry.compare_options())  # the run's label
-        except DrakeUnavailableError as err:
+        except EngineUnavailableError as err:
             pytest.skip(str(err))
         except ModelSourceError as err:
             raise ModelCheckError(f"{self.name}: {err}") from None
@@ -279,7 +279,7 @@ def merged(checks: list[CrossCheck]) -> CrossCheck:
     for check in checks:
         out.comparisons += check.comparisons
         out.summaries += check.summaries
-        out.parities += check.parities
+        out.agreements += check.agreements
         out.failures += check.failures
         out.settings.update(check.settings)
     return out

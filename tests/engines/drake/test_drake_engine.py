@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from koenig_check.engines import ModelPair, load_model, random_states
+from koenig_check.engines import LoadedModel, load_model, random_states
 
 pytest.importorskip("pydrake", reason="Drake (the optional extra [drake]) is not installed: its tests are skipped")
 
@@ -42,7 +42,7 @@ DRAKE_CASES = [
 
 
 @cache
-def _load(model: str, floating: bool) -> tuple[ModelPair, DrakeEngine]:
+def _load(model: str, floating: bool) -> tuple[LoadedModel, DrakeEngine]:
     pair = load_model(str(ROOT / model) if model.startswith("tests/") else model, floating=floating, check=False)
     return pair, load_drake_engine(pair.source, pair.mujoco.model)
 
@@ -53,7 +53,7 @@ def _rel(a: np.ndarray, b: np.ndarray) -> float:
 
 
 @pytest.fixture(params=DRAKE_CASES, ids=[f"{m}{'-floating' if f else ''}" for m, f in DRAKE_CASES])
-def loaded(request: pytest.FixtureRequest) -> tuple[ModelPair, DrakeEngine, np.ndarray, np.ndarray]:
+def loaded(request: pytest.FixtureRequest) -> tuple[LoadedModel, DrakeEngine, np.ndarray, np.ndarray]:
     pair, drake = _load(*request.param)
     qpos, qvel = random_states(pair.mujoco.model, 6, seed=3)
     return pair, drake, qpos, qvel

@@ -70,4 +70,4 @@ def test_three_engines_agree_on_a_planar_robot(tmp_path) -> None:
     path = write_planar(tmp_path, "turned planar base, tilted continuous child")
     check = koenig_check.compare(path, n_poses=6, formulas=["exact"], engines=("mujoco", "pinocchio", "drake"))
     assert check.ok, check.reason()
-    assert check.parities[0].rigid_max_rel <= ROUNDOFF
+    assert check.agreements[0].rigid_max_rel <= ROUNDOFF

@@ -69,4 +69,4 @@ def test_repair_loads_it_with_static_links_kept_apart_and_the_hand_mass_matrix(p
     for engine in pair.engines.values():
         np.testing.assert_allclose(engine.mass_matrix(qpos)[:, 0, 0], HAND_M, rtol=1e-12)
     check = compare(pendulum, repair_inertia=True, n_poses=3, formulas=["exact"])
-    assert not check.failures and check.parities[0].rigid_max_rel <= 1e-12
+    assert not check.failures and check.agreements[0].rigid_max_rel <= 1e-12

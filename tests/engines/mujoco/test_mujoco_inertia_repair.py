@@ -80,8 +80,8 @@ def test_the_verdict_is_a_disagreement_named_after_the_repair() -> None:
     assert not check.ok
     # the one line: the repair of both links is one root cause naming them, the most important first
     assert "root cause: links tilted, virtual: inertia changed so that MuJoCo accepts it" in check.reason()
-    assert check.parities[0].gap.startswith("MuJoCo and Pinocchio differ by")
-    details = check.parities[0].reason  # summary.md and the report: every cause, in order
+    assert check.agreements[0].gap.startswith("MuJoCo and Pinocchio differ by")
+    details = check.agreements[0].reason  # summary.md and the report: every cause, in order
     assert "cause: mujoco: links tilted, virtual: inertia changed so that MuJoCo accepts it" in details
 
 

@@ -29,7 +29,7 @@ def test_the_engines_read_the_fixture_differently() -> None:
 def test_the_cause_names_the_model_and_the_bodies() -> None:
     mj = mujoco.MjModel.from_xml_path(str(FIXTURE))
     (found,) = [f for f in file_causes(FIXTURE, mj) if f.cause == "pinocchio.mjcf.attach"]
-    assert found.element == "attach child" and found.engine == "pinocchio"
+    assert found.element == "attach child (bodies other_arm)" and found.engine == "pinocchio"
     assert found.values["bodies"] == ("other_arm",) and found.values["joints"] == ("other_hinge",)
     assert found.values["in"] == "body base" and found.values["file"] == "attach_child.xml"
     assert found.root_cause and found.affects_energy and found.segments == ("other_hinge",)

@@ -115,7 +115,7 @@ def test_compare_agrees_pose_by_pose_and_notes_how_the_engines_read_the_joint(mo
     _, path = model
     check = koenig_check.compare(path, n_poses=8, formulas=["exact"])
     assert check.ok, check.reason()
-    assert check.parities[0].rigid_max_rel <= ROUNDOFF
+    assert check.agreements[0].rigid_max_rel <= ROUNDOFF
     loaded = load_model(path)
     qpos, qvel = random_states(loaded.mujoco.model, 8, seed=11)
     e_mj = loaded.mujoco.kinetic_energy(qpos, qvel).rigid
@@ -134,8 +134,9 @@ def test_a_planar_joint_about_another_axis_is_not_paired_and_the_cause_says_why(
     mj = mujoco.MjModel.from_xml_path(str(path))
     normal = np.array([float(a) for a in axis.split()])
     assert np.allclose(mj.joint("slider_RZ").axis, normal)  # MuJoCo's reading of the axis
-    with pytest.raises(JointMismatch):
+    with pytest.raises(JointMismatch) as refused:
         load_model(path)
+    assert [c.cause for c in refused.value.causes] == ["pinocchio.urdf.planar-axis"]
     check = koenig_check.compare(path, n_poses=2, formulas=["exact"])
     assert not check.ok
     line = check.failure_lines["robot.urdf"]

@@ -13,5 +13,4 @@ SPEC = EngineSpec(
     color="tab:green",
     tie_breaker=True,
     mjcf_meshes=(".obj",),
-    skips_mjcf=("frame",),
 )

@@ -94,6 +94,7 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
                 affects_energy=True,
                 root_cause=True,
                 segments=tuple(extension),
+                cause="drake.any.reflected-inertia",
             )
         )
     if not joints or model.source.format != "mjcf":
@@ -113,5 +114,6 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
             affects_energy=True,
             root_cause=True,
             segments=tuple(joints),
+            cause="drake.mjcf.unactuated-armature",
         ),
     ]

@@ -52,9 +52,9 @@ def load_drake_engine(source: Any, mj_model: mujoco.MjModel) -> DrakeEngine:
     if source.format == "urdf":
         from koenig_check.engines.drake.inertia import replaced_inertias
 
-        warned = [
-            f.element.split(" ", 1)[1] for f in findings if f.element.startswith("link ") and "inertia" in f.summary
-        ]
+        # a parser warning names its link only when Drake's message is about an inertia (loader.warning_findings)
+        elements = [f.element.partition(" ") for f in findings if f.kind is Kind.LOAD]
+        warned = [name for tag, _, name in elements if tag == "link"]
         engine.findings += replaced_inertias(plant, Path(source.path), warned, engine.segment_of_body())
     return engine
 
@@ -136,6 +136,7 @@ def anchor_findings(plant: Any, mj_model: mujoco.MjModel, state_map: DrakeStateM
                 affects_energy=True,
                 root_cause=True,
                 segments=(last,),
+                cause="drake.mjcf.multi-joint-anchor" if several else "",
             )
         )
     return out

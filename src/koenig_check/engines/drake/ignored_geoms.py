@@ -92,4 +92,5 @@ def ignored_geom_finding(path: Path, name: str, warning: str, lines: list[int]) 
         values,
         affects_energy=mass is None or mass > 0,
         root_cause=mass is None or mass > 0,
+        cause="drake.mjcf.ignored-geom",
     )

@@ -103,6 +103,7 @@ def replaced_inertias(plant: Any, path: Path, links: list[str], segment_of: dict
                 affects_energy=True,
                 root_cause=True,
                 segments=(segment_of[link],) if link in segment_of else (),
+                cause="drake.urdf.replaced-inertia",
             )
         )
     return out

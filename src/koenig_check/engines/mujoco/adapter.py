@@ -230,7 +230,7 @@ class MujocoEngine(MujocoDynamics, Engine):
     ) -> tuple[SegmentStates, np.ndarray | None, np.ndarray, np.ndarray]:
         """Segment states, point velocities and energy from one pass of the engine per pose.
 
-        The internal path of the comparison grid: the states are not validated again (the
+        The internal path of the comparison: the states are not validated again (the
         model was checked at load), and every quantity is read once per pose.
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)

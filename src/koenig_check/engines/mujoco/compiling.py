@@ -139,6 +139,7 @@ def repair_finding(repair: Repair, message: str, what: str) -> Finding:
         },
         affects_energy=True,
         root_cause=True,
+        brief="inertia changed so that MuJoCo accepts it",
     )
 
 

@@ -212,6 +212,7 @@ def _load(
                     {"principal moments in the file": moments.round(12).tolist()},
                     affects_energy=True,
                     root_cause=True,
+                    cause="mujoco.any.fusestatic-massless-inertia",
                 ),
             )
         )
@@ -253,6 +254,7 @@ def _load(
                     {"mass in the file": file_inertia[n][0], "mass compiled": float(model.body_mass[bid]), **options},
                     affects_energy=rescaled,
                     root_cause=rescaled,
+                    cause="pinocchio.mjcf.settotalmass" if rescaled else "",
                 ),
             )
         )

@@ -82,6 +82,7 @@ def balance_findings(
             affects_energy=True,
             root_cause=True,
             hint="--balance-inertia (balance_inertia=True) was asked for",
+            brief="principal moments changed by MuJoCo's balanceinertia",
         )
         out.append((name, finding))
     return out

@@ -11,5 +11,4 @@ SPEC = EngineSpec(
     required=True,
     load_alone="koenig_check.engines.pinocchio.alone:load_alone",
     color="tab:orange",
-    skips_mjcf=("frame",),
 )

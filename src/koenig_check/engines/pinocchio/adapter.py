@@ -194,7 +194,7 @@ class PinocchioEngine(PinocchioDynamics, Engine):
     ) -> tuple[SegmentStates, np.ndarray | None, np.ndarray, np.ndarray]:
         """Segment states, point velocities and energy from one pass of the engine per pose.
 
-        The internal path of the comparison grid: the states are not validated again, and the
+        The internal path of the comparison: the states are not validated again, and the
         point velocities come from the same world twists as the states (``v_O + ω × p``).
         """
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)

@@ -50,7 +50,7 @@ def attach_causes(root: ET.Element, folder: Path, mj_model: Any = None) -> list[
             Finding(
                 Kind.IGNORED_CONSTRUCT,
                 "pinocchio",
-                f"attach {model or '(no model)'}",
+                f"attach {model or '(no model)'}" + (f" (bodies {shown_names(bodies, 3)})" if bodies else ""),
                 "<attach> not read by Pinocchio's MJCF parser: "
                 + (f"bodies {shown_names(bodies, 3)} and their joints missing" if bodies else "nothing attached"),
                 values={

@@ -17,22 +17,193 @@ from koenig_check.engines.measurement import Measurement
 #: The Pinocchio release these readings were measured on.
 MEASURED = "4.1.0"
 
-CAUSES: tuple[Cause, ...] = (
-    Cause(
-        id="pinocchio.mjcf.class-geom-mass",
-        construct="<geom mass> given by a <default> class",
+#: The releases of the other engines these readings were measured on.
+_MUJOCO, _DRAKE = "4.0.0", "1.51.1"
+
+
+def _mjcf(
+    slug: str,
+    construct: str,
+    how: str,
+    quantities: tuple[str, ...],
+    brief: str,
+    hint: str,
+    fixture: str,
+    drake: str = "",
+    loses_joints: bool = False,
+) -> Cause:
+    """A construct of an MJCF file Pinocchio's parser reads differently; Drake reads it as written unless ``drake``."""
+    return Cause(
+        id=f"pinocchio.mjcf.{slug}",
+        construct=construct,
         formats=("mjcf",),
         readings=(
-            Reading("mujoco", "as written", measured="4.0.0"),
-            Reading(
-                "pinocchio", "differently", "ignores the class's mass: density × volume of the geom", measured=MEASURED
-            ),
-            Reading("drake", "as written", measured="1.51.1"),
+            Reading("mujoco", "as written", measured=_MUJOCO),
+            Reading("pinocchio", "differently", how, measured=MEASURED),
+            Reading("drake", "differently", drake, measured=_DRAKE)
+            if drake
+            else Reading("drake", "as written", measured=_DRAKE),
         ),
-        quantities=("mass", "inertia"),
-        brief="geom mass from a default class not applied by Pinocchio",
-        hint="write mass= on the geom itself",
-        fixture="class_geom_mass.xml",
+        quantities=quantities,
+        brief=brief,
+        hint=hint,
+        fixture=fixture,
+        loses_joints=loses_joints,
+    )
+
+
+CAUSES: tuple[Cause, ...] = (
+    _mjcf(
+        "class-geom-mass",
+        "<geom mass> given by a <default> class",
+        "ignores the class's mass: density × volume of the geom",
+        ("mass", "inertia"),
+        "geom mass from a default class not applied by Pinocchio",
+        "write mass= on the geom itself",
+        "class_geom_mass.xml",
+    ),
+    _mjcf(
+        "class-geom-pos",
+        "<geom pos> given by a <default> class",
+        "ignores the class's pos: the geom at the body origin",
+        ("com", "inertia"),
+        "geom pos from a default class not applied by Pinocchio",
+        "write pos= on the geom itself",
+        "class_geom_pos.xml",
+    ),
+    _mjcf(
+        "class-joint-pos",
+        "<joint pos> given by a <default> class",
+        "ignores the class's pos: the joint turns about the body origin",
+        ("kinematics",),
+        "joint pos from a default class not applied by Pinocchio",
+        "write pos= on the joint itself",
+        "class_joint_pos.xml",
+    ),
+    _mjcf(
+        "include",
+        "<include file=...>",
+        "ignores the element: the included bodies, joints and default classes are missing",
+        ("mass", "com", "inertia", "joints"),
+        "<include> ignored by Pinocchio's MJCF parser",
+        "load a file without <include> (e.g. the robot's own file)",
+        "include.xml",
+        loses_joints=True,
+    ),
+    _mjcf(
+        "frame",
+        "<frame> holding bodies or geoms",
+        "skips the element and everything inside it",
+        ("mass", "com", "joints"),
+        "<frame> not read by Pinocchio's MJCF parser",
+        "give the bodies and geoms inside it the frame's pose and remove the <frame> (MuJoCo resolves it at "
+        "compile time); koenig-check export MODEL --to mjcf writes it out",
+        "frame.xml",
+        drake="skips the element and everything inside it (drake.mjcf.frame)",
+        loses_joints=True,
+    ),
+    _mjcf(
+        "bare-body",
+        "<body> without any attribute",
+        "skips the body: its geoms and joints are missing, its child bodies hang from its parent",
+        ("mass", "com", "joints"),
+        "<body> without any attribute skipped by Pinocchio's MJCF parser",
+        "give the body a name (or any attribute)",
+        "bare_body.xml",
+        loses_joints=True,
+    ),
+    _mjcf(
+        "axisangle-length",
+        "axisangle= with an axis of other than unit length",
+        "does not normalize the axis: the rotation it builds is distorted",
+        ("inertia", "kinematics"),
+        "axisangle axis not normalized",
+        "write a unit axis",
+        "axisangle_length.xml",
+    ),
+    _mjcf(
+        "replicate",
+        "<replicate count=...>",
+        "skips the element: the copies MuJoCo makes are missing",
+        ("mass", "com", "joints"),
+        "<replicate> not read by Pinocchio's MJCF parser",
+        "koenig-check export MODEL --to mjcf writes the copies out (no <replicate>, no <frame>)",
+        "replicate.xml",
+        drake="skips the element too (not detected by koenig-check for Drake)",
+        loses_joints=True,
+    ),
+    _mjcf(
+        "root-bodies",
+        "several <body> elements directly in <worldbody>",
+        "reads only the first root body",
+        ("mass", "com", "joints"),
+        "Pinocchio's MJCF parser reads only the first root body",
+        "put the robot in one root body, or load each root body's file alone",
+        "root_bodies.xml",
+        loses_joints=True,
+    ),
+    _mjcf(
+        "root-pose",
+        "pos / orientation of a root body without a joint",
+        "drops the pose: the robot stands at the world origin",
+        ("kinematics", "com"),
+        "jointless root body's pose dropped by Pinocchio",
+        "a constant world transform between the engines: koenig-check compares segments after removing it",
+        "root_pose.xml",
+    ),
+    _mjcf(
+        "settotalmass",
+        "<compiler settotalmass=...>",
+        "ignores the option: the file's masses unscaled",
+        ("mass", "inertia"),
+        "settotalmass not applied by Pinocchio",
+        "scale the masses in the file and remove settotalmass",
+        "settotalmass.xml",
+        drake="ignores the option too",
+    ),
+    _mjcf(
+        "mesh-mass",
+        "<geom> with a mesh",
+        "does not compute mass and inertia from the mesh: a mesh-typed geom counts as 1 kg with unit inertia, a "
+        "primitive fitted to a mesh as nothing",
+        ("mass", "com", "inertia"),
+        "geoms with a mesh, weighed otherwise by Pinocchio",
+        "give the body an <inertial> (mass, pos, inertia)",
+        "mesh_mass.xml",
+        drake="ignores a mesh given by vertices in the file (its mass is missing)",
+    ),
+    _mjcf(
+        "visual-geoms",
+        '<geom contype="0" conaffinity="0">',
+        "reads the geom as visual only and leaves its mass out",
+        ("mass", "com", "inertia"),
+        "contype=0 and conaffinity=0 geoms left out by Pinocchio",
+        "give the body an <inertial>, or give the geoms that weigh contype or conaffinity",
+        "visual_geoms.xml",
+    ),
+    _mjcf(
+        "inertiagrouprange",
+        "<compiler inertiagrouprange=...>",
+        "ignores the option: every geom's mass counted",
+        ("mass", "com", "inertia"),
+        "inertiagrouprange not applied by Pinocchio",
+        "give the geoms left out mass 0 (or density 0) and remove inertiagrouprange",
+        "inertiagrouprange.xml",
+        drake="ignores the option too (not detected by koenig-check for Drake)",
+    ),
+    Cause(
+        id="pinocchio.urdf.planar-axis",
+        construct='<joint type="planar"> with an <axis> other than z',
+        formats=("urdf",),
+        readings=(
+            Reading("mujoco", "as written", measured=_MUJOCO),
+            Reading("pinocchio", "differently", "one planar joint about z: ignores the axis", measured=MEASURED),
+            Reading("drake", "differently", "one planar joint, not MuJoCo's three joints", measured=_DRAKE),
+        ),
+        quantities=("joints", "kinematics"),
+        brief="URDF planar joint read about z by Pinocchio, ignoring its axis",
+        hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
+        fixture="planar_axis.urdf",
     ),
     Cause(
         id="pinocchio.mjcf.attach",
@@ -86,10 +257,18 @@ def measure(path: Path) -> Measurement:
     full = np.triu(full) + np.triu(full, 1).T
     one_dof = {model.names[j]: model.joints[j].idx_v for j in range(1, model.njoints) if model.joints[j].nv == 1}
     moving = [j for j in range(1, model.njoints) if model.joints[j].nv > 0]
+    pin.forwardKinematics(model, data, q0)
+    masses = [model.inertias[j].mass for j in range(1, model.njoints)]
+    mass = float(sum(masses))
+    weighted = sum(
+        (m * data.oMi[j].act(model.inertias[j].lever) for j, m in zip(range(1, model.njoints), masses, strict=True)),
+        np.zeros(3),
+    )
     return Measurement(
         joints=tuple(sorted(model.names[j] for j in moving)),
-        mass=float(sum(model.inertias[j].mass for j in range(1, model.njoints))),
+        mass=mass,
         mass_matrix={(a, b): float(full[i, k]) for a, i in one_dof.items() for b, k in one_dof.items()},
         gravity=tuple(float(g) for g in model.gravity.linear),
         armature={j: float(model.armature[i]) for j, i in one_dof.items() if model.armature[i]},
+        com=tuple(float(c) for c in (weighted / mass if mass > 0 else np.zeros(3))),
     )

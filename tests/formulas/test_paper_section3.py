@@ -5,10 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from koenig_check.analytic import box_inertia, rigid_states
 from koenig_check.formulas import FORMULAS
-from koenig_check.formulas.point_masses import equimomental_points
-from koenig_check.paper_section3 import (
+from koenig_check.formulas.analytic import box_inertia, rigid_states
+from koenig_check.formulas.paper_section3 import (
     angular_velocity_39,
     concluding_energy,
     coordinates_39,
@@ -16,6 +15,7 @@ from koenig_check.paper_section3 import (
     rotation_39,
     velocities_40,
 )
+from koenig_check.formulas.point_masses import equimomental_points
 
 POLE = np.array([0.1, -0.2, 0.3])
 COM_OFFSET = np.array([0.25, 0.15, -0.1])  # off both rotation axes

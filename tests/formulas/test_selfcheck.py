@@ -1,6 +1,6 @@
 from __future__ import annotations
 
-from koenig_check.selfcheck import format_table, run_selfcheck
+from koenig_check.formulas.selfcheck import format_table, run_selfcheck
 
 
 def test_selfcheck_separates_exact_family_from_paper_recipe() -> None:

@@ -6,7 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from koenig_check.analytic import (
+from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
+from koenig_check.formulas.analytic import (
     box_inertia,
     constant_rotation_states,
     cylinder_inertia,
@@ -14,9 +15,8 @@ from koenig_check.analytic import (
     random_states,
     rigid_states,
 )
-from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.angles import rotvec_angles
-from koenig_check.paper_section3 import angular_velocity_39, rotation_39
+from koenig_check.formulas.paper_section3 import angular_velocity_39, rotation_39
 from koenig_check.segments import SegmentStates
 
 

@@ -1,0 +1,267 @@
+"""iDynTree adapter: segment states, point velocities, energy, mass matrix, inverse dynamics.
+
+Callers pass canonical (MuJoCo-layout) states; :class:`~koenig_check.engines.idyntree.state_map.IDynTreeStateMap`
+converts them to iDynTree's free-floating ``(world_H_base, s, ν)``, and its mass matrices and forces back.
+
+Segments
+--------
+A segment is a link moved by a (non-fixed) joint, or the floating base, with every link fixed to it, keyed by the
+joint's canonical name as for MuJoCo and Pinocchio.  Its mass and central inertia are lumped from iDynTree's own
+per-link ``SpatialInertia`` (mass, COM and rotational inertia about the COM in the link's frame) at the reference
+pose, in the head link's frame; its states come from ``getWorldTransform`` and ``getFrameVel`` of each link (its
+origin's velocity and the angular velocity, world frame, in the mixed representation).  The pole is the head
+link's origin, where a URDF joint's axis passes.
+
+Energy
+------
+``KinDynComputations`` has no kinetic-energy function: the energy here is ``Σ ½ m v_C² + ½ ω·I_C ω`` over
+iDynTree's links, from its link velocities and inertias (the self-consistency check compares it with ``½ q̇ᵀ M q̇``
+of its ``getFreeFloatingMassMatrix``).  A URDF has no armature: the armature parts are zero.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from koenig_check.engines.base import Engine, as_batches, states_point_velocities, symmetrize
+from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.idyntree.state_map import IDynTreeStateMap, joint_kind
+from koenig_check.findings import Finding, Kind
+from koenig_check.segments import SegmentStates
+
+
+class IDynTreeEngine(Engine):
+    """A URDF loaded in iDynTree.
+
+    Parameters
+    ----------
+    model : idyntree.swig.Model
+    kin_dyn : idyntree.swig.KinDynComputations
+        On ``model``, base set, mixed velocity representation.
+    state_map : IDynTreeStateMap
+    path : Path
+    qpos0 : ndarray, shape (nq,)
+        The canonical reference configuration.
+    findings : list of Finding, optional
+    """
+
+    engine = "idyntree"
+
+    def __init__(
+        self,
+        model: Any,
+        kin_dyn: Any,
+        state_map: IDynTreeStateMap,
+        path: Path,
+        qpos0: np.ndarray,
+        findings: list[Finding] | None = None,
+    ) -> None:
+        import idyntree.swig as idt
+
+        self.model, self.kin_dyn, self.state_map = model, kin_dyn, state_map
+        self.path = Path(path)
+        self.findings = list(findings or [])
+        self.nq, self.nv = state_map.nq, state_map.nv
+        L = model.getNrOfLinks()
+        inertia = [model.getLink(k).getInertia() for k in range(L)]
+        self._link_mass = np.array([i.getMass() for i in inertia], dtype=float)
+        self._link_com = np.array([i.getCenterOfMass().toNumPy() for i in inertia], dtype=float).reshape(-1, 3)
+        self._link_inertia = np.array(
+            [i.getRotationalInertiaWrtCenterOfMass().toNumPy() for i in inertia], dtype=float
+        ).reshape(-1, 3, 3)
+        self._wrenches = idt.LinkWrenches(model)
+        self._torques = idt.FreeFloatingGeneralizedTorques(model)
+        self._build_segments(np.asarray(qpos0, dtype=float), idt)
+
+    # -------------------------------------------------------------- segments
+    def _build_segments(self, qpos0: np.ndarray, idt: Any) -> None:
+        model = self.model
+        base = model.getLinkIndex(self.kin_dyn.getFloatingBase())
+        traversal = idt.Traversal()
+        model.computeFullTreeTraversal(traversal, base)
+        name_of = {p.link: p.name for p in self.state_map.pairs}
+        members: dict[int, list[int]] = {}
+        for link in range(model.getNrOfLinks()):
+            head = link
+            while head not in name_of:
+                joint = traversal.getParentJointFromLinkIndex(head)
+                if joint is None or joint_kind(joint) != "fixed":  # the fixed base, or a joint MuJoCo lacks
+                    head = -1
+                    break
+                head = traversal.getParentLinkFromLinkIndex(head).getIndex()
+            if head >= 0 and (self._link_mass[link] > 0 or self._link_inertia[link].any()):
+                members.setdefault(head, []).append(link)  # a massless link's inertia counts
+        members = {h: links for h, links in members.items() if self._link_mass[links].sum() > 0}
+        order = {p.name: k for k, p in enumerate(self.state_map.pairs)}
+        heads = sorted(members, key=lambda h: order[name_of[h]])
+        massless = [name_of[h] for h in name_of if h not in members]
+        if massless:
+            self.findings.append(
+                Finding(
+                    Kind.SEGMENTS,
+                    "idyntree",
+                    "segments " + ", ".join(massless),
+                    "massless: left out (no kinetic energy)",
+                )
+            )
+        self.segment_names = tuple(name_of[h] for h in heads)
+        self._heads = np.array(heads, dtype=int)
+        self._members = [np.array(members[h], dtype=int) for h in heads]
+        ref = self._read(qpos0[None], np.zeros((1, self.nv)))
+        mass, inertia = [], []
+        for h, rows in zip(self._heads, self._members, strict=True):
+            m = self._link_mass[rows]
+            c = ref["com"][0, rows]
+            com = (m[:, None] * c).sum(0) / m.sum()
+            total = np.zeros((3, 3))
+            for k, link in enumerate(rows):
+                R = ref["R"][0, link]
+                d = c[k] - com
+                total += R @ self._link_inertia[link] @ R.T + m[k] * (d @ d * np.eye(3) - np.outer(d, d))
+            R_h = ref["R"][0, h]
+            mass.append(m.sum())
+            inertia.append(R_h.T @ total @ R_h)
+        self._mass = np.array(mass, dtype=float)
+        self._inertia = symmetrize(np.array(inertia, dtype=float).reshape(-1, 3, 3))
+        self._ref = self._segments(ref)
+
+    # -------------------------------------------------------------- reading iDynTree
+    def _set(self, H: np.ndarray, s: np.ndarray, nu: np.ndarray) -> None:
+        self.kin_dyn.setRobotState(H, s, nu[:6], nu[6:], np.zeros(3))
+
+    def _read(self, qpos: np.ndarray, qvel: np.ndarray) -> dict[str, np.ndarray]:
+        """Every link's frame, COM, COM velocity and angular velocity (world), per pose."""
+        sm, kd = self.state_map, self.kin_dyn
+        H, s = sm.base_pose(qpos), sm.joint_positions(qpos)
+        nu = np.einsum("pij,pj->pi", sm.velocity_matrix(qpos), qvel)
+        P, L = qpos.shape[0], len(self._link_mass)
+        R, o, v, w = np.zeros((P, L, 3, 3)), np.zeros((P, L, 3)), np.zeros((P, L, 3)), np.zeros((P, L, 3))
+        for p in range(P):
+            self._set(H[p], s[p], nu[p])
+            for link in range(L):
+                X = kd.getWorldTransform(link)
+                R[p, link], o[p, link] = X.getRotation().toNumPy(), X.getPosition().toNumPy()
+                twist = kd.getFrameVel(link).toNumPy()
+                v[p, link], w[p, link] = twist[:3], twist[3:]
+        arm = np.einsum("plij,lj->pli", R, self._link_com)
+        return {"R": R, "origin": o, "com": o + arm, "v": v + np.cross(w, arm), "omega": w, "v_origin": v}
+
+    def _segments(self, links: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Segment COM, COM velocity, rotation, angular velocity, pole and its velocity, per pose."""
+        m = self._link_mass
+        com = np.stack([(m[r, None] * links["com"][:, r]).sum(1) / m[r].sum() for r in self._members], axis=1)
+        v = np.stack([(m[r, None] * links["v"][:, r]).sum(1) / m[r].sum() for r in self._members], axis=1)
+        h = self._heads
+        return {
+            "com": com,
+            "v_com": v,
+            "R": links["R"][:, h],
+            "omega": links["omega"][:, h],
+            "pole": links["origin"][:, h],
+            "v_pole": links["v_origin"][:, h],
+        }
+
+    # -------------------------------------------------------------- the interface
+    def segment_states(self, qpos: np.ndarray, qvel: np.ndarray) -> SegmentStates:
+        """Return iDynTree's segment states, from its link transforms and velocities."""
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        s, ref = self._segments(self._read(qpos, qvel)), self._ref
+        return SegmentStates(
+            names=self.segment_names,
+            mass=self._mass,
+            inertia_body=self._inertia,
+            com=s["com"],
+            v_com=s["v_com"],
+            rotation=s["R"],
+            omega=s["omega"],
+            pole=s["pole"],
+            v_pole=s["v_pole"],
+            rotation_ref=ref["R"][0],
+            com_ref=ref["com"][0],
+            pole_ref=ref["pole"][0],
+        )
+
+    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """Return the world velocity of points fixed in the segments, from iDynTree's segment states."""
+        out = states_point_velocities(self.segment_states(qpos, qvel), points)
+        assert out is not None
+        return out
+
+    def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
+        """Return ``Σ ½ m v_C² + ½ ω·I_C ω`` over iDynTree's links (no armature in a URDF)."""
+        qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
+        links = self._read(qpos, qvel)
+        w_link = np.einsum("plji,plj->pli", links["R"], links["omega"])  # ω in each link's frame
+        rigid = 0.5 * (
+            np.einsum("l,pli,pli->p", self._link_mass, links["v"], links["v"])
+            + np.einsum("pli,lij,plj->p", w_link, self._link_inertia, w_link)
+        )
+        return EnergyParts(rigid=rigid, armature=np.zeros_like(rigid), reported=rigid.copy())
+
+    def mass_matrix(self, qpos: np.ndarray) -> np.ndarray:
+        """Return ``getFreeFloatingMassMatrix`` in canonical velocity coordinates (a fixed base: its joint block)."""
+        import idyntree.swig as idt
+
+        (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
+        sm = self.state_map
+        H, s = sm.base_pose(qpos), sm.joint_positions(qpos)
+        n = 6 + sm.n_dofs
+        M, buffer = np.empty((qpos.shape[0], n, n)), idt.MatrixDynSize(n, n)
+        for p in range(qpos.shape[0]):
+            self._set(H[p], s[p], np.zeros(n))
+            self.kin_dyn.getFreeFloatingMassMatrix(buffer)
+            M[p] = buffer.toNumPy()
+        return sm.matrix_to_canonical(qpos, M)
+
+    def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
+        """Return ``inverseDynamics`` (gravity and external wrenches zero) in canonical coordinates."""
+        import idyntree.swig as idt
+
+        qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
+        sm = self.state_map
+        T = sm.velocity_matrix(qpos)
+        nu = np.einsum("pij,pj->pi", T, qvel)
+        nu_dot = np.einsum("pij,pj->pi", T, qacc) + sm.acceleration_bias(qpos, qvel)
+        H, s = sm.base_pose(qpos), sm.joint_positions(qpos)
+        tau = np.empty_like(nu)
+        for p in range(qpos.shape[0]):
+            self._set(H[p], s[p], nu[p])
+            self._wrenches.zero()
+            self.kin_dyn.inverseDynamics(
+                idt.Vector6.FromPython(nu_dot[p, :6].tolist()),
+                idt.VectorDynSize.FromPython(nu_dot[p, 6:].tolist()),
+                self._wrenches,
+                self._torques,
+            )
+            tau[p, :6] = self._torques.baseWrench().toNumPy()
+            tau[p, 6:] = self._torques.jointTorques().toNumPy()
+        return sm.force_to_canonical(qpos, tau)
+
+    def segment_of_link(self) -> dict[int, str]:
+        """Link index (iDynTree's) -> the segment it moves with (links fixed to the world, massless segments left out).
+
+        Returns
+        -------
+        dict of int to str
+        """
+        return {int(k): self.segment_names[b] for b, links in enumerate(self._members) for k in links}
+
+    def armature_per_dof(self) -> np.ndarray:
+        """A URDF has no armature: zero on every canonical dof.
+
+        Returns
+        -------
+        ndarray, shape (nv,)
+        """
+        return np.zeros(self.nv)
+
+    def dofs_by_kind(self) -> dict[str, np.ndarray]:
+        """Return canonical dof indices grouped by iDynTree joint type (``floating base``, ``revolute``, ...)."""
+        words = {"free": "floating base", "hinge": "revolute", "slide": "prismatic"}
+        groups: dict[str, list[int]] = {}
+        for p in self.state_map.pairs:
+            groups.setdefault(words[p.kind], []).extend(range(p.vadr, p.vadr + (6 if p.kind == "free" else 1)))
+        return {k: np.array(v, dtype=int) for k, v in groups.items()}
