@@ -326,6 +326,8 @@ def compare(
                 raise
             result.failures.append((label, one_line(err)))
             result.failure_lines[label] = failure_line(err, model, label)
+            result.failure_parts[label] = failure_parts(err, model)
+            result.failure_causes[label] = tuple(getattr(err, "causes", ()))
             continue
         result.add(comp)
     return result
@@ -360,6 +362,28 @@ def failure_line(err: BaseException, model: Any, label: str) -> str:
     width = reason.REASON_WIDTH - len(label) - 2
     whole = reason.short_error(err, 10**6, given).removeprefix(f"{label}: ")  # the file named once
     return f"{label}: {whole if len(whole) <= width else reason.short_error(err, width, named)}"
+
+
+def failure_parts(err: BaseException, model: Any) -> dict[str, Any]:
+    """What a model's failure message is made of (its whole message, the engine's words, the hint), paths as given.
+
+    Parameters
+    ----------
+    err : BaseException
+    model : str or path
+        The model as the user gave it.
+
+    Returns
+    -------
+    dict
+        :func:`koenig_check.diagnosis.message.error_parts`, the file named as the user gave it.
+    """
+    from koenig_check.diagnosis.message import error_parts
+    from koenig_check.sources.shown_paths import as_given
+
+    parts = error_parts(err)
+    parts["whole"] = as_given(str(parts["whole"]), [model])
+    return parts
 
 
 #: The keywords of :func:`compare` passed on to :func:`compare_model` for every model.

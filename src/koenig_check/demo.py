@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TypedDict
 
-from koenig_check.api import CrossCheck, compare_model, failure_line, one_line
+from koenig_check.api import CrossCheck, compare_model, failure_line, failure_parts, one_line
 from koenig_check.report.progress import Progress
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.stats import DEFAULT_RTOL
@@ -117,6 +117,8 @@ def run_demo(
             except Exception as err:  # the other models still report
                 check.failures.append((label, one_line(err)))
                 check.failure_lines[label] = failure_line(err, options["model"], label)
+                check.failure_parts[label] = failure_parts(err, options["model"])
+                check.failure_causes[label] = tuple(getattr(err, "causes", ()))
                 continue
             check.add(comp)
             if options.get("pose_kind") == "grid":

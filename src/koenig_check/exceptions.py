@@ -1,7 +1,9 @@
 """Every exception koenig-check raises on purpose: the root :class:`KoenigCheckError` and its subclasses.
 
-Each message is one line naming the file (or the argument) and the element concerned.  Values a caller
-needs are attributes, not text to parse: the root causes of a load failure are
+Each message is one line naming the file (or the argument) and the element concerned; the refusing engine's own
+words, whole and as it wrote them, are :attr:`KoenigCheckError.engine_texts` (the lines printed after the
+message's first line: :mod:`koenig_check.diagnosis.message`).  Values a caller needs are attributes, not text to
+parse: the root causes of a load failure are
 :attr:`KoenigCheckError.causes` (typed :class:`~koenig_check.findings.Finding` records), the joints
 that cannot be paired are :attr:`JointMismatch.only_in_mujoco` and its siblings.
 
@@ -68,11 +70,18 @@ class KoenigCheckError(Exception):
     brief : str
         A shorter message for a one-line display (empty: the message itself is short enough), set where an
         engine's reason is long; the whole message stays ``str(err)``.
+    engine_texts : tuple of (str, str)
+        The refusing engine's own words, whole and as it wrote them (its label, its text), set by
+        :func:`quote_engine`; empty when no engine refused (the error is koenig-check's own).
+    hint : str
+        What would load or fix the model (an option, a change to the file), or empty.
     """
 
     causes: tuple[Finding, ...] = ()
     head: str = ""
     brief: str = ""
+    engine_texts: tuple[tuple[str, str], ...] = ()
+    hint: str = ""
 
     def attach_causes(self, causes: Iterable[Finding], *, in_message: bool = True) -> None:
         """Record the root causes of this error and, when asked and there are any, end the message with them.
@@ -246,6 +255,32 @@ def _first_names(names: list[str], shown: int = 6) -> str:
     """``a, b, c`` and, past ``shown`` names, how many more."""
     more = f" (+{len(names) - shown} more)" if len(names) > shown else ""
     return ", ".join(names[:shown]) + more
+
+
+def quote_engine(err: BaseException, engine: str, text: str | None = None) -> None:
+    """Record on ``err`` the engine's own words: ``text``, else the engine's exception ``err`` was raised from.
+
+    Nothing is recorded when the error already quotes an engine, or when it was raised from none (the text of an
+    exception koenig-check raised itself is not an engine's).
+
+    Parameters
+    ----------
+    err : BaseException
+        A :class:`KoenigCheckError` (anything else is left alone).
+    engine : str
+        The engine's label (``"MuJoCo"``).
+    text : str, optional
+        The engine's whole text (its exception's, with what its parser printed); by default the text of the
+        exception ``err`` was raised from.
+    """
+    if not isinstance(err, KoenigCheckError) or err.engine_texts:
+        return
+    cause = err.__cause__
+    if text is None and (cause is None or isinstance(cause, KoenigCheckError)):
+        return
+    words = (text if text is not None else str(cause)).strip()
+    if words:
+        err.engine_texts = ((engine, words),)
 
 
 def one_line(err: BaseException) -> str:

@@ -1,7 +1,8 @@
 """Lines that fit a screen: every line the command line prints is at most :data:`LINE_LIMIT` characters.
 
-One-line messages (errors, reasons) are made shorter, never folded (:func:`cut` is their last resort); detail
-views and tables fold a long line at words onto indented continuation lines (:func:`fold`, :func:`fold_text`).
+A message's first line (an error, a reason) is made shorter by whole parts, the rest given whole on indented lines
+after it (:mod:`koenig_check.diagnosis.message`); detail views and tables fold a long line at words onto indented
+continuation lines (:func:`fold`, :func:`fold_text`).  :func:`cut` is the last resort of a single part too long.
 """
 
 from __future__ import annotations

@@ -11,11 +11,9 @@ import pytest
 
 from koenig_check.causes import applies, catalogue, cause, fixture_path, installed_version, markdown
 from koenig_check.cli import main
-from koenig_check.engines import load_model
 from koenig_check.engines.cause import Cause, Reading
 from koenig_check.engines.measurement import Measurement, differences, fields
 from koenig_check.engines.specs import names, spec
-from koenig_check.exceptions import KoenigCheckError
 
 ROOT = Path(__file__).resolve().parents[2]
 CAUSES = catalogue()
@@ -94,10 +92,7 @@ def test_the_tool_names_the_cause_on_its_fixture(c: Cause) -> None:
     engines = [r.engine for r in c.readings if _installed(r.engine)]
     check = koenig_check.compare(str(fixture_path(c)), n_poses=4, engines=engines)
     found = {f.cause for comp in check.comparisons for f in comp.findings}
-    if check.failures:  # a model the engines cannot pair: the load error carries the causes
-        with pytest.raises(KoenigCheckError) as refused:
-            load_model(fixture_path(c))
-        found |= {f.cause for f in refused.value.causes}
+    found |= {f.cause for causes in check.failure_causes.values() for f in causes}  # joints lost: not compared
     assert c.id in found, f"{c.id} not named on its fixture (named: {sorted(found - {''})})"
 
 

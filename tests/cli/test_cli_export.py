@@ -123,3 +123,18 @@ def test_check_only_names_the_frame_that_hides_joints_from_an_engine(
         "root cause: frame #1 in body base: <frame> not read by Pinocchio's MJCF parser: what it holds is missing "
         "(1 bodies, 1 joints) (joints j2)"
     )
+
+
+def test_a_refusal_is_never_cut() -> None:
+    """Constructs whose names do not fit one line even one each: the first line counts them, the list gives each
+    whole (issue 28: never cut with '…')."""
+    from koenig_check.cli.export import refused_lines
+    from koenig_check.export.carried import ExportRefusedError, NotCarried
+
+    kinds = [f"construct_{k}_" + "x" * 30 for k in range(6)]
+    constructs = tuple(NotCarried(kind, f"joint {kind}_joint", f"{kind} cannot be written: why") for kind in kinds)
+    lines = refused_lines(ExportRefusedError("refused", constructs), "urdf")
+    assert lines[0] == "refused: URDF cannot hold 6 kinds of construct (6 elements)"
+    assert all(len(line) <= 200 for line in lines) and "…" not in "\n".join(lines)
+    flat = " ".join(" ".join(lines).split())
+    assert all(f"joint {kind}_joint" in flat and f"{kind} cannot be written: why" in flat for kind in kinds)

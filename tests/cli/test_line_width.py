@@ -90,15 +90,24 @@ def assert_fits(capfd: pytest.CaptureFixture[str], *argv: str, given: tuple[str,
     return status, out, err
 
 
+def assert_one_message(err: str) -> None:
+    """One message per failure: a first line ``koenig-check: ...``, then only indented lines (issue 28's rule)."""
+    lines = err.strip().splitlines()
+    assert lines and lines[0].startswith("koenig-check: "), err
+    assert all(line.startswith("    ") or line.startswith("koenig-check: ") for line in lines), err
+    assert sum(line.startswith("koenig-check: ") for line in lines) == 1, err
+    assert "…" not in err.replace(lines[0], ""), err  # the lines after the first are never cut
+
+
 @pytest.mark.parametrize("rel", CORPUS)
 def test_every_command_fits_on_the_corpus(deep: Path, rel: str, capfd: pytest.CaptureFixture[str]) -> None:
     model = str(deep / rel)
     status, _, err = assert_fits(capfd, "compare", model, "--poses", "2", "--quiet")
     if status == 1:
-        assert len(err.strip().splitlines()) == 1, err  # the reason: one sentence on one line
+        assert_one_message(err)  # the reason: one sentence on one line, then the whole of it indented
     status, _, err = assert_fits(capfd, "parity", model)
     if status == 1:
-        assert len(err.strip().splitlines()) == 1, err
+        assert_one_message(err)
     stem = Path(rel).stem
     assert_fits(capfd, "export", model, "--to", "urdf", "--out", str(deep / "out" / f"{stem}.urdf"), "--poses", "2")
     assert_fits(capfd, "export", model, "--to", "mjcf", "--out", str(deep / "out" / f"{stem}.xml"), "--poses", "2")
@@ -247,7 +256,8 @@ def test_bad_input_is_one_short_line_naming_the_file(deep: Path, case: str, comm
     lines = err.strip().splitlines()
     if command == "export" and not lines:  # export prints its refusal on stdout
         return
-    assert len(lines) == 1 and path.name in lines[0], err  # one line naming the file
+    assert_one_message(err)  # one message: its first line names the file, the rest is indented
+    assert path.name in lines[0], err
 
 
 def test_a_path_longer_than_a_line_is_the_only_exception(tmp_path: Path, capfd: pytest.CaptureFixture[str]) -> None:
@@ -260,7 +270,8 @@ def test_a_path_longer_than_a_line_is_the_only_exception(tmp_path: Path, capfd: 
     broken = deeper / "broken.urdf"
     broken.write_text("<robot><link name='a'>")
     status, _, err = assert_fits(capfd, "parity", str(broken))
-    assert status == 1 and len(err.strip().splitlines()) == 1 and "broken.urdf" in err
+    assert status == 1 and "broken.urdf" in err.strip().splitlines()[0]
+    assert_one_message(err)
 
 
 def test_a_fresh_process_prints_no_long_warning(deep: Path) -> None:

@@ -38,8 +38,9 @@ def test_cli_row_and_exit_status_say_the_asked_engine_did_not_check(capsys: pyte
     out, err = capsys.readouterr()
     row = " ".join(out.split("\n\n")[0].split())  # the model's row, its wrapped lines joined
     assert "Drake asked for (--engines) but it could not check the model" in row and DRAKE_REASON in row
-    (line,) = err.splitlines()  # one line, within 200 characters, saying which engine could not check
+    line, *rest = err.splitlines()  # one message: a line within 200 characters saying which engine could not check,
     assert line.startswith("koenig-check: talos: Drake asked for (--engines)") and len(line) <= 200
+    assert all(x.startswith("    ") for x in rest) and DRAKE_REASON in " ".join(" ".join(rest).split())  # then Drake's
 
 
 @needs_drake

@@ -113,9 +113,13 @@ def test_a_check_not_made_closes_the_line_after_the_root_cause() -> None:
     unable = Finding(Kind.ENGINE_UNABLE, "drake", "model", drake.strip())
     line = short_reason("hand.xml", [unable, root], "MuJoCo and Pinocchio differ by 3 relative (pose random-1)")
     assert line.startswith("hand.xml: root cause: geom pole: geom mass from a class not applied")
-    # the check not made closes the line, cut at a word to fit it (the verdict table's row holds it whole)
-    assert len(line) <= REASON_WIDTH and line.endswith("…")
-    assert "; Drake asked for (--engines) but it could not check the model: an engine's long reason" in line
+    # the check not made closes the line at a whole clause, never cut with "…" (issue 28): the lines after the
+    # reason give it whole
+    assert len(line) <= REASON_WIDTH and not line.endswith("…")
+    assert line.endswith("; Drake asked for (--engines) but it could not check the model")
+    from koenig_check.diagnosis.message import finding_lines
+
+    assert " ".join(" ".join(finding_lines([unable, root], line)).split()) == f"drake: {drake.strip()}"
     whole = short_reason("hand.xml", [unable, root], width=1000)
     assert whole.endswith(drake.strip())
 

@@ -31,8 +31,9 @@ def test_exit_status_says_whether_every_named_engine_checked(
     assert main(["dynamics", model, "--engines", engines, *ARGS]) == status
     out, err = capsys.readouterr()
     if status:  # one line (cut to its width) saying which engine did not check; Drake's reason whole above it
-        (line,) = err.splitlines()
+        line, *rest = err.splitlines()  # one message: its first line, then the rest indented
         assert line.startswith(f"koenig-check: {model}: ") and "Drake asked for (--engines)" in line
-        assert "Drake cannot load the file" in line and DRAKE_REASON in " ".join(out.split())
+        assert all(x.startswith("    ") for x in rest) and len(line) <= 200
+        assert "Drake cannot load the file" in err and DRAKE_REASON in " ".join(out.split())
     else:
         assert err == ""

@@ -240,3 +240,32 @@ def test_a_model_that_cannot_be_checked_fails_as_the_cli_exits_1(pytester):
         assert "Joint 'gripper_left_inner_double_joint' which has 0 DOF cannot mimic" in failures
     else:
         result.assert_outcomes(failed=1, skipped=1)
+
+
+#: A URDF whose base link breaks A + B >= C: MuJoCo refuses it (issue 28: its own words in the failure).
+ABC_URDF = """<robot name="abc">
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.05" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><inertial><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def test_a_refused_model_gives_the_engines_own_words(pytester):
+    """One message per failed model: its reason first, then MuJoCo's words and the hint, indented, never cut."""
+    import mujoco
+
+    (pytester.path / "abc.urdf").write_text(ABC_URDF)
+    with pytest.raises(ValueError) as info:  # MuJoCo's own refusal, read from MuJoCo
+        mujoco.MjModel.from_xml_path(str(pytester.path / "abc.urdf"))
+    words = [line.strip() for line in str(info.value).splitlines() if line.strip()]
+    pytester.makepyprojecttoml('[tool.koenig-check]\nmodels = ["abc.urdf", { model = "abc.urdf", floating = true }]\n')
+    result = pytester.runpytest_subprocess("--koenig-check", "-p", "no:cacheprovider")
+    assert result.ret == 1
+    text = result.stdout.str()
+    for word in words:
+        assert text.count(word) >= 2, text  # fixed and floating, each with MuJoCo's words
+    assert "failed: link 'base': MuJoCo rejects its inertia" in text and "hint: --repair-inertia" in text
+    assert "…" not in text

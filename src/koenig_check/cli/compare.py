@@ -118,8 +118,8 @@ def _finish(check, out: str | None, extra_figures: dict | None = None, records=N
         print("\n" + file_listing(out, written))
     if check.ok:
         return 0
-    for line in check.reasons(cli=True):  # one sentence per failing model, the details in the report
-        print(f"koenig-check: {line}", file=sys.stderr)
+    for message in check.messages(cli=True):  # one per failing model: a sentence, then the whole of it indented
+        print(f"koenig-check: {message}", file=sys.stderr)
     return 1
 
 

@@ -59,7 +59,7 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         rtol=args.rtol,
         load_options=load_options,
     )
-    from koenig_check.line_width import LINE_LIMIT, cut, fold_text
+    from koenig_check.line_width import LINE_LIMIT, fold_text
     from koenig_check.sources.shown_paths import as_given
 
     print(fold_text(as_given("\n".join(terminal_lines(result)), [args.model])))
@@ -71,8 +71,12 @@ def _cmd_dynamics(args: argparse.Namespace) -> int:
         print("\n" + file_listing(args.out, written))
     if result.ok:
         return 0
-    line = as_given(f"koenig-check: {result.reason(cli=True)}", [args.model])  # the reason says which check failed
-    if len(line) > LINE_LIMIT:  # one line: the file by its name, the details in the table above
-        line = cut(as_given(line, [args.model], short=True), LINE_LIMIT)
+    whole = as_given(f"koenig-check: {result.reason(cli=True)}", [args.model])  # the reason says which check failed
+    line = whole if len(whole) <= LINE_LIMIT else as_given(whole, [args.model], short=True)  # the file by its name
+    if len(line) > LINE_LIMIT:  # one message: a first line naming the model and what failed, the rest indented
+        from koenig_check.diagnosis.message import first_and_rest
+
+        first, rest = first_and_rest(line, LINE_LIMIT)
+        line = "\n".join([first, *rest])
     print(line, file=sys.stderr)
     return 1

@@ -1,4 +1,7 @@
-"""The one line of an error that stops a command: short, naming the file as the user gave it."""
+"""The message of an error that stops a command: a short first line naming the file as the user gave it, then more.
+
+The lines after the first, indented, give the rest of the error whole: the engine's own words and the hint.
+"""
 
 from __future__ import annotations
 
@@ -53,6 +56,28 @@ def error_line(args: argparse.Namespace, err: BaseException) -> str:
     line = short_error(err, width, lambda text: as_given(text, files))
     whole = short_error(err, 10**6, lambda text: as_given(text, files))
     named = [f for f in files if f in whole]
-    if len(whole) <= width or max(map(len, named), default=0) <= width // 2:  # the file as given, and its reason
+    cut = line.endswith("…")  # its first part alone is too long with the paths as given: the files by their names
+    if not cut and (len(whole) <= width or max(map(len, named), default=0) <= width // 2):  # the file as given
         return PREFIX + line
     return PREFIX + short_error(err, width, lambda text: as_given(text, files, short=True))
+
+
+def error_lines(args: argparse.Namespace, err: BaseException, first: str) -> list[str]:
+    """The indented lines after an error's first line: its whole message, the engine's own words, the hint.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    err : BaseException
+    first : str
+        The first line (:func:`error_line`).
+
+    Returns
+    -------
+    list of str
+    """
+    from koenig_check.diagnosis.message import detail_lines
+    from koenig_check.sources.shown_paths import as_given
+
+    files = given_files(args)
+    return detail_lines(err, first, lambda text: as_given(text, files), cli=True)

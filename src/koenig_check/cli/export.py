@@ -158,7 +158,7 @@ def refused_lines(err: ExportRefusedError, target: str, limit: int = 3) -> list[
     import re
 
     from koenig_check.exceptions import one_line
-    from koenig_check.line_width import LINE_LIMIT, cut, fold_text
+    from koenig_check.line_width import LINE_LIMIT, fold_text
 
     if not err.constructs:
         return fold_text(f"refused: {one_line(err)}").split("\n")
@@ -174,8 +174,12 @@ def refused_lines(err: ExportRefusedError, target: str, limit: int = 3) -> list[
         head = f"refused: {target.upper()} cannot hold {'; '.join(named)}"
         if len(head) <= LINE_LIMIT:
             break
-    lines = [cut(head, LINE_LIMIT)]
-    if len(err.constructs) > 1 or len(head) > LINE_LIMIT or head.endswith(")"):
+    whole = len(head) <= LINE_LIMIT
+    if not whole:  # never cut: the constructs counted, each element with why below
+        kinds, elements = len(groups), len(err.constructs)
+        head = f"refused: {target.upper()} cannot hold {kinds} kinds of construct ({elements} elements)"
+    lines = [head]
+    if len(err.constructs) > 1 or not whole or head.endswith(")"):
         lines += fold_text("\n".join(f"  - {c.message()}" for c in err.constructs)).split("\n")
     return lines
 

@@ -77,10 +77,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:  # output piped into a command that stopped reading (e.g. head)
         sys.stderr.close()
         return 0
-    except Exception as err:  # one line for users, the traceback on --debug
+    except Exception as err:  # one message for users (a line, then the whole indented), the traceback on --debug
         if args.debug:
             raise
-        from koenig_check.cli.error_line import error_line
+        from koenig_check.cli.error_line import error_line, error_lines
 
-        print(error_line(args, err), file=sys.stderr)
+        line = error_line(args, err)
+        print("\n".join([line, *error_lines(args, err, line)]), file=sys.stderr)
         return 1

@@ -14,6 +14,7 @@ from typing import Any
 
 from koenig_check.cli.parsing import add_command, check_models, load_options_of, positive, tolerance, usage_error
 from koenig_check.engines.load_options import add_load_arguments
+from koenig_check.exceptions import JointMismatch
 
 #: Random states on which a third engine's energies are compared by default (``compare``'s default poses; not
 #: :data:`koenig_check.run.engine_runs.VERDICT_POSES`, the most of a run's poses ``compare`` gives the verdicts).
@@ -95,7 +96,12 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         usage_error(args, f"--seed must be >= 0, got {args.seed}")
     options = load_options_of(args)
     check_models(args, [args.model, *([options.pinocchio_model] if options.pinocchio_model else [])])
-    model = load_model(args.model, options)
+    try:
+        model = load_model(args.model, options)
+    except JointMismatch as err:
+        if not any(c.root_cause and c.affects_energy for c in err.causes):
+            raise  # no construct of the file explains it: an error
+        return _unpaired_report(args, err)  # a parser that ignores a construct: a disagreement with its root cause
     attach_engines(model)  # the engines the user named
     diagnosis = parity_diagnosis(model, args.rtol, args.poses, args.seed)
     report = diagnosis.parity
@@ -141,4 +147,46 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         hint = rounding_hint(report.largest_relative(), args.rtol, cli=True)
         line += hint or f"import differences, each at most {ROUNDING_LEVEL:g} relative: a written file's rounding"
     print(f"koenig-check: {line}", file=sys.stderr)
+    return 1
+
+
+def _unpaired_report(args: argparse.Namespace, err: JointMismatch) -> int:
+    """The parity report of a model whose joints cannot be paired because one parser ignores a construct.
+
+    Pinocchio's MJCF parser ignores ``<attach>``, ``<include>``, ``<frame>``...: the engines build different
+    mechanisms from one file, which is the disagreement ``parity`` reports, led by its root causes (exit status 1).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    err : JointMismatch
+        With its root causes (:attr:`~koenig_check.exceptions.KoenigCheckError.causes`).
+
+    Returns
+    -------
+    int
+        1.
+    """
+    from koenig_check.diagnosis.message import detail_lines
+    from koenig_check.diagnosis.model_reason import short_reason
+    from koenig_check.line_width import fold_text
+    from koenig_check.run.labels import unique_labels
+    from koenig_check.sources.shown_paths import as_given
+
+    options = load_options_of(args)
+    lines = [f"Import parity of {args.model} (relative tolerance {args.rtol:g})", ""]
+    named = (("only in MuJoCo", err.only_in_mujoco), ("only in Pinocchio", err.only_in_pinocchio))
+    lines += [f"joints {what}: {', '.join(names)}" for what, names in named if names]
+    lines += [f"joints of incompatible types: {', '.join(err.kind_mismatch)}"] if err.kind_mismatch else []
+    lines += ["the engines' joints cannot be paired: no segment, dof or energy is compared", "", "root causes:"]
+    for c in err.causes:
+        effect = "changes the kinetic energy" if c.affects_energy else "no effect on the kinetic energy"
+        lines.append(f"  - [{c.kind.value}, {effect}] {c.message()}")
+    label = unique_labels([args.model], options.floating, options.xacro_args)[0]
+    line = short_reason(label, err.causes)
+    lines += ["", f"verdict: {line.removeprefix(f'{label}: ')}"]
+    print(fold_text(as_given("\n".join(lines), [args.model])))
+    hints = [c.hint for c in err.causes if c.hint]
+    more = detail_lines({"hint": "; ".join(dict.fromkeys(hints))}, line, cli=True)
+    print("\n".join([f"koenig-check: {line}", *more]), file=sys.stderr)
     return 1

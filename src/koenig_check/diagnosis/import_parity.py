@@ -50,8 +50,24 @@ def segment_labels(pair: Any) -> dict[str, str]:
     word = "link" if pair.source.format == "urdf" else "body"
     out = {}
     for segment, body in pair.mujoco.segment_bodies().items():
-        out[segment] = f"{word} {body}" if body == segment or not body else f"{word} {body} (joint {segment})"
+        if not body:  # an unnamed body: by its place (the body it hangs from) and its joint
+            out[segment] = f"unnamed {word} in {_parent_words(pair, segment, word)} (joint {segment})"
+        else:
+            out[segment] = f"{word} {body}" if body == segment else f"{word} {body} (joint {segment})"
     return out
+
+
+def _parent_words(pair: Any, segment: str, word: str) -> str:
+    """Where the unnamed body that starts a segment hangs: ``body a``, ``the world``, ``an unnamed body``."""
+    import mujoco
+
+    model = pair.mujoco.model
+    dofs = [d for d, s in enumerate(pair.mujoco.dof_segments()) if s == segment]
+    if not dofs:
+        return "the model"
+    parent = int(model.body_parentid[int(model.dof_bodyid[dofs[0]])])
+    name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, parent) or ""
+    return "the world" if parent == 0 else f"{word} {name}" if name else f"an unnamed {word}"
 
 
 def _unit_rate_states(engine: Any, qpos0: np.ndarray, nv: int) -> SegmentStates:
@@ -140,6 +156,7 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     m_scale = max(float(np.abs(np.diag(Ma[0])).max(initial=0.0)), 1e-300)
     for d, joint in enumerate(mujoco_coordinate_names(mj_model)[1]):
         seg = own.get(dof_segment[d])
+        missing = "" if seg is not None else _missing_segment(dof_segment[d], report)
         if seg is None:  # the dof's segment exists in one engine only: reported with the segments
             diff = float("nan")
         else:
@@ -148,7 +165,8 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
             )
         relative = {"axis": diff / (jac_scale * size), "armature": abs(arm_a[d] - arm_b[d]) / m_scale}
         causes = tuple(q for q, value in relative.items() if value > rtol)  # nan (segment missing) is no axis cause
-        report.dofs.append(DofParity(d, joint, (float(arm_a[d]), float(arm_b[d])), diff, causes, relative))
+        arms = (float(arm_a[d]), float(arm_b[d]))
+        report.dofs.append(DofParity(d, joint, arms, diff, causes, relative, missing))
     report.findings = _pair_notes(pair, dropped_root=offset is not None) + compiler_findings(
         Path(str(mj.path)), mj_model
     )
@@ -162,6 +180,19 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
                 "a total-mass rescaling honoured by one engine only"
             )
     return report
+
+
+def _missing_segment(segment: str, report: ParityReport) -> str:
+    """Why a dof's segment has no counterpart to compare its Jacobian with (``segment j2 massless in Pinocchio``)."""
+    for names, where in (
+        (report.massless_in_pinocchio, "massless in Pinocchio"),
+        (report.massless_in_mujoco, "massless in MuJoCo"),
+        (report.only_in_mujoco, "only in MuJoCo"),
+        (report.only_in_pinocchio, "only in Pinocchio"),
+    ):
+        if segment in names:
+            return f"segment {segment} {where}"
+    return f"segment {segment} has no mass in either engine"
 
 
 def _pair_notes(pair: Any, dropped_root: bool = False) -> list[str]:

@@ -95,7 +95,7 @@ class Reason:
         if unmade and not self.head and not self.gap:  # the check not made is the whole reason
             text = f"{self.label}: {unmade}"
             hinted = f"{text}; {self.hints}" if self.hints else text
-            return hinted if len(hinted) <= width else closed_cut(text, width)
+            return hinted if len(hinted) <= width else _closed(f"{self.label}: ", unmade, width)  # whole: below
         room = min(len(unmade) + 2, _UNMADE_ROOM) if unmade else 0  # kept for the check not made
         return _closed(self._sentence(width, room), unmade, width)
 
@@ -119,10 +119,21 @@ class Reason:
 
 
 def _closed(text: str, unmade: str, width: int) -> str:
-    """A reason closed by the checks asked for and not made, cut at a word to fit (whole in the table's row)."""
+    """A reason closed by the checks asked for and not made, by whole clauses that fit (whole in the lines below).
+
+    The checks not made are shortened at a clause (``": "`` or ``"; "`` outside parentheses), never inside one;
+    the lines after the reason give them whole (:func:`koenig_check.diagnosis.message.finding_lines`).
+    """
     if not unmade:
         return text
-    return closed_cut(f"{text}{'' if text.endswith(': ') else '; '}{unmade}", width)
+    joined = f"{text}{'' if text.endswith(': ') else '; '}"
+    whole = joined + unmade
+    if len(whole) <= width:
+        return whole
+    from koenig_check.diagnosis.message import clause_ends
+
+    fitting = [end for end in clause_ends(unmade) if len(joined) + end <= width]
+    return joined + unmade[: fitting[-1]] if fitting else closed_cut(whole, width)
 
 
 def short_reason(

@@ -30,8 +30,9 @@ def short_error(
     Python spelling in parentheses (``(repair_inertia=True)``), then the causes after the first ("; and N more
     root causes"), then the joints each cause loses, then the engine's own detail in
     parentheses (its verbatim reason), the last first, then "and N more", then the first cause naming only its first
-    element ("includes a.xml (+2 more)"), then the causes (counted); only then is the
-    line cut at a word (``…``), never inside a parenthesis.  The whole message stays ``str(err)`` (the report's
+    element ("includes a.xml (+2 more)"), then the causes (counted); only then are the last parts left out (whole:
+    the lines after a message's first line give them), and only a first part too long alone is cut at a word
+    (``…``), never inside a parenthesis.  The whole message stays ``str(err)`` (the report's
     failures, ``--debug``).
 
     Parameters
@@ -78,7 +79,19 @@ def short_error(
             text += f"; {len(shorts)} root cause{'s' if len(shorts) > 1 else ''} not shown"
         if len(text) <= width:
             return text
-    return closed_cut(heads[-1] + ("; root cause: " + briefs[0] if briefs else ""), width)  # the last resort
+    return _whole_parts(heads[-1] + ("; root cause: " + briefs[0] if briefs else ""), width)  # the last resort
+
+
+def _whole_parts(text: str, width: int) -> str:
+    """The leading parts of ``text`` (split at ``"; "`` outside parentheses) that fit ``width``, none cut.
+
+    The parts left out are in the lines that follow a message's first line
+    (:func:`koenig_check.diagnosis.message.detail_lines`); only a first part longer than ``width`` is cut at a word.
+    """
+    from koenig_check.diagnosis.message import first_and_rest
+
+    first, _ = first_and_rest(text, width)
+    return first if len(first) <= width else closed_cut(first, width)
 
 
 def _said(group: CauseGroup, err: BaseException) -> bool:

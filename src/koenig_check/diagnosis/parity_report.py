@@ -90,6 +90,9 @@ class DofParity:
         ``axis`` and/or ``armature`` when they differ.
     relative : dict of str to float
         Per quantity, its difference relative to its scale (see :class:`SegmentParity`).
+    missing : str
+        Why the Jacobians were not compared, when the dof's segment exists in one engine only (``"segment j2
+        massless in Pinocchio"``); empty when they were.
     """
 
     dof: int
@@ -98,6 +101,7 @@ class DofParity:
     jacobian_difference: float
     causes: tuple[str, ...]
     relative: dict[str, float] = field(default_factory=dict)
+    missing: str = ""
 
 
 @dataclass

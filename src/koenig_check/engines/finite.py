@@ -1,7 +1,9 @@
-"""Refuse compiled models that carry non-finite or implausible numbers, or unphysical segments.
+"""Refuse compiled models that carry non-finite numbers, or unphysical segments; note large finite numbers.
 
-A file may hold NaN, inf or absurd magnitudes (1e300 m) that a parser accepts; they would only
-surface later as non-finite energies.  These checks run at load time and name the element.
+A file may hold NaN or inf that a parser accepts; they would only surface later as non-finite energies.  A
+large finite number (a 100 kg sensor link 333 m away, fused by MuJoCo into its carrier: an inertia of 4e7
+kg m²) is the engines' to accept or refuse, not ours: it is noted, never refused.  These checks run at load
+time and name the element.
 """
 
 from __future__ import annotations
@@ -13,7 +15,7 @@ import pinocchio as pin
 from koenig_check.engines.errors import ModelLoadError
 from koenig_check.findings import Finding, Kind
 
-#: Largest length (m), mass (kg) or inertia (kg m²) accepted as physical.
+#: Largest length (m), mass (kg) or inertia (kg m²) taken without a note (a larger finite one is noted).
 MAX_MAGNITUDE = 1e6
 
 #: MuJoCo model arrays checked, with the kind of element each row belongs to.
@@ -36,8 +38,8 @@ _MUJOCO_FIELDS = {
 _UNBOUNDED = frozenset({"jnt_range", "qpos0"})
 
 
-def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> None:
-    """Raise if either engine compiled a non-finite number into the model.
+def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str, names: tuple[str, str]) -> list[Finding]:
+    """Raise if either engine compiled a non-finite number into the model; note each large finite one.
 
     Parameters
     ----------
@@ -45,32 +47,42 @@ def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> N
     pin_model : pinocchio.Model
     path : str
         The model file, for the message.
+    names : (str, str)
+        The two engines' names, as the findings carry them (MuJoCo's, Pinocchio's).
+
+    Returns
+    -------
+    list of Finding
+        One ``LOAD`` note per engine whose model holds a finite value above :data:`MAX_MAGNITUDE` (the
+        first such element and its value): both engines loaded it, so it is theirs to judge.
 
     Raises
     ------
     ModelLoadError
         Naming the file, the engine, the element and the quantity.
     """
+    notes: list[Finding] = []
     for field, obj in _MUJOCO_FIELDS.items():
         values = np.asarray(getattr(mj_model, field), dtype=float)
         if values.size == 0:
             continue
         values = values.reshape(values.shape[0], -1) if values.ndim else values.reshape(1, 1)
         bad = ~np.isfinite(values)
-        if field not in _UNBOUNDED:
-            bad |= np.abs(values) > MAX_MAGNITUDE
-        if bad.any():
-            row = int(np.argwhere(bad)[0][0])
+        large = np.zeros_like(bad) if field in _UNBOUNDED else np.isfinite(values) & (np.abs(values) > MAX_MAGNITUDE)
+        for found, refused in ((bad, True), (large, False)):
+            if not found.any() or (not refused and notes):
+                continue
+            row = int(np.argwhere(found)[0][0])
             if obj is None:
-                where = f"{field}[{row}]"
+                element, quantity = "model", f"{field}[{row}]"
             else:
                 kind = "body" if obj == mujoco.mjtObj.mjOBJ_BODY else "joint"
-                where = f"{kind} {mujoco.mj_id2name(mj_model, obj, row) or row!r}: {field.split('_', 1)[1]}"
-            value = values[tuple(np.argwhere(bad)[0])]
-            raise ModelLoadError(
-                f"{path}: non-finite or implausible value {value:g} in MuJoCo's model, {where} "
-                f"(|value| must be finite and at most {MAX_MAGNITUDE:g})"
-            )
+                element = f"{kind} {mujoco.mj_id2name(mj_model, obj, row) or f'#{row}'}"
+                quantity = field.split("_", 1)[1]
+            value = float(values[tuple(np.argwhere(found)[0])])
+            if refused:
+                raise ModelLoadError(f"{path}: non-finite value {value:g} in MuJoCo's model, {element}: {quantity}")
+            notes.append(_large(names[0], element, quantity, value))
     axes = np.linalg.norm(np.asarray(mj_model.jnt_axis, dtype=float).reshape(-1, 3), axis=1)
     for j in range(mj_model.njnt):
         if int(mj_model.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)):
@@ -80,6 +92,7 @@ def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> N
                     f"{path}: joint {name!r}: its axis has no direction after normalisation (MuJoCo made it "
                     f"{np.round(mj_model.jnt_axis[j], 6).tolist()}): zero, non-finite or overflowing components"
                 )
+    pin_noted = False
     for j in range(1, pin_model.njoints):
         name = pin_model.names[j]
         inertia = pin_model.inertias[j]
@@ -87,11 +100,24 @@ def check_finite(mj_model: mujoco.MjModel, pin_model: pin.Model, path: str) -> N
         values = np.concatenate(
             [[inertia.mass], inertia.lever, inertia.inertia.ravel(), placement.translation, placement.rotation.ravel()]
         )
-        if not np.all(np.isfinite(values)) or np.abs(values).max() > MAX_MAGNITUDE:
-            raise ModelLoadError(
-                f"{path}: non-finite or implausible value in Pinocchio's model, joint {name!r}: placement or "
-                f"inertia (|value| must be finite and at most {MAX_MAGNITUDE:g})"
-            )
+        if not np.all(np.isfinite(values)):
+            raise ModelLoadError(f"{path}: non-finite value in Pinocchio's model, joint {name!r}: placement or inertia")
+        largest = float(np.abs(values).max())
+        if largest > MAX_MAGNITUDE and not pin_noted:
+            notes.append(_large(names[1], f"joint {name}", "placement or inertia", largest))
+            pin_noted = True
+    return notes
+
+
+def _large(engine: str, element: str, quantity: str, value: float) -> Finding:
+    """The note of a large finite value in an engine's model (the engine loaded it: it is not refused)."""
+    return Finding(
+        Kind.LOAD,
+        engine,
+        element,
+        f"holds a large finite value ({quantity}); loaded as written",
+        {"value": value, "noted above": MAX_MAGNITUDE},
+    )
 
 
 def check_segments(

@@ -27,6 +27,7 @@ from koenig_check.engines.pinocchio.adapter import PinocchioEngine
 from koenig_check.engines.pinocchio.loader import load_pinocchio
 from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
 from koenig_check.engines.sampling import random_states
+from koenig_check.exceptions import KoenigCheckError, quote_engine
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.validate import preflight
 from koenig_check.roundoff import ROUNDOFF
@@ -299,10 +300,18 @@ def load_model(
     )
     for s in {source.path: source, pin_source.path: pin_source}.values():
         preflight(s.path)
-    mj_model, mj_findings, body_findings = load_mujoco(
-        source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
-    )
-    pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
+    try:
+        mj_model, mj_findings, body_findings = load_mujoco(
+            source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
+        )
+    except KoenigCheckError as refused:  # MuJoCo's own words kept with ours (the exception it raised)
+        quote_engine(refused, "MuJoCo")
+        raise
+    try:
+        pin_model, pin_findings = load_pinocchio(pin_source, root_joint=root_free_joint(mj_model))
+    except KoenigCheckError as refused:
+        quote_engine(refused, "Pinocchio")
+        raise
     if pin_source is not source:
         pin_findings.insert(
             0,
@@ -314,7 +323,7 @@ def load_model(
                 {"pinocchio": str(pin_source.path), "mujoco": str(source.path)},
             ),
         )
-    check_finite(mj_model, pin_model, str(source.path))
+    large_values = check_finite(mj_model, pin_model, str(source.path), ("mujoco", "pinocchio"))
     if mj_model.nv == 0:
         advice = moving_advice(mj_model, urdf=source.path.suffix.lower() == ".urdf")
         err = NoMovingSegmentError(
@@ -328,7 +337,7 @@ def load_model(
     pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_findings + state_map.findings)
     tolerate = frozenset({"pinocchio"}) if opts.balance_inertia or opts.repair_inertia else frozenset()
     pn.findings += check_segments((mj, pn), mj_model.qpos0, str(source.path), tolerate)
-    findings = mj.findings + pn.findings + coupling_findings(source, mj_model)
+    findings = mj.findings + pn.findings + large_values + coupling_findings(source, mj_model)
     findings += _armature_findings(mj, pn, state_map) + _pose_findings(mj, pn)
     if set(mj.segment_names) != set(pn.segment_names):
         only_mj = sorted(set(mj.segment_names) - set(pn.segment_names))

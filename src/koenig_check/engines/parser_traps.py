@@ -20,6 +20,7 @@ import mujoco
 
 from koenig_check.engines.bare_bodies import bare_body_causes
 from koenig_check.engines.canonical import segment_of_body
+from koenig_check.engines.pinocchio.attached_models import attach_causes
 from koenig_check.engines.registry import label
 from koenig_check.engines.replicates import replicate_causes
 from koenig_check.engines.unit_axes import axisangle_causes
@@ -167,6 +168,7 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
             )
         )
     out += frame_causes(root, seg_of)
+    out += attach_causes(root, path.parent, mj_model)
     out += bare_body_causes(root, seg_of)
     out += axisangle_causes(root, seg_of)
     out += replicate_causes(root, seg_of)

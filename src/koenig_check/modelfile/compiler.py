@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from koenig_check.findings import Finding, Kind
-from koenig_check.modelfile.mjcf import read_mjcf
+from koenig_check.modelfile.mjcf import body_label, read_mjcf
 
 #: The compiler options with which MuJoCo changes masses or inertias while compiling: what it does, and the
 #: hint for a reader of the parity report.  An option is in effect when its value is > 0 (a number) or "true".
@@ -106,11 +106,13 @@ def compiler_findings(path: Path, mj_model: Any = None) -> list[str]:
     root = read_mjcf(path)
     if root is None:
         return out
+    roots = [b for world in root.findall("worldbody") for b in world.findall("body")]
     for body in root.iter("body"):
         if body.find("inertial") is None and body.find("geom") is not None:
             kinds = _geom_types(body, mj_model)
+            named = f"body {body.get('name')!r}" if body.get("name") else body_label(body, roots)  # or by its place
             out.append(
-                f"body {body.get('name', '?')!r} has no <inertial>: its inertia comes from geoms of type "
+                f"{named} has no <inertial>: its inertia comes from geoms of type "
                 f"{kinds}; a parser that ignores a geom type (e.g. mesh) gets a different inertia"
             )
     return out

@@ -61,10 +61,10 @@ def format_parity(report: ParityReport, model: str = "") -> str:
     ]
     for d in report.dofs:
         verdict = "same" if not d.causes else "DIFFERS: " + _sized(d.causes, d.relative)
-        cells = (
-            f"{d.joint[:24]:24s} {shown(d.armature[0]):16.6g} {shown(d.armature[1]):14.6g} "
-            f"{d.jacobian_difference:12.2e}  "
-        )
+        if d.missing:  # no Jacobian of its own segment in one engine: say which, never print nan
+            verdict = f"Jacobian not compared: {d.missing}" + ("" if not d.causes else f"; {verdict}")
+        jacobian = "—" if d.missing else f"{d.jacobian_difference:.2e}"
+        cells = f"{d.joint[:24]:24s} {shown(d.armature[0]):16.6g} {shown(d.armature[1]):14.6g} {jacobian:>12s}  "
         lines += hanging(cells, verdict)
     lines.append(f"(armature values below {ROUNDOFF:g} kg m² are rounding, printed as 0)")
     if report.only_in_mujoco:

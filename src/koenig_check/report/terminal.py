@@ -220,7 +220,8 @@ def terminal_table(check: CrossCheck) -> str:
     blank = f"{'':>13s}  " + "  ".join(f"{'':>{widths[e]}s}" for e in ran) if ran else f"{'':>10s}"
     for model, reason in check.failures:  # the short failure line, the file as the user gave it
         short = check.failure_lines.get(model, reason).removeprefix(f"{model}: ")
-        lines += _row(model, mw, f"{'FAILED':8s}  {blank}  {'':>12s}  ", short)
+        status = "DISAGREE" if check.disagrees(model) else "FAILED"  # a construct one parser ignores: not an error
+        lines += _row(model, mw, f"{status:8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
     if not check.summaries:

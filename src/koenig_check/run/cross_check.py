@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from koenig_check.diagnosis import model_reason, reason
+from koenig_check.findings import Finding
 from koenig_check.gravity.words import reason_words
 from koenig_check.line_width import closed_cut
 from koenig_check.run import summaries
@@ -32,6 +33,13 @@ class CrossCheck(ResultLookup):
         Models that could not be compared, with a one-line reason each (the engine's whole reason).
     failure_lines : dict of str to str
         Per failed model, its reason in one sentence of at most 200 characters (:meth:`reasons`).
+    failure_parts : dict of str to dict
+        Per failed model, what its whole message is made of (:func:`koenig_check.diagnosis.message.error_parts`:
+        the message, the refusing engine's own words, the hint), for the lines after its reason (:meth:`messages`).
+    failure_causes : dict of str to tuple of Finding
+        Per failed model, the root causes found for its failure (each carries its catalogue id, ``cause``); a
+        model whose joints cannot be paired because one parser ignores a construct of the file is a disagreement
+        (:meth:`disagrees`), not an error.
     rtol : float
     settings : dict
         Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
@@ -43,6 +51,8 @@ class CrossCheck(ResultLookup):
     agreements: list[EngineAgreement] = field(default_factory=list)
     failures: list[tuple[str, str]] = field(default_factory=list)
     failure_lines: dict[str, str] = field(default_factory=dict)
+    failure_parts: dict[str, dict[str, Any]] = field(default_factory=dict)
+    failure_causes: dict[str, tuple[Finding, ...]] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
     settings: dict[str, dict[str, Any]] = field(default_factory=dict)
 
@@ -139,6 +149,64 @@ class CrossCheck(ResultLookup):
         gap = summaries.gap_words(comparison, self.rtol, cli) if not agreement.agrees else ""
         return model_reason.model_reason(agreement.model, comparison.findings, gap)
 
+    def disagrees(self, model: str) -> bool:
+        """Whether a model that could not be compared is a disagreement: its engines built different mechanisms.
+
+        True when its joints cannot be paired and a root cause that changes the energy explains it (a construct one
+        parser ignores: ``<attach>``, ``<include>``, ``<frame>``...); False for an error (a file an engine refuses).
+
+        Parameters
+        ----------
+        model : str
+            The model's label.
+
+        Returns
+        -------
+        bool
+        """
+        parts = self.failure_parts.get(model, {})
+        causes = self.failure_causes.get(model, ())
+        return bool(parts.get("unpaired")) and any(c.root_cause and c.affects_energy for c in causes)
+
+    def messages(self, cli: bool = False, width: int = 200) -> list[str]:
+        """Why :attr:`ok` is False, one message per failing model: its reason, then the whole of it indented.
+
+        The first line of each is the model's reason (:meth:`reasons`, at most 200 characters); the lines after it,
+        indented, give what that line leaves out, never cut: the rest of the error's message, the refusing
+        engine's own words and the hint (a model that could not be compared), or each check asked for and not
+        made, whole (a model compared).
+
+        Parameters
+        ----------
+        cli : bool
+            Options named as the command line spells them.
+        width : int
+            The longest line after the first (a longer one is folded at words, never cut).
+
+        Returns
+        -------
+        list of str
+            One string per failing model, its lines joined by newlines (the first without a prefix).
+        """
+        from koenig_check.diagnosis.message import detail_lines, finding_lines
+
+        out = []
+        lines = self.reasons(cli)
+        for (model, _), line in zip(self.failures, lines, strict=False):
+            parts = self.failure_parts.get(model)
+            out.append("\n".join([line, *(detail_lines(parts, line, cli=cli, width=width) if parts else [])]))
+        compared = lines[len(self.failures) :]
+        failing = [c for c, a in zip(self.comparisons, self.agreements, strict=True) if _fails(c, a)]
+        for comparison, line in zip(failing, compared, strict=True):
+            out.append("\n".join([line, *finding_lines(comparison.findings, line, width)]))
+        return out
+
     def reason(self) -> str:
         """One line saying why :attr:`ok` is False (empty when it is True): :meth:`reasons` joined."""
         return "; ".join(self.reasons())
+
+
+def _fails(comparison: ModelComparison, agreement: EngineAgreement) -> bool:
+    """Whether a compared model has a reason in :meth:`CrossCheck.reasons` (as that method decides): gravity too."""
+    gravity = comparison.gravity is not None and not comparison.gravity.agrees
+    return bool(reason.lead_line(comparison.findings)) or not agreement.agrees or gravity

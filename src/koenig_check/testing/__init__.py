@@ -15,7 +15,7 @@ import numpy as np
 from koenig_check.arguments import suggest_keywords
 from koenig_check.diagnosis import policy
 from koenig_check.engines.load_options import LoadOptions, load_options_from
-from koenig_check.exceptions import KoenigCheckError, one_line
+from koenig_check.exceptions import KoenigCheckError
 from koenig_check.formulas import FORMULAS
 from koenig_check.run.stats import DEFAULT_RTOL, relative_error
 
@@ -88,8 +88,8 @@ def assert_energy_parity(
     check_engines(options.engines)
     try:
         pair = load_model(model, options)
-    except KoenigCheckError as refused:  # the file's own problem in one line, no frame of the library below
-        raise AssertionError(_folded(one_line(refused))) from None
+    except KoenigCheckError as refused:  # the file's own problem in one message, no frame of the library below
+        raise AssertionError(_refusal(refused)) from None
     policy.attach_engines(pair)  # named engines are compared on every pose
     poses = random_poses(pair.mujoco.model, n_poses, seed=seed, velocity_scale=velocity_scale)
     sa = pair.mujoco.segment_states(poses.qpos, poses.qvel)
@@ -172,6 +172,20 @@ def _one_item_a_line(head: str, problems: list[str]) -> str:
     for problem in rest:
         lines += fold(f"  {problem}", LINE_LIMIT - len("E       "))
     return "\n".join(lines)
+
+
+def _refusal(err: KoenigCheckError) -> str:
+    """A model that could not be loaded, as one message: a first line naming it and why, then the rest indented.
+
+    The first line fits after pytest's ``E       AssertionError: ``; the lines after it (the rest of the message,
+    the engine's own words, the hint: :func:`koenig_check.diagnosis.message.detail_lines`) are never cut.
+    """
+    from koenig_check.diagnosis.message import detail_lines
+    from koenig_check.diagnosis.one_line import short_error
+    from koenig_check.testing.failure_text import FAILURE_WIDTH
+
+    first = short_error(err, FAILURE_WIDTH - len("AssertionError: "))
+    return "\n".join([first, *detail_lines(err, first, width=FAILURE_WIDTH)])
 
 
 def _folded(text: str) -> str:

@@ -26,7 +26,10 @@ def verdict_lines(check: CrossCheck) -> list[str]:
     from koenig_check.gravity.words import verdict_line
     from koenig_check.line_width import fold
 
-    lines = [f"{label}: failed: {reason}" for label, reason in check.failures]
+    lines = []
+    for (label, _), message in zip(check.failures, check.messages(width=FAILURE_WIDTH), strict=False):
+        first, *rest = message.split("\n")  # its reason, then the engine's own words and the hint, indented
+        lines += [f"{label}: failed: {first.removeprefix(f'{label}: ')}", *rest]
     for comparison, parity in zip(check.comparisons, check.agreements, strict=True):
         verdicts = [f for f in comparison.findings if f.kind is Kind.VERDICT]
         unmade = [f for f in comparison.findings if f.kind is Kind.ENGINE_UNABLE]  # a check asked for, not made

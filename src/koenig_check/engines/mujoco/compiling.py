@@ -97,6 +97,9 @@ def _inertia_error(
     if "A + B >= C" in message:
         head += " (or --balance-inertia, balance_inertia=True: MuJoCo's balanceinertia)"
     error = InertiaError(head)
+    error.hint = "--repair-inertia (repair_inertia=True) loads it with the smallest change MuJoCo accepts, recorded" + (
+        "; or --balance-inertia (balance_inertia=True): MuJoCo's balanceinertia" if "A + B >= C" in message else ""
+    )
     error.brief = (  # one line: the link, MuJoCo's reason, what loads it (the moments are in the message)
         f"{source.path}: {what} {element!r}: MuJoCo rejects its inertia ({_refusal(message)}); "
         "--repair-inertia loads it with the smallest change MuJoCo accepts"
@@ -214,7 +217,8 @@ def fusion_refusal(pairs: list[tuple[str, str]], what: str, message: str) -> str
     -------
     str
     """
-    named = ", ".join(f"{child!r} into {parent!r}" for child, parent in pairs[:4]) + (" …" if len(pairs) > 4 else "")
+    named = ", ".join(f"{child!r} into {parent!r}" for child, parent in pairs[:4])
+    named += f" and {len(pairs) - 4} more" if len(pairs) > 4 else ""  # counted, never "…"
     where = f": {named}" if pairs else ""
     return f"MuJoCo rejects the inertia of static {what}s fused into their parent ({_refusal(message)}){where}"
 

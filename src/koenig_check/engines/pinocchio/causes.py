@@ -251,6 +251,31 @@ CAUSES: tuple[Cause, ...] = (
         hint="add a free joint to the root body or rotate Pinocchio's gravity into the body's frame",
         fixture="welded_mount_tilted.xml",
     ),
+    Cause(
+        id="pinocchio.mjcf.attach",
+        construct="<attach> of a <model> asset (model composition)",
+        formats=("mjcf",),
+        readings=(
+            Reading("mujoco", "as written", versions=">=3.2", measured="4.0.0"),
+            Reading(
+                "pinocchio",
+                "differently",
+                "ignores <attach>: the attached model's bodies and joints are missing",
+                measured=MEASURED,
+            ),
+            Reading(
+                "drake",
+                "differently",
+                "ignores <attach> with a warning ('currently unsupported and will be ignored')",
+                measured="1.51.1",
+            ),
+        ),
+        quantities=("joints", "mass"),
+        brief="<attach> not read by Pinocchio's MJCF parser",
+        hint="load a file with the attached bodies written out (MuJoCo's MjSpec.to_xml of the composed model)",
+        fixture="attach.xml",
+        loses_joints=True,
+    ),
 )
 
 

@@ -25,6 +25,7 @@ from pathlib import Path
 import pinocchio as pin
 
 from koenig_check.engines.errors import ModelLoadError
+from koenig_check.exceptions import quote_engine
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.edited_copy import edited_copy
 from koenig_check.modelfile.validate import parse_xml
@@ -135,6 +136,9 @@ def load_pinocchio(source: ModelSource, root_joint: str | None = None) -> tuple[
         error = ModelLoadError(f"{path}: Pinocchio cannot parse the file: {reason}" + (f" ({hint})" if hint else ""))
         if "hfields" in reason or _UNKNOWN_NAME in reason:  # one line: what to do stays, not in parentheses
             error.brief = f"{path}: Pinocchio cannot parse the file: {reason}; {hint}"
+        error.hint = hint
+        words = [line.strip() for line in [*str(exc).splitlines(), *parser_output] if line.strip()]
+        quote_engine(error, "Pinocchio", "\n".join(w for w in words if not w.startswith(_SOURCE_LOCATION)))
         raise error from exc
     notes += [
         Finding(Kind.LOAD, "pinocchio", "model", f"parser says: {line}")
