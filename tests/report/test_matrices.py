@@ -22,7 +22,7 @@ import koenig_check
 from koenig_check.engines.registry import label
 from koenig_check.engines.specs import names
 from koenig_check.report import write_report
-from koenig_check.report.matrices import EXACT_COLOUR, SCALE, VERDICTS, error_colour
+from koenig_check.report.matrices import EXACT_COLOUR, GRAVITY, SCALE, VERDICTS, error_colour
 
 CAUSES = Path(__file__).parents[1] / "models" / "causes"
 MODELS = ["gimbal.xml", "serial7.urdf", CAUSES / "class_mass.xml", "no_such_robot"]
@@ -120,11 +120,13 @@ def test_one_row_per_model_and_one_column_per_engine_that_ran(page) -> None:
     table = parsed.tables["engines"]
     labels = [label(e) for e in names()]
     columns = table["head"][1:]
+    assert columns[-1] == GRAVITY  # the gravity verdict closes the row
+    columns = columns[:-1]
     assert set(columns) <= set(labels) and columns == [c for c in labels if c in columns]  # registry order
     assert columns[:2] == [label(e) for e in check.comparisons[0].engines]  # the engines every model loads
     rows = table["rows"]
     assert list(rows) == [c.model for c in check.comparisons] + [m for m, _ in check.failures]
-    assert all(len(cells) == len(columns) for cells in rows.values())
+    assert all(len(cells) == len(columns) + 1 for cells in rows.values())
 
 
 def _pole_masses() -> dict[str, float]:
@@ -242,3 +244,26 @@ def test_models_that_agree_are_folded_and_the_others_open(page) -> None:
         section = next(s for s in parsed.sections.values() if s["h2"] == comp.model)
         agrees = check.agreements[k].agrees and comp.model != "class_mass.xml"
         assert section["open"] is (not agrees), comp.model
+
+
+def test_the_gravity_column_says_whether_the_engines_read_the_same_gravity(tmp_path: Path) -> None:
+    """On the moon fixture MuJoCo reads the file's gravity and Pinocchio its default (each read directly): the
+    gravity cell differs and names the cause; on gimbal.xml (the default gravity, written by nobody) it agrees."""
+    from koenig_check.causes import cause, fixture_path
+
+    moon = fixture_path(cause("pinocchio.mjcf.option-gravity"))
+    read = {
+        "mujoco": mujoco.MjModel.from_xml_path(str(moon)).opt.gravity,
+        "pinocchio": pinocchio.buildModelFromMJCF(str(moon)).gravity.linear,
+    }
+    assert not np.allclose(read["mujoco"], read["pinocchio"])  # an independent reading: the engines differ
+    check = koenig_check.compare([str(moon), "gimbal.xml"], n_poses=4, seed=3)
+    write_report(tmp_path, check)
+    parsed = _Matrices()
+    parsed.feed((tmp_path / "report.html").read_text(encoding="utf-8"))
+    table = parsed.tables["engines"]
+    gravity = {model: cells[table["head"][1:].index(GRAVITY)] for model, cells in table["rows"].items()}
+    moon_cell, gimbal_cell = gravity[check.comparisons[0].model], gravity["gimbal.xml"]
+    assert "differs" in moon_cell["class"] and moon_cell["style"] == f"background:{VERDICTS['differs'][0]}"
+    assert "agree" in gimbal_cell["class"] and gimbal_cell["text"].strip() == "0"
+    assert "causes pinocchio.mjcf.option-gravity" in (tmp_path / "report.html").read_text(encoding="utf-8")

@@ -160,6 +160,7 @@ def engine_matrix(check: CrossCheck) -> tuple[list[str], list[tuple[str, list[Ce
         for s in specs()
         if any(engine_verdict(s.name, c, parity[id(c)], check.rtol) != "not run" for c in check.comparisons)
     ]
+    gravity = any(c.gravity is not None for c in check.comparisons)
     rows = []
     for k, comp in enumerate(check.comparisons):
         p = parity[id(comp)]
@@ -173,11 +174,44 @@ def engine_matrix(check: CrossCheck) -> tuple[list[str], list[tuple[str, list[Ce
             text = _engine_text(engine, comp, verdict)
             gap = optional_gap(comp, engine) if engine != comp.engines[0] else None
             cells.append(Cell(verdict, text, VERDICTS[verdict][0], title, href, gap[0] if gap else None))
+        if gravity:
+            cells.append(gravity_cell(comp, href))
         rows.append((comp.model, cells))
+    columns = (engines or [s.name for s in specs() if s.required]) + ([GRAVITY] if gravity else [])
     for model, reason in check.failures:
         failed = Cell("failed", "failed", VERDICTS["failed"][0], f"{model}: {reason}", "#failures")
-        rows.append((model, [failed] * len(engines)))
-    return engines or [s.name for s in specs() if s.required], rows
+        rows.append((model, [failed] * len(columns)))
+    return columns, rows
+
+
+#: The column after the engines: do the engines' gravity terms agree (:mod:`koenig_check.gravity`)?
+GRAVITY = "gravity"
+
+
+def gravity_cell(comp: ModelComparison, href: str) -> Cell:
+    """The gravity cell of one model: agree, differs (its largest gap and the causes' ids), or not run.
+
+    Parameters
+    ----------
+    comp : ModelComparison
+    href : str
+        The link to the model's section.
+
+    Returns
+    -------
+    Cell
+    """
+    parity = comp.gravity
+    if parity is None:
+        return Cell("not run", "—", VERDICTS["not run"][0], f"{comp.model}: gravity not compared", href)
+    worst = parity.worst
+    verdict = "agree" if parity.agrees else "differs"
+    title = f"{comp.model}, gravity: g(q) and V of every engine " + ("agree" if parity.agrees else "differ")
+    causes = sorted({f.cause for f in parity.findings if f.cause})
+    if causes and not parity.agrees:
+        title += f"; causes {', '.join(causes)}"
+    text = "0" if worst is None or worst.relative <= parity.rtol else f"{worst.relative:.2g}"
+    return Cell(verdict, text, VERDICTS[verdict][0], title, href, None if worst is None else worst.relative)
 
 
 def error_colour(error: float) -> str:
@@ -295,7 +329,8 @@ def matrices_html(check: CrossCheck) -> str:
         if v in present
     ]
     reference = label(check.comparisons[0].engines[0]) if check.comparisons else "the reference"
-    out.append(f"numbers: each engine's largest relative gap to {_e(reference)}'s rigid-body energy</p></div>")
+    gravity = f"; {GRAVITY}: the largest relative gap of g(q) or V between the engines" if GRAVITY in engines else ""
+    out.append(f"numbers: each engine's largest relative gap to {_e(reference)}'s rigid-body energy{gravity}</p></div>")
     models, formula_rows = error_matrix(check)
     out += ["<div><h2>How far is each formula from the engines?</h2>", '<table class="matrix errors"><thead><tr>']
     out.append(
