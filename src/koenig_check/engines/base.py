@@ -99,9 +99,11 @@ class Engine(GravityTerms, ABC):
         SegmentStates
         """
 
-    @abstractmethod
     def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
         """Return the world velocity of points fixed in the segments.
+
+        By default from :meth:`segment_states` (each segment's COM velocity, ω and rotation); an engine with a
+        faster route of its own overrides it.
 
         Parameters
         ----------
@@ -114,6 +116,38 @@ class Engine(GravityTerms, ABC):
         -------
         ndarray, shape (P, B, K, 3)
         """
+        out = states_point_velocities(self.segment_states(qpos, qvel), points)
+        assert out is not None  # points were given
+        return out
+
+    def states_from(self, current: dict[str, np.ndarray], ref: dict[str, np.ndarray]) -> SegmentStates:
+        """Segment states from an adapter's arrays: ``com``, ``v_com``, ``R``, ``omega``, ``pole``, ``v_pole``.
+
+        Parameters
+        ----------
+        current : dict of str to ndarray
+            Each of shape (P, B, ...), at the poses asked for.
+        ref : dict of str to ndarray
+            The same at the reference configuration (P = 1).
+
+        Returns
+        -------
+        SegmentStates
+        """
+        return SegmentStates(
+            names=self.segment_names,
+            mass=self._mass,
+            inertia_body=self._inertia,
+            com=current["com"],
+            v_com=current["v_com"],
+            rotation=current["R"],
+            omega=current["omega"],
+            pole=current["pole"],
+            v_pole=current["v_pole"],
+            rotation_ref=ref["R"][0],
+            com_ref=ref["com"][0],
+            pole_ref=ref["pole"][0],
+        )
 
     @abstractmethod
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:

@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.base import Engine, as_batches, states_point_velocities, symmetrize
+from koenig_check.engines.base import Engine, as_batches, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.idyntree.state_map import IDynTreeStateMap, joint_kind
 from koenig_check.findings import Finding, Kind
@@ -169,26 +169,7 @@ class IDynTreeEngine(Engine):
         """Return iDynTree's segment states, from its link transforms and velocities."""
         qpos, qvel = as_batches(qpos, self.nq, (qvel, "qvel"), nv=self.nv)
         s, ref = self._segments(self._read(qpos, qvel)), self._ref
-        return SegmentStates(
-            names=self.segment_names,
-            mass=self._mass,
-            inertia_body=self._inertia,
-            com=s["com"],
-            v_com=s["v_com"],
-            rotation=s["R"],
-            omega=s["omega"],
-            pole=s["pole"],
-            v_pole=s["v_pole"],
-            rotation_ref=ref["R"][0],
-            com_ref=ref["com"][0],
-            pole_ref=ref["pole"][0],
-        )
-
-    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """Return the world velocity of points fixed in the segments, from iDynTree's segment states."""
-        out = states_point_velocities(self.segment_states(qpos, qvel), points)
-        assert out is not None
-        return out
+        return self.states_from(s, ref)
 
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
         """Return ``Σ ½ m v_C² + ½ ω·I_C ω`` over iDynTree's links (no armature in a URDF)."""

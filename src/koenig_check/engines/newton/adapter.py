@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.base import Engine, as_batches, states_point_velocities, symmetrize
+from koenig_check.engines.base import Engine, as_batches, symmetrize
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.newton.state_map import FIXED, NewtonStateMap
 from koenig_check.findings import Finding, Kind
@@ -251,26 +251,7 @@ class NewtonEngine(Engine):
         q, qd, _, _ = self.state_map.to_newton(qpos, qvel)
         s = self._states_of(*self._bodies(q, qd))
         ref = self._ref
-        return SegmentStates(
-            names=self.segment_names,
-            mass=self._mass,
-            inertia_body=self._inertia,
-            com=s["com"],
-            v_com=s["v_com"],
-            rotation=s["R"],
-            omega=s["omega"],
-            pole=s["pole"],
-            v_pole=s["v_pole"],
-            rotation_ref=ref["R"][0],
-            com_ref=ref["com"][0],
-            pole_ref=ref["pole"][0],
-        )
-
-    def point_velocities(self, qpos: np.ndarray, qvel: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """Return the world velocity of points fixed in the segments, from Newton's body twists."""
-        out = states_point_velocities(self.segment_states(qpos, qvel), points)
-        assert out is not None
-        return out
+        return self.states_from(s, ref)
 
     # ------------------------------------------------------------- dynamics
     def kinetic_energy(self, qpos: np.ndarray, qvel: np.ndarray) -> EnergyParts:
