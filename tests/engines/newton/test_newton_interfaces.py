@@ -69,8 +69,10 @@ def test_pytest_plugin_with_newton(pytester: pytest.Pytester) -> None:
     """``pytest --koenig-check`` with an entry naming Newton: it passes where the three agree, fails on a cause."""
     import shutil
 
+    from koenig_check.engines import resolve_model
+
     (pytester.path / "models").mkdir()
-    shutil.copy(Path(koenig_check.__file__).parent.parent.parent / "models" / "serial7.urdf", pytester.path / "models")
+    shutil.copy(resolve_model("serial7.urdf").path, pytester.path / "models")  # installed or editable alike
     shutil.copy(fixture_path(cause(ids.VALIDATION)), pytester.path / "models" / "foot.urdf")
     entries = [
         f'{{ model = "models/{m}", engines = ["mujoco", "pinocchio", "newton"], poses = 3 }}'
