@@ -41,8 +41,14 @@ def random_batch(rng: np.random.Generator) -> SegmentStates:
 
 
 @pytest.fixture(autouse=True, scope="module")
-def _release_memory_after_each_module():
+def _release_memory_after_each_module(request: pytest.FixtureRequest):
     yield
+    for value in list(vars(request.module).values()):  # a module's cached loads (functools.cache) end with it
+        if (
+            callable(getattr(value, "cache_clear", None))
+            and getattr(value, "__module__", "") == request.module.__name__
+        ):
+            value.cache_clear()
     release_memory()
 
 

@@ -92,6 +92,8 @@ class NewtonEngine(Engine):
     # -------------------------------------------------------------- batches
     def _world_model(self, copies: int) -> Any:
         if copies not in self._models:
+            for kept in [k for k in self._models if k != BATCH]:  # one model of another size at a time: a run's
+                del self._models[kept]  # last chunk, a verdict's sample... would each keep 100 worlds' memory
             self._models[copies] = self._build(copies)
         return self._models[copies]
 
