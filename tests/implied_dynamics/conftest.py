@@ -23,6 +23,13 @@ def _load(model: str, floating: bool) -> LoadedModel:
     return load_model(model, floating=floating)
 
 
+@pytest.fixture(autouse=True, scope="package")
+def _loads_end_with_the_package():
+    """The models loaded once for these tests are let go when they end (not kept for the whole session)."""
+    yield
+    _load.cache_clear()
+
+
 @pytest.fixture(scope="session")
 def load_pair():
     """``load_pair(model, floating=False)``: one load per session."""
