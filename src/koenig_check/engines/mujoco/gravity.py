@@ -3,13 +3,11 @@
 MuJoCo has no ``g(q)`` call; its maintainers point to ``qfrc_bias`` at zero velocity (``mj_rne`` without
 acceleration), which honours ``<flag gravity="disable"/>`` and never includes springs (those are in
 ``qfrc_spring``).  ``mj_energyPos`` adds the joint and tendon spring energy to the gravity energy: the springs'
-part is ``mj_energyPos`` on a copy with gravity disabled, the gravity part the rest.  The disable flag leaves
+part is ``mj_energyPos`` with gravity disabled for the call, the gravity part the rest.  The disable flag leaves
 ``opt.gravity`` at its value and changes only the flag bit, so :meth:`MujocoGravity.gravity_vector` reads both.
 """
 
 from __future__ import annotations
-
-import copy
 
 import mujoco
 import numpy as np
@@ -66,23 +64,30 @@ class MujocoGravity:
         """Return ``mj_energyPos`` split into gravity and springs (the springs' part with gravity disabled)."""
         (qpos,) = as_batches(qpos, self.nq, nv=self.nv)
         total = _energy_pos(self.model, qpos)
-        springs_only = copy.copy(self.model)
-        springs_only.opt.disableflags |= _GRAVITY_OFF
-        springs = _energy_pos(springs_only, qpos)
+        springs = _energy_pos(self.model, qpos, gravity=False)
         return PotentialParts(gravity=total - springs, springs=springs)
 
 
-def _energy_pos(model: mujoco.MjModel, qpos: np.ndarray) -> np.ndarray:
-    """``mj_energyPos`` (``mjENBL_ENERGY`` on a copy) pose by pose."""
-    m = copy.copy(model)
-    m.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
-    d = mujoco.MjData(m)
-    out = np.empty(qpos.shape[0])
-    for p in range(qpos.shape[0]):
-        d.qpos[:] = qpos[p]
-        mujoco.mj_kinematics(m, d)
-        mujoco.mj_comPos(m, d)
-        mujoco.mj_tendon(m, d)
-        mujoco.mj_energyPos(m, d)
-        out[p] = d.energy[0]
-    return out
+def _energy_pos(model: mujoco.MjModel, qpos: np.ndarray, gravity: bool = True) -> np.ndarray:
+    """``mj_energyPos`` pose by pose, ``mjENBL_ENERGY`` (and gravity off if asked) set for the call only.
+
+    The flags are set on the model itself and restored, not on a copy: a copy of a model with large meshes
+    doubled the suite's memory (dm_control's fruitfly).
+    """
+    saved = (int(model.opt.enableflags), int(model.opt.disableflags))
+    try:
+        model.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
+        if not gravity:
+            model.opt.disableflags |= _GRAVITY_OFF
+        d = mujoco.MjData(model)
+        out = np.empty(qpos.shape[0])
+        for p in range(qpos.shape[0]):
+            d.qpos[:] = qpos[p]
+            mujoco.mj_kinematics(model, d)
+            mujoco.mj_comPos(model, d)
+            mujoco.mj_tendon(model, d)
+            mujoco.mj_energyPos(model, d)
+            out[p] = d.energy[0]
+        return out
+    finally:
+        model.opt.enableflags, model.opt.disableflags = saved
