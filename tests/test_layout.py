@@ -225,7 +225,7 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     "engines/pinocchio/causes.py": frozenset({"mujoco", "drake"}),
     "engines/newton/causes.py": frozenset({"mujoco", "pinocchio", "drake"}),
     "engines/pybullet/causes.py": frozenset({"mujoco", "pinocchio", "idyntree"}),
-    "engines/idyntree/causes.py": frozenset({"mujoco", "pinocchio", "pybullet"}),
+    "engines/idyntree/causes.py": frozenset({"mujoco", "pinocchio", "pybullet", "drake", "newton"}),
     "engines/drake/causes.py": frozenset({"mujoco", "pinocchio"}),
     "engines/mujoco/causes.py": frozenset({"pinocchio", "drake"}),
     # The required pair, still by name (debt, listed so that it only shrinks; issue 26 items 2 and 5 move these
