@@ -23,6 +23,8 @@ from koenig_check.findings import Finding, Kind
 
 #: The value a zeroed-inertia finding carries PyBullet's moments under (what its parser limit reads).
 MOMENTS_IN_PYBULLET = "moments in PyBullet"
+#: The cause of an inertia PyBullet set to zero (:func:`zeroed_findings`).
+ZEROED = "pybullet.urdf.zeroed-inertia"
 #: The loading options measured on each robot: cause id -> the flags its users pass.
 OPTIONS = {
     "pybullet.urdf.inertia-from-collision": (),
@@ -196,6 +198,7 @@ def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
                 affects_energy=True,
                 root_cause=True,
                 segments=(segment[row],) if row in segment else (),
+                cause=ZEROED,
                 tag="link",
             )
         )
