@@ -196,9 +196,7 @@ def zeroed_findings(engine: Any, path: Path, mj_model: Any) -> list[Finding]:
             continue
         if not moments[0] + moments[1] < moments[2]:  # sorted: A + B >= C holds, PyBullet keeps it
             continue
-        if np.abs(moments).max() <= _negligible(
-            engine, mj_model
-        ):  # zero in all but round-off (icub's 1e-20): nothing lost
+        if np.abs(moments).max() <= _negligible(engine, mj_model):  # round-off (icub's 1e-20): nothing lost
             continue
         out.append(
             Finding(
