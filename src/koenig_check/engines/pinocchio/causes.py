@@ -131,7 +131,7 @@ CAUSES: tuple[Cause, ...] = (
         "<replicate> not read by Pinocchio's MJCF parser",
         "koenig-check export MODEL --to mjcf writes the copies out (no <replicate>, no <frame>)",
         "replicate.xml",
-        drake="skips the element too (not detected by koenig-check for Drake)",
+        drake="skips the element and everything inside it: the copies are missing",
         loses_joints=True,
     ),
     _mjcf(
@@ -161,7 +161,7 @@ CAUSES: tuple[Cause, ...] = (
         "settotalmass not applied by Pinocchio",
         "scale the masses in the file and remove settotalmass",
         "settotalmass.xml",
-        drake="ignores the option too",
+        drake="ignores the option (with a warning): the file's masses unscaled",
     ),
     _mjcf(
         "mesh-mass",
@@ -191,7 +191,7 @@ CAUSES: tuple[Cause, ...] = (
         "inertiagrouprange not applied by Pinocchio",
         "give the geoms left out mass 0 (or density 0) and remove inertiagrouprange",
         "inertiagrouprange.xml",
-        drake="ignores the option too (not detected by koenig-check for Drake)",
+        drake="ignores the option (with a warning): every geom's mass counted",
     ),
     Cause(
         id="pinocchio.urdf.planar-axis",
