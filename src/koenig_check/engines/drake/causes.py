@@ -113,6 +113,16 @@ CAUSES: tuple[Cause, ...] = (
         "ignored_geom.xml",
     ),
     _drake(
+        "mjcf.inline-mesh",
+        "<mesh> given by its vertices in the file (no file=), used by a <geom>",
+        "ignores the mesh and the geoms that use it (with warnings): their mass is missing",
+        ("mass", "com", "inertia"),
+        "mesh given by vertices in the file ignored by Drake's MJCF parser",
+        "write the mesh to a file (OBJ) and give the <mesh> its file=, or give the body an <inertial>",
+        "inline_mesh.xml",
+        pinocchio="counts a mesh-typed geom as 1 kg with unit inertia (pinocchio.mjcf.mesh-mass)",
+    ),
+    _drake(
         "mjcf.flag-gravity-disable",
         '<option><flag gravity="disable"/>',
         "ignores the flag (with a warning): the file's gravity",

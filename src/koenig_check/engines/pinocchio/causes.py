@@ -171,8 +171,7 @@ CAUSES: tuple[Cause, ...] = (
         ("mass", "com", "inertia"),
         "geoms with a mesh, weighed otherwise by Pinocchio",
         "give the body an <inertial> (mass, pos, inertia)",
-        "mesh_mass.xml",
-        drake="ignores a mesh given by vertices in the file (its mass is missing)",
+        "mesh_mass.xml",  # a mesh file; one given by vertices in the file Drake ignores: drake.mjcf.inline-mesh
     ),
     _mjcf(
         "visual-geoms",
