@@ -97,7 +97,7 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
                 affects_energy=True,
                 root_cause=True,
                 segments=tuple(extension),
-                cause="drake.any.reflected-inertia",
+                cause="drake.urdf.reflected-inertia" if model.source.format == "urdf" else "",
             )
         )
     if not joints or model.source.format != "mjcf":

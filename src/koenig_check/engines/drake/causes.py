@@ -67,7 +67,7 @@ CAUSES: tuple[Cause, ...] = (
         loses_joints=True,
     ),
     _drake(
-        "any.reflected-inertia",
+        "urdf.reflected-inertia",  # MJCF: a driven joint's armature is read as written (tests/engines/drake)
         "<transmission> actuator with drake:rotor_inertia and drake:gear_ratio",
         "adds the reflected inertia rotor inertia × gear ratio² to the joint",
         ("armature",),
