@@ -193,4 +193,5 @@ def measure(path: Path) -> Measurement:
         gravity_forces={j: float(applied[i]) for j, i in one_dof.items()},
         armature=armature,
         com=tuple(float(c) for c in (weighted / mass if mass > 0 else np.zeros(3))),
+        spectrum=tuple(float(x) for x in np.linalg.eigvalsh(np.asarray(full, dtype=float))),
     )

@@ -199,7 +199,12 @@ CAUSES: tuple[Cause, ...] = (
         readings=(
             Reading("mujoco", "as written", measured=_MUJOCO),
             Reading("pinocchio", "differently", "one planar joint about z: ignores the axis", measured=MEASURED),
-            Reading("drake", "differently", "one planar joint, not MuJoCo's three joints", measured=_DRAKE),
+            Reading(
+                "drake",
+                "differently",
+                "one planar joint, not MuJoCo's three, in the same plane (the same M spectrum and g(q))",
+                measured=_DRAKE,
+            ),
         ),
         quantities=("joints", "kinematics"),
         brief="URDF planar joint read about z by Pinocchio, ignoring its axis",
@@ -318,4 +323,5 @@ def measure(path: Path) -> Measurement:
         gravity_forces={j: float(tau[i]) for j, i in one_dof.items()},
         armature={j: float(model.armature[i]) for j, i in one_dof.items() if model.armature[i]},
         com=tuple(float(c) for c in (weighted / mass if mass > 0 else np.zeros(3))),
+        spectrum=tuple(float(x) for x in np.linalg.eigvalsh(np.asarray(full, dtype=float))),
     )
