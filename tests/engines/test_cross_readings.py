@@ -120,3 +120,5 @@ def test_only_attached_optional_engines_misreading_it_get_a_finding() -> None:
     assert cross_readings([found], ["drake"], "urdf") == []  # a cause of another format
     assert cross_readings([found, drake], ["drake"], "mjcf") == []  # Drake's own finding already there
     assert cross_readings([dataclasses.replace(found, root_cause=False)], ["drake"], "mjcf") == []
+    second = dataclasses.replace(found, element="compiler settotalmass2")  # the same cause on two elements
+    assert [f.element for f in cross_readings([found, second], ["drake"], "mjcf")] == [found.element, second.element]

@@ -63,11 +63,13 @@ def cross_readings(findings: Sequence[Finding], engines: Iterable[str], fmt: str
     -------
     list of Finding
         Per (engine, found cause): a copy of the found cause's finding for the engine (same kind, element, id and
-        segments, the values without the other engines' readings), its summary the engine's declared reading;
-        none where the engine already has a finding of that id or a catalogued finding on that element.
+        segments, the values without the other engines' readings), its summary the engine's declared reading; one
+        per element the cause was found on; none where the engine's own detection already gave a finding of that
+        id or a catalogued finding on that element.
     """
     extra = [e for e in engines if e in optional()]
-    known = {(f.engine, f.element) for f in findings if f.cause} | {(f.engine, f.cause) for f in findings if f.cause}
+    own = {(f.engine, f.element) for f in findings if f.cause} | {(f.engine, f.cause) for f in findings if f.cause}
+    added: set[tuple[str, str, str]] = set()
     every = set(names())
     out: list[Finding] = []
     for f in findings:
@@ -75,12 +77,12 @@ def cross_readings(findings: Sequence[Finding], engines: Iterable[str], fmt: str
             continue
         for engine in extra:
             found = departing_reading(f.cause, engine)
-            if found is None or (engine, f.cause) in known or (engine, f.element) in known:
+            if found is None or {(engine, f.cause), (engine, f.element)} & own or (engine, f.element, f.cause) in added:
                 continue
             c, reading = found
             if fmt is not None and fmt not in c.formats:
                 continue
-            known.add((engine, f.cause))
+            added.add((engine, f.element, f.cause))
             parser = f"{label(engine)}'s {fmt.upper()} parser" if fmt else f"{label(engine)}'s parser"
             verb = "refused" if reading.reads == "refuses" else "read differently"
             out.append(
