@@ -69,14 +69,14 @@ class PyBulletEngine(Engine):
         self.findings = list(findings or [])
         self.nq, self.nv = state_map.nq, state_map.nv
         self._links = list(range(len(tree.link_names) - 1))
-        self._joint_links = [p.row - 1 for p in sorted(state_map.pairs, key=lambda p: p.u) if p.kind != "free"]
+        self._joint_links = [p.link - 1 for p in sorted(state_map.pairs, key=lambda p: p.dof) if p.kind != "free"]
         self._inertia_local = tree.central_inertia()
         self._build_segments(np.asarray(qpos0, dtype=float))
 
     # -------------------------------------------------------------- segments
     def _carrier(self, row: int) -> int:
         """The row of the segment that carries a link (-1: static, fixed to the world)."""
-        heads = {p.row for p in self.state_map.pairs}
+        heads = {p.link for p in self.state_map.pairs}
         while row not in heads:
             if row == 0:
                 return -1
@@ -85,7 +85,7 @@ class PyBulletEngine(Engine):
 
     def _build_segments(self, qpos0: np.ndarray) -> None:
         tree = self.tree
-        name_of = {p.row: p.name for p in self.state_map.pairs}
+        name_of = {p.link: p.name for p in self.state_map.pairs}
         weighs = (tree.mass > 0) | tree.principal.any(axis=1)  # a massless link's inertia counts
         order = [p.name for p in self.state_map.pairs]
         carriers = [self._carrier(row) for row in range(len(tree.link_names))]
@@ -206,6 +206,6 @@ class PyBulletEngine(Engine):
         """Return canonical dof indices grouped by PyBullet joint type (``floating base``, ``revolute``, ...)."""
         groups: dict[str, list[int]] = {}
         for p in self.state_map.pairs:
-            kind = "floating base" if p.kind == "free" else self.tree.joint_types[p.row]
+            kind = "floating base" if p.kind == "free" else self.tree.joint_types[p.link]
             groups.setdefault(kind, []).extend(range(p.vadr, p.vadr + (6 if p.kind == "free" else 1)))
         return {k: np.array(v, dtype=int) for k, v in groups.items()}
