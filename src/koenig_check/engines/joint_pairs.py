@@ -6,10 +6,12 @@ those found in the engine only, and those whose types differ.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import mujoco
+import numpy as np
 
 from koenig_check.engines.canonical import mujoco_joint_names
 
@@ -165,4 +167,51 @@ def pair_by_name(
             continue
         out.pairs.append(LinkJointPair(name, kind, joint.link, qadr, vadr, joint.dof))
     out.only_engine = [n for n in joints if n not in used]
+    return out
+
+
+#: Canonical velocity coordinates of MuJoCo's joint kinds with more than one.
+_WIDTH = {"free": 6, "ball": 3}
+
+
+def dofs_by_kind(pairs: Iterable[Any], word: Callable[[Any], str]) -> dict[str, np.ndarray]:
+    """Canonical dof indices grouped by the engine's word for each joint's type.
+
+    Parameters
+    ----------
+    pairs : iterable of joint pairs
+        Each with ``kind`` (MuJoCo's word) and ``vadr`` (its canonical velocity address).
+    word : callable
+        A pair -> the engine's word for its joint's type (``"revolute"``, ``"floating base"``, ...).
+
+    Returns
+    -------
+    dict of str to ndarray of int
+    """
+    groups: dict[str, list[int]] = {}
+    for p in pairs:
+        groups.setdefault(word(p), []).extend(range(p.vadr, p.vadr + _WIDTH.get(p.kind, 1)))
+    return {k: np.array(v, dtype=int) for k, v in groups.items()}
+
+
+def per_dof(pairs: Iterable[Any], nv: int, value: Callable[[Any], float]) -> np.ndarray:
+    """A value of each canonical hinge or slide dof (free and ball dofs: zero), such as an engine's armature.
+
+    Parameters
+    ----------
+    pairs : iterable of joint pairs
+        Each with ``kind`` and ``vadr``.
+    nv : int
+        The canonical velocity size.
+    value : callable
+        A hinge or slide pair -> its value.
+
+    Returns
+    -------
+    ndarray, shape (nv,)
+    """
+    out = np.zeros(nv)
+    for p in pairs:
+        if p.kind in ("hinge", "slide"):
+            out[p.vadr] = value(p)
     return out

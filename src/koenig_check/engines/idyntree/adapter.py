@@ -29,6 +29,7 @@ import numpy as np
 from koenig_check.engines.base import Engine, as_batches
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.idyntree.state_map import IDynTreeStateMap, joint_kind
+from koenig_check.engines.joint_pairs import dofs_by_kind
 from koenig_check.engines.link_groups import group_links
 from koenig_check.findings import Finding
 from koenig_check.segments import SegmentStates
@@ -216,7 +217,4 @@ class IDynTreeEngine(Engine):
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by iDynTree joint type (``floating base``, ``revolute``, ...)."""
         words = {"free": "floating base", "hinge": "revolute", "slide": "prismatic"}
-        groups: dict[str, list[int]] = {}
-        for p in self.state_map.pairs:
-            groups.setdefault(words[p.kind], []).extend(range(p.vadr, p.vadr + (6 if p.kind == "free" else 1)))
-        return {k: np.array(v, dtype=int) for k, v in groups.items()}
+        return dofs_by_kind(self.state_map.pairs, lambda p: words[p.kind])

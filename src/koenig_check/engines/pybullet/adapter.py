@@ -28,6 +28,7 @@ import numpy as np
 
 from koenig_check.engines.base import Engine, as_batches
 from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.joint_pairs import dofs_by_kind
 from koenig_check.engines.link_groups import group_links
 from koenig_check.engines.pybullet.client import Client
 from koenig_check.engines.pybullet.state_map import PyBulletStateMap
@@ -204,8 +205,5 @@ class PyBulletEngine(Engine):
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by PyBullet joint type (``floating base``, ``revolute``, ...)."""
-        groups: dict[str, list[int]] = {}
-        for p in self.state_map.pairs:
-            kind = "floating base" if p.kind == "free" else self.tree.joint_types[p.link]
-            groups.setdefault(kind, []).extend(range(p.vadr, p.vadr + (6 if p.kind == "free" else 1)))
-        return {k: np.array(v, dtype=int) for k, v in groups.items()}
+        types = self.tree.joint_types
+        return dofs_by_kind(self.state_map.pairs, lambda p: "floating base" if p.kind == "free" else types[p.link])
