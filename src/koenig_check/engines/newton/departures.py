@@ -8,7 +8,6 @@ findings with the catalogue's cause ids.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -65,7 +64,7 @@ def static_bodies(model: Any) -> set[int]:
     return out
 
 
-def validation_changes(load: Callable[..., Any], model: Any) -> list[BodyChange]:
+def validation_changes(raw: Any, model: Any) -> list[BodyChange]:
     """The bodies whose inertia ``finalize()``'s inertia validation changed.
 
     Zero inertias replaced, 1e-6 kg·m² added, triangle-inequality violations balanced: measured against the same
@@ -73,8 +72,8 @@ def validation_changes(load: Callable[..., Any], model: Any) -> list[BodyChange]
 
     Parameters
     ----------
-    load : callable
-        ``load(**options) -> (newton.Model, warnings)``: the file in Newton, with options.
+    raw : newton.Model
+        The file finalized with ``skip_validation_inertia=True``.
     model : newton.Model
         The file as Newton users load it (validation on).
 
@@ -82,7 +81,6 @@ def validation_changes(load: Callable[..., Any], model: Any) -> list[BodyChange]
     -------
     list of BodyChange
     """
-    raw, _ = load(finalize={"skip_validation_inertia": True})
     out = []
     m0, m1 = raw.body_mass.numpy(), model.body_mass.numpy()
     i0, i1 = raw.body_inertia.numpy(), model.body_inertia.numpy()
