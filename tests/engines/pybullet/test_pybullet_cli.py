@@ -5,12 +5,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from urdf_engine_cli import (
-    check_api_every_pose,
-    check_compare_column,
-    check_dynamics,
-    check_mjcf_fails_the_run,
+from urdf_engine_cli import (  # noqa: F401 (the shared tests, collected here)
     engines,
+    test_an_mjcf_fails_the_run_with_its_reason,
+    test_compare_gives_it_a_column,
+    test_dynamics_compares_its_mass_matrix,
+    test_the_api_runs_it_on_every_pose,
 )
 
 import koenig_check
@@ -22,20 +22,10 @@ ENGINE = "pybullet"
 ENGINES = engines(ENGINE)
 
 
-def test_compare_gives_it_a_column(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    check_compare_column(ENGINE, tmp_path, capsys)
-
-
-def test_dynamics_compares_its_mass_matrix(capsys: pytest.CaptureFixture[str]) -> None:
-    check_dynamics(ENGINE, capsys)
-
-
-def test_an_mjcf_fails_the_run_with_its_reason(capsys: pytest.CaptureFixture[str]) -> None:
-    check_mjcf_fails_the_run(ENGINE, capsys)
-
-
-def test_the_api_runs_it_on_every_pose() -> None:
-    check_api_every_pose(ENGINE)
+@pytest.fixture
+def engine_name() -> str:
+    """The engine the shared tests of :mod:`urdf_engine_cli` check."""
+    return ENGINE
 
 
 def test_the_pytest_helper_requires_it_to_agree(tmp_path: Path) -> None:
