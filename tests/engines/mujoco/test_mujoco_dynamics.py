@@ -33,9 +33,13 @@ def _options(m: mujoco.MjModel) -> tuple:
 
 @pytest.fixture
 def engine(tmp_path):
+    """The arm loaded, its model's options as the file has them (the loader turns some off on the loaded model)."""
     path = tmp_path / "arm.xml"
     path.write_text(MODEL)
-    return load_model(str(path)).engine("mujoco")
+    engine = load_model(str(path)).engine("mujoco")
+    opt = engine.model.opt
+    opt.gravity[:], opt.density, opt.viscosity, opt.disableflags = (0.0, 0.0, -9.81), 1.2, 0.1, 0
+    return engine
 
 
 def test_inverse_dynamics_is_mj_inverse_with_the_options_off_and_leaves_them_as_they_were(engine) -> None:
