@@ -1,7 +1,8 @@
 """What Newton does to the user's robot that the file does not say, measured on this robot with Newton's own arrays.
 
-Each function loads the file again with one of Newton's loading options changed (or reads the file as written) and
-compares Newton's own arrays: the body masses and inertias ``finalize()`` leaves, or the mass matrix
+Each function compares the robot as checked with Newton's model of the file under one of its loading options
+(given to it, read from the one parsed builder where the option allows, or loaded again), or reads the file as
+written; it compares Newton's own arrays: the body masses and inertias ``finalize()`` leaves, or the mass matrix
 ``eval_mass_matrix`` gives.  They return plain values; :mod:`koenig_check.engines.newton.findings` turns them into
 findings with the catalogue's cause ids.
 """
@@ -15,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.newton.state_map import FIXED, short_name
+from koenig_check.modelfile.urdf_links import links_without_inertial
 
 #: Poses (besides the file's pose) at which an option's effect on M is measured, and their seed.
 EFFECT_POSES = 4
@@ -92,26 +94,6 @@ def validation_changes(raw: Any, model: Any) -> list[BodyChange]:
         if m0[b] != m1[b] or float(np.abs(i0[b] - i1[b]).max()) > 1e-6 * scale:
             out.append(BodyChange(short_name(label), float(m0[b]), float(m1[b]), _diag(i0[b]), _diag(i1[b])))
     return out
-
-
-def links_without_inertial(path: Path) -> list[str]:
-    """The URDF links that declare no ``<inertial>`` (massless by the URDF convention).
-
-    Parameters
-    ----------
-    path : Path
-
-    Returns
-    -------
-    list of str
-    """
-    from koenig_check.modelfile.validate import parse_xml
-
-    try:
-        root = parse_xml(path).getroot()
-    except Exception:  # an unreadable file is reported by the engines that read it
-        return []
-    return [str(link.get("name")) for link in root.iter("link") if link.find("inertial") is None]
 
 
 def collision_masses(path: Path, model: Any) -> list[BodyChange]:
