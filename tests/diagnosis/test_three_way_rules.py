@@ -91,9 +91,10 @@ def test_where_all_differ_each_engine_is_named_with_its_own_construct() -> None:
     """all_differ.xml: MuJoCo alone rescales to settotalmass=3, Pinocchio alone ignores the pole's class mass.
 
     By hand: the pole's class gives it 0.1 kg (Drake); MuJoCo rescales 1 + 0.1 kg to 3 kg (0.1 x 3 / 1.1); Pinocchio
-    weighs the capsule (radius 0.045, length 1) at density 1000: 1000 (pi r^2 + 4/3 pi r^3).  The settotalmass cause
-    is MuJoCo's, built so; it was once moved to the engine a verdict named after the verdicts, so that Pinocchio too
-    was said to depart through settotalmass.
+    weighs the capsule (radius 0.045, length 1) at density 1000: 1000 (pi r^2 + 4/3 pi r^3).  MuJoCo reads the file as
+    written (it applies the option the file sets): no construct of its own.  Pinocchio ignores settotalmass and the
+    class mass; what sets it apart from Drake, which is declared to ignore settotalmass too, is the class mass.
+    Drake's construct is the catalogued settotalmass (its reading declared, no finding of its own).
     """
     pytest.importorskip("pydrake")
     import koenig_check
@@ -106,4 +107,4 @@ def test_where_all_differ_each_engine_is_named_with_its_own_construct() -> None:
     expected = {"mujoco": 0.1 * 3 / 1.1, "pinocchio": 1000 * (np.pi * r**2 + 4 / 3 * np.pi * r**3), "drake": 0.1}
     assert dict(pole.values) == pytest.approx(expected, rel=1e-9)
     assert pole.engine == "all"
-    assert pole.summary.endswith("MuJoCo: compiler settotalmass (compiler); Pinocchio: geom pole (mass)")
+    assert pole.summary.endswith("constructs: Pinocchio: geom pole (mass); Drake: compiler settotalmass (compiler)")

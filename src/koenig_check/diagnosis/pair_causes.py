@@ -37,9 +37,9 @@ from koenig_check.findings import Finding, Kind, shown_names
 from koenig_check.modelfile.compiler import compiler_options, option_text
 from koenig_check.modelfile.mjcf import ClassValue, class_values, read_mjcf
 
-#: The catalogued causes built here (the engine each names departs; the reference engine reads the file).
+#: The catalogued causes built here (the engine each names departs; the reference engine reads the file), and
+#: (tag, attribute) of a value from a default class -> its cause.
 SETTOTALMASS, MESH_MASS = "pinocchio.mjcf.settotalmass", "pinocchio.mjcf.mesh-mass"
-#: (tag, attribute) of a value from a default class -> its catalogued cause.
 CLASS_VALUES = {
     (t, a): f"pinocchio.mjcf.class-{t}-{a}" for t, a in (("geom", "mass"), ("geom", "pos"), ("joint", "pos"))
 }
@@ -179,8 +179,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
         if element is None or not segment:
             continue
         if cand.tag == "geom" and cand.attr == "mass":
-            m_a, m_b = segs.mass.get(segment, (0.0, 0.0))
-            shows = abs(m_a - m_b) > RTOL * max(abs(m_a), abs(m_b), 1e-300)
+            shows = _mass_differs(segs, segment)
         elif cand.tag == "geom":
             pair_com = segs.com.get(segment)
             shows = pair_com is not None and float(np.linalg.norm(pair_com[0] - pair_com[1])) > tol_len
@@ -288,8 +287,9 @@ def compiler_causes(pair: Any) -> list[Finding]:
         scale = max(m_mj, m_pin, 1e-300)
         if abs(m_mj - option.values["settotalmass"]) <= RTOL * scale and abs(m_mj - m_pin) > RTOL * scale:
             out.append(
-                replace(  # MuJoCo's (the engine that applies it), as the option's record says
+                replace(  # the option's record, blamed on the engine that ignores it (the cause's)
                     option,
+                    engine=cause(SETTOTALMASS).engine,
                     summary=f"{option_text(option)}: {option.summary}, Pinocchio does not",
                     values={reference(): m_mj, cause(SETTOTALMASS).engine: m_pin},
                     root_cause=True,
