@@ -23,7 +23,6 @@ from typing import Any
 import numpy as np
 
 from koenig_check.diagnosis.cause_effect import by_effect
-from koenig_check.engines.catalogue import reads_otherwise
 from koenig_check.engines.registry import label, names, reference, required, spec
 from koenig_check.findings import Finding, Kind
 
@@ -82,10 +81,10 @@ def _listed(engines: Sequence[str]) -> str:
 def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence[str] = ()) -> Finding | None:
     """The known construct responsible for an engine's departure, from the model's findings.
 
-    Root causes that change the energy, about that engine (each cause is built against the engine that departs
-    from the file: a compiler option Pinocchio ignores is Pinocchio's), first those that explain the given
-    segments, ranked as the reason ranks them (:func:`koenig_check.diagnosis.cause_effect.by_effect`: the largest
-    measured effect first, the others in their place).
+    Root causes that change the energy, about that engine (each cause is built against the engine it concerns:
+    a compiler option only MuJoCo applies is MuJoCo's), first those that explain the given segments, ranked as
+    the reason ranks them (:func:`koenig_check.diagnosis.cause_effect.by_effect`: the largest measured effect
+    first, the others in their place).
 
     Parameters
     ----------
@@ -98,55 +97,22 @@ def departure_cause(findings: Sequence[Finding], engine: str, segments: Sequence
     -------
     Finding or None
     """
-    ranked = _departure_causes(findings, engine, segments)
-    return ranked[0] if ranked else None
-
-
-def _departure_causes(findings: Sequence[Finding], engine: str, segments: Sequence[str]) -> list[Finding]:
-    """Every known construct responsible for an engine's departure, ranked (:func:`departure_cause`)."""
     own = [f for f in findings if f.engine == engine and f.affects_energy and f.kind is not Kind.VERDICT]
     roots = [f for f in own if f.root_cause] or [f for f in own if f.kind in (Kind.COMPILER, Kind.IGNORED_CONSTRUCT)]
     if segments:
         hit = [f for f in roots if set(f.segments) & set(segments)]
         roots = hit or roots
-    return by_effect(roots)
-
-
-def _own_cause(
-    findings: Sequence[Finding], engine: str, voters: Sequence[str], segments: Sequence[str]
-) -> Finding | None:
-    """Where no majority agrees, the construct that sets an engine apart from the other voters.
-
-    Its first cause that no other voter is declared to read otherwise too (Pinocchio's class mass rather than
-    the settotalmass Drake ignores as well), else its first cause, else a catalogued cause of another engine's it
-    is declared to read otherwise too (Drake's settotalmass, of which Drake has no finding of its own).
-    """
-    others = [v for v in voters if v != engine]
-    ranked = _departure_causes(findings, engine, segments)
-    distinct = [c for c in ranked if not (c.cause and any(reads_otherwise(c.cause, o) for o in others))]
-    first = distinct or ranked
-    return first[0] if first else _declared_cause(findings, engine, segments)
+    ranked = by_effect(roots)
+    return ranked[0] if ranked else None
 
 
 def _shared_cause(engines: Sequence[str], findings: Sequence[Finding], segments: Sequence[str]) -> Finding | None:
-    """A construct every one of ``engines`` skips, or None.
-
-    The same element named as a cause of each, or a catalogued cause of some of them whose declared readings say
-    every one of them reads it otherwise than as written (Drake ignores settotalmass too, without a finding).
-    """
+    """A construct every one of ``engines`` skips (the same element named as a cause of each), or None."""
     causes = [departure_cause(findings, e, segments) for e in engines]
     found = [c for c in causes if c is not None]
-    if len(found) == len(causes) and len({c.element for c in found}) == 1:
-        return found[0]
-    declared = [c for c in found if c.cause and all(reads_otherwise(c.cause, e) for e in engines)]
-    return declared[0] if declared else None
-
-
-def _declared_cause(findings: Sequence[Finding], engine: str, segments: Sequence[str]) -> Finding | None:
-    """A catalogued cause of another engine's that ``engine`` is declared to read otherwise too, or None."""
-    found = [departure_cause(findings, e, segments) for e in dict.fromkeys(f.engine for f in findings) if e != engine]
-    declared = [c for c in found if c is not None and c.cause and reads_otherwise(c.cause, engine)]
-    return declared[0] if declared else None
+    if len(found) != len(causes) or len({c.element for c in found}) != 1:
+        return None
+    return found[0]
 
 
 def _construct(cause: Finding) -> str:
@@ -165,7 +131,7 @@ def _verdicts(
 ) -> list[Finding]:
     """``VERDICT`` findings: who departs on ``what`` and why (one per departing engine), or that no majority agrees."""
     if tuple(departing) == ("all",):
-        causes = {e: _own_cause(findings, e, list(values), segments) for e in values}
+        causes = {e: departure_cause(findings, e, segments) for e in values}
         known = "; ".join(f"{label(e)}: {_construct(c)} ({c.kind.value})" for e, c in causes.items() if c is not None)
         head = _no_majority(len(values))
         return [

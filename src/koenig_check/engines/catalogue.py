@@ -144,23 +144,3 @@ def applies(cause_id: str, engine: str | None = None) -> bool:
         return True
     version = installed_version(reading.engine)
     return version is None or version in SpecifierSet(reading.versions)
-
-
-def reads_otherwise(cause_id: str, engine: str) -> bool:
-    """Whether the catalogue declares that an engine, at its installed version, does not read a cause as written.
-
-    Parameters
-    ----------
-    cause_id : str
-    engine : str
-
-    Returns
-    -------
-    bool
-        False where the engine's reading was not measured (nothing is declared about it).
-    """
-    try:
-        reading = cause(cause_id).reading(engine)
-    except KeyError:
-        return False
-    return reading.reads != "as written" and applies(cause_id, engine)

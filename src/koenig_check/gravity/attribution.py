@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from koenig_check.engines import registry
-from koenig_check.engines.catalogue import applies, catalogue, reads_otherwise
+from koenig_check.engines.catalogue import applies, catalogue
 from koenig_check.findings import Finding, Kind
 from koenig_check.roundoff import ROUNDOFF
 
@@ -149,11 +149,8 @@ def _same_vector(engine: str, parity: GravityParity, known: list[Finding], ids: 
             hint=entry.hint,
             cause=entry.id,
         )
-    concerned = (engine, "both", registry.reference())  # the reference's own departure moves every gap
-    explains = [f for f in known if f.affects_energy and f.kind in _EXPLAINING]
-    concerning = [f for f in explains if f.engine in concerned]
-    # else a cause of another engine this one is declared to read otherwise too (Drake ignores settotalmass)
-    concerning = concerning or [f for f in explains if f.cause and reads_otherwise(f.cause, engine)]
+    concerned = (engine, "both", registry.reference())  # the reference's own departure (settotalmass) moves every gap
+    concerning = [f for f in known if f.affects_energy and f.kind in _EXPLAINING and f.engine in concerned]
     explaining = [f for f in concerning if f.root_cause] or concerning  # a root cause, else the symptom found
     if explaining:
         by = explaining[0]
