@@ -17,7 +17,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines.errors import EngineUnavailableError
-from koenig_check.engines.specs import EngineSpec, names, reference, spec, specs
+from koenig_check.engines.specs import EngineSpec, names, parity_pair, reference, spec, specs
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
@@ -38,6 +38,7 @@ __all__ = [
     "names",
     "not_used",
     "optional",
+    "parity_pair",
     "reference",
     "required",
     "spec",

@@ -162,6 +162,26 @@ def reference() -> str:
     return found[0]
 
 
+def parity_pair() -> tuple[str, str]:
+    """The two required engines whose import parity is checked: the reference first, then the other one.
+
+    Returns
+    -------
+    tuple of str
+        ``(reference, other)`` (MuJoCo, Pinocchio).
+
+    Raises
+    ------
+    ValueError
+        The required engines are not the reference and one other.
+    """
+    first = reference()
+    others = [s.name for s in specs() if s.required and s.name != first]
+    if len(others) != 1 or not spec(first).required:
+        raise ValueError(f"engines: the import-parity pair is the required reference and one other, found {others}")
+    return first, others[0]
+
+
 def spec(name: str) -> EngineSpec:
     """One engine's spec.
 

@@ -27,6 +27,7 @@ from koenig_check.arguments import suggest_keywords
 from koenig_check.engines import LoadedModel, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
+from koenig_check.engines.specs import parity_pair
 from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.findings import Finding, Kind
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
@@ -45,7 +46,8 @@ from koenig_check.run.poses import random_poses
 M_RTOL = 1e-9
 #: Default relative tolerance (Euclidean norm, per pose) for ``Q*`` of ``exact`` against an engine.
 Q_RTOL = 1e-6
-ENGINES = ("mujoco", "pinocchio")
+#: The engines every model is loaded in, the reference first (MuJoCo, Pinocchio): a column each, always.
+ENGINES = parity_pair()
 #: The pseudo-formula under which the engines are compared with each other.
 ENGINE_PARITY = "(engine)"
 
@@ -287,13 +289,12 @@ def dynamics_of_pair(
         for engine in ENGINES:
             result.errors.append(discrepancy(r.M, result.engine_mass[engine], name, route, engine))
             result.errors.append(discrepancy(r.Q, result.engine_forces[engine], name, route, engine))
+    first, second = ENGINES
     result.errors.append(
-        discrepancy(result.engine_mass["mujoco"], result.engine_mass["pinocchio"], ENGINE_PARITY, "mujoco", "pinocchio")
+        discrepancy(result.engine_mass[first], result.engine_mass[second], ENGINE_PARITY, first, second)
     )
     result.errors.append(
-        discrepancy(
-            result.engine_forces["mujoco"], result.engine_forces["pinocchio"], ENGINE_PARITY, "mujoco", "pinocchio"
-        )
+        discrepancy(result.engine_forces[first], result.engine_forces[second], ENGINE_PARITY, first, second)
     )
     return result
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from koenig_check.engines.registry import label, optional
+from koenig_check.engines.registry import label, optional, reference, required
 from koenig_check.findings import Finding, Kind
 from koenig_check.line_width import LINE_LIMIT
 from koenig_check.roundoff import ROUNDOFF, shown
@@ -80,8 +80,8 @@ def optional_gap(comparison: ModelComparison, engine: str | None = None) -> tupl
     if gap is not None and gap.where:
         return gap.value, True
     for f in comparison.findings:
-        if f.kind is Kind.VERDICT and f.element == "rigid-body energy" and {"mujoco", engine} <= set(f.values):
-            mujoco, other = float(f.values["mujoco"]), float(f.values[engine])
+        if f.kind is Kind.VERDICT and f.element == "rigid-body energy" and {reference(), engine} <= set(f.values):
+            mujoco, other = float(f.values[reference()]), float(f.values[engine])
             return float(np.abs(relative_error(np.array([other]), np.array([mujoco])))[0]), False
     return None
 
@@ -189,7 +189,7 @@ def terminal_table(check: CrossCheck) -> str:
     widths = {e: max(10, len(e) + 4) for e in ran}
     scale = f"(tolerance {rtol:g} relative; 0: below {ROUNDOFF:g}, rounding)"
     if ran:
-        engines = ", ".join(label(e) for e in ("mujoco", "pinocchio", *ran[:-1])) + f" and {label(ran[-1])}"
+        engines = ", ".join(label(e) for e in (*required(), *ran[:-1])) + f" and {label(ran[-1])}"
         columns = "".join(f"{e + ' gap':>{widths[e]}s}  " for e in ran)
         lines = [
             f"Models: do {engines} agree? {scale}",
