@@ -375,7 +375,7 @@ def dynamics(
     qacc = velocity_scale * _random_accelerations(pair.mujoco.nv, n_poses, seed)
     result = dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)
     result.rtol = rtol
-    add_engine_columns(result, pair, options.engines, ENGINE_PARITY)
+    add_engine_columns(result, pair, pair.options.engines, ENGINE_PARITY)  # "all" resolved for the model's format
     tolerance = rtol if rtol is not None else M_RTOL
     result.gravity, result.full_inverse_dynamics = gravity_columns(pair, poses.qpos, poses.qvel, qacc, tolerance)
     return result
