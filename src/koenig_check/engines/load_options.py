@@ -150,7 +150,7 @@ def parse_engines(text: str) -> tuple[str, ...]:
     known = engine_specs.names()
     unknown = [n for n in asked if n not in known]
     if unknown:
-        raise ValueError(f"engines: unknown {unknown}; choose among {list(known)}")
+        raise ValueError(f"engines: unknown {unknown}; choose among {list(known)}, or {engine_specs.ALL!r} alone")
     required = [s.name for s in engine_specs.specs() if s.required]
     if not set(required) <= set(asked):
         whole = ",".join(n for n in known if n in {*asked, *required})

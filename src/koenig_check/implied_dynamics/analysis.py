@@ -27,6 +27,7 @@ from koenig_check.arguments import suggest_keywords
 from koenig_check.engines import LoadedModel, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
+from koenig_check.engines.specs import specs
 from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.findings import Finding, Kind
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
@@ -135,7 +136,9 @@ class DynamicsResult:
         """The tolerance of one comparison.
 
         ``m_rtol`` / ``q_rtol`` by quantity; where two engines' readings of the model meet (the engines against
-        each other, or a route on one engine's states against another engine) the larger of that and ``rtol``.
+        each other, or a route on one engine's states against another engine) the larger of that, ``rtol`` and
+        the precision both engines declare (:attr:`~koenig_check.engines.specs.EngineSpec.precision`: Newton's
+        float32 round-off is no difference).
 
         Parameters
         ----------
@@ -146,7 +149,11 @@ class DynamicsResult:
         float
         """
         tol = self.m_rtol if e.quantity == "M" else self.q_rtol
-        return max(tol, self.rtol) if self._across(e) and self.rtol is not None else tol
+        if not self._across(e):
+            return tol
+        declared = {s.name: s.precision for s in specs()}  # a float32 engine's round-off is no difference
+        tol = max([tol, *(declared.get(name, 0.0) for name in (e.engine, e.route.rpartition("@")[2]))])
+        return max(tol, self.rtol) if self.rtol is not None else tol
 
     @staticmethod
     def _across(e: Discrepancy) -> bool:
