@@ -12,9 +12,9 @@ import pytest
 
 from koenig_check.cli import main
 from koenig_check.engines.registry import installed, label, optional
-from named_engines import READS, URDF_ONLY, installed_reading, labels, named
+from named_engines import NEW_ENGINES, URDF_ONLY, installed_reading, labels, named
 
-NEW = [named(e) for e in ("newton", "pybullet", "idyntree")]
+NEW = [named(e) for e in NEW_ENGINES]
 
 
 def _row(out: str, model: str) -> list[str]:
@@ -62,7 +62,8 @@ def test_all_runs_each_model_in_the_engines_that_read_its_format(tmp_path: Path,
     mjcf, urdf = installed_reading("mjcf"), installed_reading("urdf")
     left = [e for e in urdf if e not in mjcf]
     assert mjcf != urdf and left  # the sets differ, and the run says so on the MJCF
-    assert f"serial7.xml: engines {labels(mjcf)}; left out {labels(tuple(left))} (their parsers do not read MJCF)" in text
+    said = f"serial7.xml: engines {labels(mjcf)}; left out {labels(tuple(left))} (their parsers do not read MJCF)"
+    assert said in text
     assert "serial7.urdf: engines" not in text  # nothing left out of the URDF's set
     assert "Also installed, not run" not in text  # every installed engine was asked for
     summary = (tmp_path / "summary.md").read_text()
