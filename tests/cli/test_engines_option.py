@@ -109,3 +109,20 @@ def test_export_all_proves_in_every_installed_engine_that_reads_both_files(tmp_p
     assert f"engines {', '.join(installed_reading('mjcf'))}" in out
     for engine in (e for e in installed_reading("urdf") if e not in installed_reading("mjcf")):
         assert f"{engine}: its parser does not read MJCF (--engines all)" in out
+
+
+@pytest.mark.skipif(not installed("newton"), reason="Newton absent")
+@pytest.mark.parametrize(
+    "command", [["compare", "--poses", "2", "--formulas", "exact"], ["parity"], ["dynamics", "--poses", "2"]]
+)
+def test_all_asks_for_each_engine_so_a_refusal_fails_the_run_with_its_reason(command: list[str], capsys) -> None:
+    """Newton reads MJCF, so ``all`` asks for it on an MJCF; it refuses ``solver="PGS"``: the check was not made."""
+    from koenig_check.causes import cause, fixture_path
+
+    path = fixture_path(cause("newton.mjcf.solver-pgs"))
+    assert main([command[0], str(path), *command[1:], "--engines", "all"]) == 1
+    err = capsys.readouterr().err
+    first = next(line for line in err.splitlines() if line.startswith("koenig-check: "))
+    assert first.startswith("koenig-check: newton_solver_pgs.xml: ") and len(first) <= 200
+    assert "Newton asked for (--engines) but it could not check the model" in first
+    assert "invalid literal for int() with base 10: 'pgs'" in err  # Newton's own words
