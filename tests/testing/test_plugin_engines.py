@@ -3,7 +3,7 @@
 Each engine passes on a URDF the project ships where it agrees with MuJoCo and Pinocchio, and fails, with its own
 reason, on a model it cannot check: Newton's inertia validation changes a foot's point mass (a parser limit), and
 PyBullet and iDynTree cannot read an MJCF.  ``engines = "all"`` runs each model in the installed engines that read
-its format: an MJCF passes without PyBullet and iDynTree, which are left out, not failed.
+its format: an MJCF passes without PyBullet and iDynTree, which are left out, not failed; a URDF is checked by them.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import pytest
 
 from koenig_check.causes import cause, fixture_path
 from koenig_check.engines import resolve_model
-from koenig_check.engines.registry import label
+from koenig_check.engines.registry import installed, label
 from named_engines import named
 
 #: Per new engine, a model it cannot check and the words its failure opens with.
@@ -50,7 +50,12 @@ def test_an_entry_naming_the_engine_passes_where_it_agrees_and_fails_with_its_re
     result.stdout.fnmatch_lines(["*serial7.urdf PASSED*", f"*{label(engine)} {words}*"])
 
 
+@pytest.mark.skipif(not installed("pybullet"), reason="PyBullet absent")
 def test_all_passes_an_mjcf_and_a_urdf_each_in_the_engines_that_read_it(pytester: pytest.Pytester) -> None:
+    """PyBullet, asked for by ``all`` on a URDF, gives the camera link without <inertial> 1 kg: that entry fails,
+    naming it; on the MJCFs it is left out, and they pass."""
     files = {name: resolve_model(name).path for name in ("serial7.urdf", "serial7.xml", "double_pendulum.xml")}
+    files["camera.urdf"] = fixture_path(cause("pybullet.urdf.link-without-inertial"))
     result = _run(pytester, files, '"all"')
-    result.assert_outcomes(passed=3)
+    result.assert_outcomes(passed=3, failed=1)
+    result.stdout.fnmatch_lines(["*camera.urdf FAILED*", "*PyBullet cannot check this model*(links: camera)*"])
