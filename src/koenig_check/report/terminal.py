@@ -225,7 +225,9 @@ def terminal_table(check: CrossCheck) -> str:
         lines += _row(model, mw, f"{status:8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
-    for line in engine_set_lines(check):  # continued two spaces in: not a model's row
+    engine_sets = engine_set_lines(check)  # a paragraph of its own after the table, continued two spaces in
+    lines += [""] if engine_sets else []
+    for line in engine_sets:
         lines += _fold(textwrap.wrap(line, width=WIDTH, subsequent_indent="  ", break_long_words=False))
     if not check.summaries:
         return "\n".join(lines + gravity_rows(check, mw))
