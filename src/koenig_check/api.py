@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from koenig_check.arguments import check_compare_arguments, keywords_of, suggest_keywords
 from koenig_check.diagnosis import policy, reason
+from koenig_check.engines.cross_readings import cross_readings
 from koenig_check.engines.load_options import LoadOptions, load_options_from
 from koenig_check.engines.registry import check_engines
 from koenig_check.exceptions import one_line
@@ -327,7 +328,8 @@ def compare(
             result.failures.append((label, one_line(err)))
             result.failure_lines[label] = failure_line(err, model, label)
             result.failure_parts[label] = failure_parts(err, model)
-            result.failure_causes[label] = tuple(getattr(err, "causes", ()))
+            causes = tuple(getattr(err, "causes", ()))  # and what the engines asked for misread among them
+            result.failure_causes[label] = causes + tuple(cross_readings(causes, load.engines or ()))
             continue
         result.add(comp)
     return result

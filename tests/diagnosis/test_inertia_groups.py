@@ -65,10 +65,16 @@ def test_geoms_outside_the_range_are_the_named_cause(tmp_path: Path, groups: str
 
 
 @pytest.mark.skipif(not HAS_DRAKE, reason="Drake (the optional extra [drake]) is not installed")
-def test_three_engines_name_the_option_mujoco_alone_applies() -> None:
+def test_drake_which_ignores_the_option_too_is_named_and_abstains() -> None:
+    """Drake counts every geom as Pinocchio does (the catalogue's reading): its finding carries the id, it casts no
+    vote (formerly "MuJoCo departs"), and asked for it could not check the model on the cause's quantities."""
     check = koenig_check.compare(
         CAUSES / "inertia_group.xml", n_poses=3, formulas=["exact"], engines=["mujoco", "pinocchio", "drake"]
     )
-    verdicts = [f for f in check.comparisons[0].findings if f.kind is Kind.VERDICT]
-    assert verdicts and all(v.engine == "mujoco" for v in verdicts)
-    assert all("construct responsible: compiler inertiagrouprange" in v.summary for v in verdicts)
+    findings = check.comparisons[0].findings
+    assert not [f for f in findings if f.kind is Kind.VERDICT]
+    (drake,) = [f for f in findings if f.engine == "drake" and f.cause == "pinocchio.mjcf.inertiagrouprange"]
+    assert drake.root_cause and drake.values["geoms"] == ("ball",)
+    (unable,) = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
+    assert unable.values["causes"] == ("pinocchio.mjcf.inertiagrouprange",)
+    assert unable.values["quantities"] == ("mass", "com", "inertia")

@@ -589,3 +589,30 @@ def test_it_breaks_no_tie_unless_it_declares_so(fourth_engine: str) -> None:
     poses = random_pose_range(model.mujoco.model, 0, 4, 0, 1.0)
     consulted = diagnose(model, disagree=True, qpos=poses.qpos, qvel=poses.qvel).engines
     assert "gpu" not in consulted and ("drake" in consulted) == registry.installed("drake")
+
+
+def test_a_reading_another_engines_cause_declares_for_it_is_acted_on(
+    fourth_engine: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The route is keyed on the catalogue, not on an engine: declare that GPU ignores settotalmass (a reading of
+    Pinocchio's cause) and GPU's finding carries that id and GPU abstains, asked for, on the cause's quantities."""
+    import dataclasses
+
+    from koenig_check.causes import catalogue, cause, fixture_path
+    from koenig_check.engines import catalogue as module
+    from koenig_check.engines.cause import Reading
+
+    c = cause("pinocchio.mjcf.settotalmass")
+    path = fixture_path(c)
+    before = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=TRAPPED).comparisons[0].findings
+    assert not [f for f in before if f.engine == "gpu" and (f.cause or f.kind is Kind.ENGINE_UNABLE)]
+    declared = dataclasses.replace(c, readings=(*c.readings, Reading("gpu", "differently", "ignores the option")))
+    every = catalogue()
+    monkeypatch.setattr(module, "catalogue", lambda: tuple(declared if x.id == c.id else x for x in every))
+    findings = koenig_check.compare(path, n_poses=3, formulas=["exact"], engines=TRAPPED).comparisons[0].findings
+    (gpu,) = [f for f in findings if f.engine == "gpu" and f.cause == c.id]
+    assert gpu.root_cause and gpu.element == "compiler settotalmass"
+    (unable,) = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
+    assert unable.engine == "gpu" and unable.values["causes"] == (c.id,)
+    assert unable.values["quantities"] == ("mass", "inertia")
+    assert not [f for f in findings if f.kind is Kind.VERDICT]

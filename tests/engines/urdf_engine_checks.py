@@ -2,7 +2,8 @@
 
 * :func:`two_link_arm` and :func:`hand_mass_matrix`: a planar 2-link arm whose mass matrix is written by hand;
 * :func:`against_mujoco_and_pinocchio`: the engine against MuJoCo and Pinocchio on one loaded model, every
-  quantity of the Engine interface, within the engine's declared precision.
+  quantity of the Engine interface, within the engine's declared precision;
+* :func:`check_two_link_arm` and :func:`check_agrees` over :data:`ELBOWS` and :data:`CASES`: what each module runs.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from koenig_check.engines import random_states
+from koenig_check.engines import load_model, random_states
 from koenig_check.engines.specs import spec
 
 #: The arm: link lengths, COM distances along each link, masses, central moments about the joint axis (z).
@@ -114,6 +115,56 @@ def against_mujoco_and_pinocchio(pair, name: str, n_poses: int = 6, seed: int = 
         world = [np.einsum("pbij,bjk,pblk->pbil", s.rotation, s.inertia_body, s.rotation) for s in (mine, theirs)]
         out[f"world inertia vs {ref_name}"] = _rel(*world)
     return out
+
+
+#: The project's URDF models, with a fixed base and a floating one (free_body only floats), and their test ids.
+CASES = [
+    (m, f)
+    for m in ("double_pendulum.urdf", "gimbal.urdf", "serial7.urdf", "armature_chain.urdf", "free_body.urdf")
+    for f in (False, True)
+    if f or m != "free_body.urdf"
+]
+CASE_IDS = [f"{m}-{'floating' if f else 'fixed'}" for m, f in CASES]
+#: Elbow angles of :func:`check_two_link_arm`.
+ELBOWS = [0.0, 0.7, -1.9, np.pi]
+
+
+def check_two_link_arm(folder: Path, name: str, elbow: float) -> None:
+    """The engine's mass matrix of :func:`two_link_arm` equals :func:`hand_mass_matrix` within its precision.
+
+    Parameters
+    ----------
+    folder : Path
+        Where the arm's URDF is written.
+    name : str
+        The engine.
+    elbow : float
+    """
+    pair = load_model(str(two_link_arm(folder)))
+    engine = pair.attach(name)
+    assert engine is not None, pair.refusal(name)
+    qpos = np.zeros((1, pair.mujoco.nq))
+    qpos[0, pair.mujoco.model.joint("elbow").qposadr[0]] = elbow
+    qpos[0, pair.mujoco.model.joint("shoulder").qposadr[0]] = 0.4  # M does not depend on it
+    by_hand = hand_mass_matrix(elbow)
+    order = [pair.mujoco.model.joint(n).dofadr[0] for n in ("shoulder", "elbow")]
+    M = engine.mass_matrix(qpos)[0][np.ix_(order, order)]
+    assert np.abs(M - by_hand).max() <= precision(name) * np.abs(by_hand).max()
+
+
+def check_agrees(model: str, floating: bool, name: str) -> None:
+    """Every quantity of :func:`against_mujoco_and_pinocchio` within the engine's precision on one case.
+
+    Parameters
+    ----------
+    model : str
+    floating : bool
+    name : str
+        The engine.
+    """
+    differences = against_mujoco_and_pinocchio(load_model(model, floating=floating), name)
+    worst = max(differences, key=differences.get)
+    assert differences[worst] <= precision(name), f"{worst}: {differences[worst]:.3g}"
 
 
 def precision(name: str) -> float:

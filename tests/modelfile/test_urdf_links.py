@@ -13,7 +13,7 @@ import pinocchio as pin
 import pytest
 
 import koenig_check
-from koenig_check.modelfile.urdf_links import planar_joints, undeclared_links
+from koenig_check.modelfile.urdf_links import links_without_inertial, planar_joints, undeclared_links
 
 LINK = '<link name="{0}"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>' + (
     "</inertial></link>"
@@ -73,3 +73,11 @@ def test_a_planar_joint_is_named_with_the_three_joints_mujoco_makes(tmp_path: Pa
     line = check.failure_lines["robot.urdf"]
     assert "root cause: joint slider: URDF planar joint" in line
     assert "MuJoCo's import makes it three joints (slider_TX, slider_TY, slider_RZ)" in check.failures[0][1]
+
+
+def test_links_without_inertial_in_file_order(tmp_path: Path) -> None:
+    """``world`` (declared bare) and ``tool`` have no <inertial>; ``base`` and ``upper`` have one."""
+    path = _urdf(tmp_path, ["world", "base", "upper"], WELDED)
+    path.write_text(path.read_text().replace("</robot>", '<link name="tool"/></robot>'))
+    assert links_without_inertial(path) == ["world", "tool"]
+    assert links_without_inertial(tmp_path / "missing.urdf") == []

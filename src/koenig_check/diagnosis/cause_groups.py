@@ -34,6 +34,11 @@ def brief_form(f: Finding) -> str:
     str
     """
     if f.cause:
+        from koenig_check.engines.cross_readings import departing_reading
+
+        found = departing_reading(f.cause, f.engine)  # another engine's cause, misread by this one too
+        if found is not None:
+            return f"{found[0].construct} read differently ({found[1].how})"
         from koenig_check.engines.catalogue import cause
 
         return cause(f.cause).brief

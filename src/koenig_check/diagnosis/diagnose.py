@@ -22,6 +22,7 @@ from koenig_check.diagnosis.import_parity import import_parity
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, ParityReport
 from koenig_check.engines import registry
 from koenig_check.engines.catalogue import applies
+from koenig_check.engines.cross_readings import cross_readings
 from koenig_check.exceptions import one_line
 from koenig_check.findings import Finding
 from koenig_check.gravity import GravityParity, gravity_parity
@@ -105,6 +106,7 @@ def diagnose(
     not_consulted = [f for f in policy.attach_engines(model, disagree) if f.engine not in asked]
     optional = model.optional_findings + not_consulted
     findings = [f for f in list(model.findings) + parity.as_findings() + optional if _applies(f)]
+    findings += cross_readings(findings, model.engines, model.source.format)  # what the catalogue says they misread
     limits = limited_engines(findings, model.mujoco.model)  # engines given another robot: they do not vote
     voters = [name for name in model.engines if name not in limits]
     verdicts: list[Finding] = []

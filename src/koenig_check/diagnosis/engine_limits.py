@@ -29,6 +29,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any, NamedTuple
 
+from koenig_check.engines.catalogue import cause
+from koenig_check.engines.cause import QUANTITIES
+from koenig_check.engines.cross_readings import departing_reading
 from koenig_check.engines.limit import limits
 from koenig_check.engines.registry import label, optional, required
 from koenig_check.findings import Finding, Kind
@@ -43,6 +46,8 @@ class Limit(NamedTuple):
     """The joints, links or elements concerned."""
     noun: str = "joints"
     """What :attr:`names` are."""
+    cause: str = ""
+    """The id of the catalogued cause the finding carries (empty: none)."""
 
 
 def parser_limit(finding: Finding, mj_model: Any) -> Limit | None:
@@ -63,13 +68,17 @@ def parser_limit(finding: Finding, mj_model: Any) -> Limit | None:
     """
     for declared in limits(finding.engine):
         if declared.shown_by(finding, mj_model):
-            return Limit(declared.says, [finding.name or finding.element], declared.names)  # untagged: whole
+            return Limit(declared.says, [finding.name or finding.element], declared.names, finding.cause)
+    catalogued = departing_reading(finding.cause, finding.engine) if finding.cause else None
+    if catalogued is not None:  # another engine's cause that the catalogue says this engine misreads too
+        c = catalogued[0]
+        return Limit(f"reads {c.construct} differently", [finding.element], "elements", c.id)
     if finding.kind is Kind.IGNORED_CONSTRUCT:
         joints = finding.values.get("joints")
         if finding.tag == "joint" and joints:  # an attribute of joints ("joint armature")
-            return Limit(f"ignores {finding.name}", [str(j) for j in joints])
+            return Limit(f"ignores {finding.name}", [str(j) for j in joints], cause=finding.cause)
         what = f"<{finding.tag}>" if finding.tag else finding.element
-        return Limit(f"ignores {what}", [finding.element], "elements")
+        return Limit(f"ignores {what}", [finding.element], "elements", finding.cause)
     return None
 
 
@@ -147,7 +156,8 @@ def unable_finding(engine: str, limits: Sequence[Limit], parser: str = "MJCF", a
     -------
     Finding
         ``"Drake cannot check this model: its MJCF parser ignores armature (joints: a, b)"``, with the hint
-        ``"without Drake: --engines mujoco,pinocchio"``.
+        ``"without Drake: --engines mujoco,pinocchio"``; its values name the catalogued causes the limits carry
+        (``causes``) and the quantities they change (``quantities``), on which the engine abstains.
     """
     by_limit: dict[tuple[str, str], list[str]] = {}
     for limit in limits:
@@ -158,11 +168,14 @@ def unable_finding(engine: str, limits: Sequence[Limit], parser: str = "MJCF", a
         shown = ", ".join(names[:2]) + (f" and {len(names) - 2} more" if len(names) > 2 else "")
         parts.append(f"{says} ({noun}: {shown})")
     others = [*required(), *(e for e in asked if e != engine)]
+    ids = tuple(dict.fromkeys(limit.cause for limit in limits if limit.cause))
+    quantities = tuple(q for q in QUANTITIES if any(q in cause(i).quantities for i in ids))
     return Finding(
         Kind.ENGINE_UNABLE,
         engine,
         "model",
         f"{label(engine)} cannot check this model: its {parser} parser " + "; ".join(parts),
+        {"causes": ids, "quantities": quantities} if ids else {},
         segments=tuple(name for names in by_limit.values() for name in names),
         hint=f"without {label(engine)}: --engines {','.join(others)}",
     )

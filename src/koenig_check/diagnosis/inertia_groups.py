@@ -54,11 +54,22 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
     if low <= 0 and high >= mujoco.mjNGROUP - 1:
         return []
     narrow = compiled(spec)
+    if narrow is None:
+        return []
+    as_file, seg_of = mujoco_segment_masses(narrow), segment_of_body(narrow)
+    groups, bodies = np.asarray(narrow.geom_group), [narrow.body(int(b)).name for b in narrow.geom_bodyid]
+    outside = [  # the geoms the file's range leaves out, with the body each is in
+        (narrow.geom(g).name or f"{bodies[g]}/geom{g}", bodies[g])
+        for g in range(narrow.ngeom)
+        if not low <= int(groups[g]) <= high
+    ]
+    del narrow  # one compiled model at a time (a mesh-heavy file's weigh on the suite's memory)
     spec.compiler.inertiagrouprange = [0, mujoco.mjNGROUP - 1]
     every = compiled(spec)
-    if narrow is None or every is None:
+    if every is None:
         return []
-    as_file, all_groups = mujoco_segment_masses(narrow), mujoco_segment_masses(every)
+    all_groups = mujoco_segment_masses(every)
+    del every
     pinocchio = pinocchio_segment_masses(pair)
     segments = [
         s
@@ -67,13 +78,7 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
     ]
     if not segments:
         return []
-    seg_of = segment_of_body(narrow)
-    groups = np.asarray(narrow.geom_group)
-    left_out = [
-        narrow.geom(g).name or f"{narrow.body(int(narrow.geom_bodyid[g])).name}/geom{g}"
-        for g in range(narrow.ngeom)
-        if not low <= int(groups[g]) <= high and seg_of.get(narrow.body(int(narrow.geom_bodyid[g])).name) in segments
-    ]
+    left_out = [name for name, body in outside if seg_of.get(body) in segments]
     ignores = cause(INERTIA_GROUPS).engine  # counts every geom
     return [
         Finding(

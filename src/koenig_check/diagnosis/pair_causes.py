@@ -239,14 +239,14 @@ def _mass_values(spec: mujoco.MjSpec, geoms: list[Any]) -> dict[str, float]:
     try:
         with warnings.catch_warnings():  # the compiler's warnings are the loader's findings already
             warnings.simplefilter("ignore")
-            base = spec.compile()
+            base = float(spec.compile().body_mass.sum())  # each compiled model let go once read (mesh-heavy files)
             for g in geoms:
                 g.mass = float("nan")  # unset: MuJoCo computes density × volume
-            unset = spec.compile()
+            unset = float(spec.compile().body_mass.sum())
     finally:
         for g, m in zip(geoms, saved, strict=True):
             g.mass = m
-    return {"mujoco": given, "pinocchio": float(given + unset.body_mass.sum() - base.body_mass.sum())}
+    return {"mujoco": given, "pinocchio": given + unset - base}
 
 
 def compiler_causes(pair: Any) -> list[Finding]:

@@ -62,14 +62,19 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
     if not visual or all(abs(m - pinocchio.get(s, m)) <= scale for s, m in loaded.items()):
         return []  # no geom Pinocchio reads as visual, or no mass differs: nothing to explain (and no compiling)
     as_file = compiled(spec)
+    if as_file is None:
+        return []
+    mujoco_mass, seg_of = mujoco_segment_masses(as_file), segment_of_body(as_file)
+    del as_file  # one compiled model at a time (a mesh-heavy file's weigh on the suite's memory)
     for geom in visual:
         geom.mass = 0.0  # an explicit mass overrides the density, for primitives and meshes alike
     spec.compiler.boundmass = max(float(spec.compiler.boundmass), _BOUND)
     spec.compiler.boundinertia = max(float(spec.compiler.boundinertia), _BOUND)
     without = compiled(spec)
-    if as_file is None or without is None:
+    if without is None:
         return []
-    mujoco_mass, without_mass = mujoco_segment_masses(as_file), mujoco_segment_masses(without)
+    without_mass = mujoco_segment_masses(without)
+    del without
     segments = [
         s
         for s, m in mujoco_mass.items()
@@ -77,7 +82,6 @@ def visual_geom_causes(pair: Any) -> list[Finding]:
     ]
     if not segments:
         return []
-    seg_of = segment_of_body(as_file)
     geoms = [
         g.name or f"{g.parent.name}/geom{list(g.parent.geoms).index(g)}"
         for g in visual

@@ -38,6 +38,11 @@ class Measurement:
     com : tuple of float
         The centre of mass of the bodies that move, in the world, at the reference configuration (empty: not
         measured).
+    spectrum : tuple of float
+        The eigenvalues of the whole M at the reference configuration (every degree of freedom, multi-dof joints
+        included), ascending: the same for one joint split into several that move the body alike (a URDF planar
+        joint as MuJoCo's three), different when the body moves in another plane or about another point (empty:
+        not measured).
     """
 
     joints: tuple[str, ...]
@@ -47,17 +52,18 @@ class Measurement:
     gravity_forces: Mapping[str, float] = field(default_factory=dict)
     armature: Mapping[str, float] = field(default_factory=dict)
     com: tuple[float, ...] = ()
+    spectrum: tuple[float, ...] = ()
 
 
-#: The quantity of a cause each measured field stands for.
-_FIELD_OF = {
-    "joints": "joints",
-    "mass": "mass",
-    "com": "com",
-    "inertia": "mass_matrix",
-    "kinematics": "mass_matrix",
-    "armature": "armature",
-    "gravity": "gravity",
+#: The measured fields each quantity of a cause stands for.
+_FIELDS_OF = {
+    "joints": ("joints",),
+    "mass": ("mass",),
+    "com": ("com",),
+    "inertia": ("mass_matrix",),
+    "kinematics": ("mass_matrix", "spectrum"),
+    "armature": ("armature",),
+    "gravity": ("gravity",),
 }
 
 
@@ -73,7 +79,7 @@ def differences(a: Measurement, b: Measurement, rtol: float) -> set[str]:
     Returns
     -------
     set of str
-        Among ``joints``, ``mass``, ``mass_matrix``, ``gravity``, ``armature``, ``com``.
+        Among ``joints``, ``mass``, ``mass_matrix``, ``gravity``, ``armature``, ``com``, ``spectrum``.
     """
     out = set()
     if a.joints != b.joints:
@@ -90,6 +96,15 @@ def differences(a: Measurement, b: Measurement, rtol: float) -> set[str]:
         out.add("gravity")
     if a.com and b.com and not np.allclose(a.com, b.com, rtol=rtol, atol=rtol * max(1.0, *map(abs, a.com))):
         out.add("com")
+    if (
+        a.spectrum
+        and b.spectrum
+        and (
+            len(a.spectrum) != len(b.spectrum)
+            or not np.allclose(a.spectrum, b.spectrum, rtol=0.0, atol=rtol * max(map(abs, (*a.spectrum, *b.spectrum))))
+        )
+    ):
+        out.add("spectrum")
     joints = set(a.armature) | set(b.armature)
     if any(not _close(a.armature.get(j, 0.0), b.armature.get(j, 0.0), rtol) for j in joints):
         out.add("armature")
@@ -107,7 +122,7 @@ def fields(quantities: tuple[str, ...]) -> set[str]:
     -------
     set of str
     """
-    return {_FIELD_OF[q] for q in quantities}
+    return {f for q in quantities for f in _FIELDS_OF[q]}
 
 
 def _differ(a: Mapping[str, float], b: Mapping[str, float], rtol: float) -> bool:

@@ -97,6 +97,27 @@ def planar_axes(path: str | Path) -> dict[str, tuple[float, ...]]:
     return out
 
 
+def links_without_inertial(path: str | Path) -> list[str]:
+    """The URDF's links that declare no ``<inertial>``, in file order (massless by the URDF convention).
+
+    PyBullet gives such a link 1 kg and a unit inertia, Newton mass from its collision shapes: each engine's traps
+    read this one list.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    list of str
+        Empty when the file cannot be read (the engines that read it say why).
+    """
+    robot = _readable_root(path)
+    if robot is None:
+        return []
+    return [link.get("name", "") for link in robot.findall("link") if link.find("inertial") is None]
+
+
 def _readable_root(path: str | Path) -> ET.Element | None:
     """The URDF document's root element, or ``None`` when the file cannot be read (the engines then say why)."""
     try:

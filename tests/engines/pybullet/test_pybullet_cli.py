@@ -5,38 +5,27 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from urdf_engine_cli import (  # noqa: F401 (the shared tests, collected here)
+    engines,
+    test_an_mjcf_fails_the_run_with_its_reason,
+    test_compare_gives_it_a_column,
+    test_dynamics_compares_its_mass_matrix,
+    test_the_api_runs_it_on_every_pose,
+)
 
 import koenig_check
-from koenig_check.cli import main
 from koenig_check.testing import assert_energy_parity
 
 pytest.importorskip("pybullet")
 
-ENGINES = ("mujoco", "pinocchio", "pybullet")
+ENGINE = "pybullet"
+ENGINES = engines(ENGINE)
 
 
-def test_compare_gives_pybullet_a_column(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    argv = ["compare", "serial7.urdf", "--poses", "3", "--formulas", "exact", "--engines", ",".join(ENGINES)]
-    assert main([*argv, "--out", str(tmp_path / "out")]) == 0
-    out = capsys.readouterr().out
-    assert out.startswith("Models: do MuJoCo, Pinocchio and PyBullet agree?") and "pybullet gap" in out
-
-
-def test_dynamics_compares_pybullets_mass_matrix(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["dynamics", "serial7.urdf", "--floating", "--poses", "2", "--engines", ",".join(ENGINES)]) == 0
-    assert "engines (mujoco vs pybullet)" in capsys.readouterr().out
-
-
-def test_an_mjcf_fails_the_run_with_pybullets_reason(capsys: pytest.CaptureFixture[str]) -> None:
-    argv = ["compare", "double_pendulum.xml", "--poses", "2", "--formulas", "exact", "--engines", ",".join(ENGINES)]
-    assert main(argv) == 1
-    err = capsys.readouterr().err
-    assert "PyBullet asked for (--engines) but it could not check the model: PyBullet reads URDF only" in err
-
-
-def test_the_api_runs_it_on_every_pose() -> None:
-    check = koenig_check.compare("gimbal.urdf", n_poses=3, formulas=["exact"], engines=ENGINES, floating=True)
-    assert check.ok and check.comparisons[0].engines == ENGINES
+@pytest.fixture
+def engine_name() -> str:
+    """The engine the shared tests of :mod:`urdf_engine_cli` check."""
+    return ENGINE
 
 
 def test_the_pytest_helper_requires_it_to_agree(tmp_path: Path) -> None:

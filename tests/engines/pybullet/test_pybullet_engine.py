@@ -12,41 +12,23 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from urdf_engine_checks import against_mujoco_and_pinocchio, hand_mass_matrix, precision, two_link_arm
+from urdf_engine_checks import CASE_IDS, CASES, ELBOWS, check_agrees, check_two_link_arm, precision
 
 from koenig_check.engines import load_model
 
 pytest.importorskip("pybullet")
 
 ENGINE = "pybullet"
-#: The project's URDF models, with a fixed base and a floating one (free_body only floats).
-CASES = [
-    (m, f)
-    for m in ("double_pendulum.urdf", "gimbal.urdf", "serial7.urdf", "armature_chain.urdf", "free_body.urdf")
-    for f in (False, True)
-    if f or m != "free_body.urdf"
-]
 
 
-@pytest.mark.parametrize("elbow", [0.0, 0.7, -1.9, np.pi])
+@pytest.mark.parametrize("elbow", ELBOWS)
 def test_two_link_arm_mass_matrix_by_hand(tmp_path: Path, elbow: float) -> None:
-    pair = load_model(str(two_link_arm(tmp_path)))
-    engine = pair.attach(ENGINE)
-    assert engine is not None, pair.refusal(ENGINE)
-    qpos = np.zeros((1, pair.mujoco.nq))
-    qpos[0, pair.mujoco.model.joint("elbow").qposadr[0]] = elbow
-    qpos[0, pair.mujoco.model.joint("shoulder").qposadr[0]] = 0.4  # M does not depend on it
-    by_hand = hand_mass_matrix(elbow)
-    order = [pair.mujoco.model.joint(n).dofadr[0] for n in ("shoulder", "elbow")]
-    M = engine.mass_matrix(qpos)[0][np.ix_(order, order)]
-    assert np.abs(M - by_hand).max() <= precision(ENGINE) * np.abs(by_hand).max()
+    check_two_link_arm(tmp_path, ENGINE, elbow)
 
 
-@pytest.mark.parametrize(("model", "floating"), CASES, ids=[f"{m}-{'floating' if f else 'fixed'}" for m, f in CASES])
+@pytest.mark.parametrize(("model", "floating"), CASES, ids=CASE_IDS)
 def test_agrees_with_mujoco_and_pinocchio(model: str, floating: bool) -> None:
-    differences = against_mujoco_and_pinocchio(load_model(model, floating=floating), ENGINE)
-    worst = max(differences, key=differences.get)
-    assert differences[worst] <= precision(ENGINE), f"{worst}: {differences[worst]:.3g}"
+    check_agrees(model, floating, ENGINE)
 
 
 def test_its_printing_does_not_reach_the_output(capfd: pytest.CaptureFixture[str]) -> None:

@@ -7,6 +7,7 @@ SPEC = EngineSpec(
     name="drake",
     label="Drake",
     module="pydrake",
+    distribution="drake",  # pip's name (the module is pydrake): the catalogue's versions are read from it
     extra="drake",
     attach="koenig_check.engines.drake.attach:attach",
     load_alone="koenig_check.engines.drake.building:load_drake_engine",

@@ -36,6 +36,7 @@ from koenig_check.engines.drake.failures import drake_failures_raised
 from koenig_check.engines.drake.gravity import DrakeGravity
 from koenig_check.engines.drake.state_map import DrakeStateMap
 from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.joint_pairs import dofs_by_kind, per_dof
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
 
@@ -292,20 +293,12 @@ class DrakeEngine(DrakeGravity, Engine):
         -------
         ndarray, shape (nv,)
         """
-        out = np.zeros(self.nv)
-        for p in self.state_map.pairs:
-            if p.kind in ("hinge", "slide"):
-                out[p.vadr] = self._reflected[p.dv]
-        return out
+        return per_dof(self.state_map.pairs, self.nv, lambda p: self._reflected[p.dv])
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Drake joint type (``revolute``, ``quaternion_floating``, ...)."""
-        width = {"free": 6, "ball": 3}
         kinds = {"free": "quaternion_floating", "ball": "ball_rpy", "hinge": "revolute", "slide": "prismatic"}
-        groups: dict[str, list[int]] = {}
-        for p in self.state_map.pairs:
-            groups.setdefault(kinds[p.kind], []).extend(range(p.vadr, p.vadr + width.get(p.kind, 1)))
-        return {k: np.array(v, dtype=int) for k, v in groups.items()}
+        return dofs_by_kind(self.state_map.pairs, lambda p: kinds[p.kind])
 
 
 def _anchor_in_body(joint: Any) -> np.ndarray:

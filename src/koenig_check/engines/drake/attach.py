@@ -49,15 +49,18 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
 
 
 def _file_causes(model: Any) -> list[Finding]:
-    """The constructs of an MJCF file that Drake's parser skips too: ``<frame>`` (measured on 1.51)."""
+    """The constructs of an MJCF file that Drake's parser skips: ``<frame>``, inline meshes (measured on 1.51)."""
     from koenig_check.engines.canonical import segment_of_body
+    from koenig_check.engines.drake.inline_meshes import inline_mesh_causes
     from koenig_check.engines.parser_traps import frame_causes
     from koenig_check.modelfile.mjcf import read_mjcf
 
     if model.source.format != "mjcf":
         return []
-    root = read_mjcf(Path(str(model.source.path)))
-    return [] if root is None else frame_causes(root, segment_of_body(model.mujoco.model), engine="drake")
+    path = Path(str(model.source.path))
+    root = read_mjcf(path)
+    frames = [] if root is None else frame_causes(root, segment_of_body(model.mujoco.model), engine="drake")
+    return frames + inline_mesh_causes(path, model.mujoco.model)
 
 
 def armature_findings(model: Any, drake: Any) -> list[Finding]:
@@ -94,7 +97,7 @@ def armature_findings(model: Any, drake: Any) -> list[Finding]:
                 affects_energy=True,
                 root_cause=True,
                 segments=tuple(extension),
-                cause="drake.any.reflected-inertia",
+                cause="drake.urdf.reflected-inertia" if model.source.format == "urdf" else "",
             )
         )
     if not joints or model.source.format != "mjcf":

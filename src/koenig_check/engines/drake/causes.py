@@ -67,7 +67,7 @@ CAUSES: tuple[Cause, ...] = (
         loses_joints=True,
     ),
     _drake(
-        "any.reflected-inertia",
+        "urdf.reflected-inertia",  # MJCF: a driven joint's armature is read as written (tests/engines/drake)
         "<transmission> actuator with drake:rotor_inertia and drake:gear_ratio",
         "adds the reflected inertia rotor inertia × gear ratio² to the joint",
         ("armature",),
@@ -111,6 +111,16 @@ CAUSES: tuple[Cause, ...] = (
         "geom ignored by Drake's MJCF parser",
         "write the geom with pos and size (or give the body an <inertial>)",
         "ignored_geom.xml",
+    ),
+    _drake(
+        "mjcf.inline-mesh",
+        "<mesh> given by its vertices in the file (no file=), used by a <geom>",
+        "ignores the mesh and the geoms that use it (with warnings): their mass is missing",
+        ("mass", "com", "inertia"),
+        "mesh given by vertices in the file ignored by Drake's MJCF parser",
+        "write the mesh to a file (OBJ) and give the <mesh> its file=, or give the body an <inertial>",
+        "inline_mesh.xml",
+        pinocchio="counts a mesh-typed geom as 1 kg with unit inertia (pinocchio.mjcf.mesh-mass)",
     ),
     _drake(
         "mjcf.flag-gravity-disable",
@@ -183,4 +193,5 @@ def measure(path: Path) -> Measurement:
         gravity_forces={j: float(applied[i]) for j, i in one_dof.items()},
         armature=armature,
         com=tuple(float(c) for c in (weighted / mass if mass > 0 else np.zeros(3))),
+        spectrum=tuple(float(x) for x in np.linalg.eigvalsh(np.asarray(full, dtype=float))),
     )

@@ -37,8 +37,8 @@ from scipy.spatial.transform import Rotation
 
 from koenig_check.engines.canonical import VelocityMapped, mujoco_joint_names
 from koenig_check.engines.drake.loader import DrakeLoadError
+from koenig_check.engines.joint_pairs import MJ_KIND, mismatch_message
 
-_MJ_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 _COMPATIBLE = {
     "free": {"quaternion_floating"},
     "ball": {"ball_rpy"},
@@ -127,7 +127,7 @@ def match_drake_joints(mj_model: mujoco.MjModel, plant: Any, path: str) -> list[
         part = _planar_part(name, by_name) if joint is None else None
         if part is not None:  # one coordinate of a URDF planar joint: Drake's (x, y, θ) are MuJoCo's
             joint, k_part = part
-            kind = _MJ_KIND[int(mj_model.jnt_type[k])]
+            kind = MJ_KIND[int(mj_model.jnt_type[k])]
             if kind != _PLANAR_PARTS[k_part][1] or mj_model.body_jntnum[body_id] != 3:
                 mismatch.append(f"{name}: mujoco {kind} vs drake planar")
                 continue
@@ -142,7 +142,7 @@ def match_drake_joints(mj_model: mujoco.MjModel, plant: Any, path: str) -> list[
             only_mj.append(name)
             continue
         used.add(joint.name())
-        kind = _MJ_KIND[int(mj_model.jnt_type[k])]
+        kind = MJ_KIND[int(mj_model.jnt_type[k])]
         if joint.type_name() not in _COMPATIBLE[kind]:
             mismatch.append(f"{name}: mujoco {kind} vs drake {joint.type_name()}")
             continue
@@ -159,15 +159,9 @@ def match_drake_joints(mj_model: mujoco.MjModel, plant: Any, path: str) -> list[
             )
         )
     only_drake = [j.name() for j in drake_joints if j.name() not in used]
-    if only_mj or only_drake or mismatch:
-        parts = []
-        if only_mj:
-            parts.append(f"only in MuJoCo: {', '.join(only_mj)}")
-        if only_drake:
-            parts.append(f"only in Drake: {', '.join(only_drake)}")
-        if mismatch:
-            parts.append(f"incompatible types: {', '.join(mismatch)}")
-        raise DrakeLoadError(f"{path}: joints do not match between MuJoCo and Drake ({'; '.join(parts)})")
+    failure = mismatch_message(path, "Drake", only_mj, only_drake, mismatch)
+    if failure is not None:
+        raise DrakeLoadError(failure)
     return pairs
 
 

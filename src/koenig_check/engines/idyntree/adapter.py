@@ -26,10 +26,12 @@ from typing import Any
 
 import numpy as np
 
-from koenig_check.engines.base import Engine, as_batches, symmetrize
+from koenig_check.engines.base import Engine, as_batches
 from koenig_check.engines.energy import EnergyParts
 from koenig_check.engines.idyntree.state_map import IDynTreeStateMap, joint_kind
-from koenig_check.findings import Finding, Kind
+from koenig_check.engines.joint_pairs import dofs_by_kind
+from koenig_check.engines.link_groups import group_links
+from koenig_check.findings import Finding
 from koenig_check.segments import SegmentStates
 
 
@@ -83,49 +85,25 @@ class IDynTreeEngine(Engine):
         traversal = idt.Traversal()
         model.computeFullTreeTraversal(traversal, base)
         name_of = {p.link: p.name for p in self.state_map.pairs}
-        members: dict[int, list[int]] = {}
-        for link in range(model.getNrOfLinks()):
-            head = link
+
+        def carrier(head: int) -> int:  # the head link of the segment a link moves with (-1: the fixed base)
             while head not in name_of:
                 joint = traversal.getParentJointFromLinkIndex(head)
                 if joint is None or joint_kind(joint) != "fixed":  # the fixed base, or a joint MuJoCo lacks
-                    head = -1
-                    break
+                    return -1
                 head = traversal.getParentLinkFromLinkIndex(head).getIndex()
-            if head >= 0 and (self._link_mass[link] > 0 or self._link_inertia[link].any()):
-                members.setdefault(head, []).append(link)  # a massless link's inertia counts
-        members = {h: links for h, links in members.items() if self._link_mass[links].sum() > 0}
-        order = {p.name: k for k, p in enumerate(self.state_map.pairs)}
-        heads = sorted(members, key=lambda h: order[name_of[h]])
-        massless = [name_of[h] for h in name_of if h not in members]
-        if massless:
-            self.findings.append(
-                Finding(
-                    Kind.SEGMENTS,
-                    "idyntree",
-                    "segments " + ", ".join(massless),
-                    "massless: left out (no kinetic energy)",
-                )
-            )
-        self.segment_names = tuple(name_of[h] for h in heads)
-        self._heads = np.array(heads, dtype=int)
-        self._members = [np.array(members[h], dtype=int) for h in heads]
+            return head
+
+        weighs = (self._link_mass > 0) | self._link_inertia.any(axis=(1, 2))
+        order = [p.name for p in self.state_map.pairs]
+        groups = group_links([carrier(k) for k in range(model.getNrOfLinks())], weighs, self._link_mass, name_of, order)
+        self.findings.extend(groups.findings(self.engine))
+        self.segment_names, self._groups = groups.names, groups
+        self._heads, self._members = groups.heads, groups.members
         ref = self._read(qpos0[None], np.zeros((1, self.nv)))
-        mass, inertia = [], []
-        for h, rows in zip(self._heads, self._members, strict=True):
-            m = self._link_mass[rows]
-            c = ref["com"][0, rows]
-            com = (m[:, None] * c).sum(0) / m.sum()
-            total = np.zeros((3, 3))
-            for k, link in enumerate(rows):
-                R = ref["R"][0, link]
-                d = c[k] - com
-                total += R @ self._link_inertia[link] @ R.T + m[k] * (d @ d * np.eye(3) - np.outer(d, d))
-            R_h = ref["R"][0, h]
-            mass.append(m.sum())
-            inertia.append(R_h.T @ total @ R_h)
-        self._mass = np.array(mass, dtype=float)
-        self._inertia = symmetrize(np.array(inertia, dtype=float).reshape(-1, 3, 3))
+        R = ref["R"][0]
+        inertia = R @ self._link_inertia @ np.swapaxes(R, 1, 2)
+        self._mass, self._inertia = groups.lumped(self._link_mass, ref["com"][0], inertia, R)
         self._ref = self._segments(ref)
 
     # -------------------------------------------------------------- reading iDynTree
@@ -151,13 +129,10 @@ class IDynTreeEngine(Engine):
 
     def _segments(self, links: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         """Segment COM, COM velocity, rotation, angular velocity, pole and its velocity, per pose."""
-        m = self._link_mass
-        com = np.stack([(m[r, None] * links["com"][:, r]).sum(1) / m[r].sum() for r in self._members], axis=1)
-        v = np.stack([(m[r, None] * links["v"][:, r]).sum(1) / m[r].sum() for r in self._members], axis=1)
-        h = self._heads
+        m, h = self._link_mass, self._heads
         return {
-            "com": com,
-            "v_com": v,
+            "com": self._groups.mass_average(m, links["com"]),
+            "v_com": self._groups.mass_average(m, links["v"]),
             "R": links["R"][:, h],
             "omega": links["omega"][:, h],
             "pole": links["origin"][:, h],
@@ -242,7 +217,4 @@ class IDynTreeEngine(Engine):
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by iDynTree joint type (``floating base``, ``revolute``, ...)."""
         words = {"free": "floating base", "hinge": "revolute", "slide": "prismatic"}
-        groups: dict[str, list[int]] = {}
-        for p in self.state_map.pairs:
-            groups.setdefault(words[p.kind], []).extend(range(p.vadr, p.vadr + (6 if p.kind == "free" else 1)))
-        return {k: np.array(v, dtype=int) for k, v in groups.items()}
+        return dofs_by_kind(self.state_map.pairs, lambda p: words[p.kind])

@@ -19,42 +19,13 @@ acceleration is ``T q̈`` plus ``ω × (ω × R d)`` (:meth:`IDynTreeStateMap.ac
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import mujoco
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from koenig_check.engines.canonical import VelocityMapped, mujoco_joint_names
+from koenig_check.engines.canonical import VelocityMapped
 from koenig_check.engines.idyntree.loader import IDynTreeLoadError
-
-_MJ_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
-
-
-@dataclass(frozen=True)
-class IDynTreeJointPair:
-    """One MuJoCo joint and iDynTree's joint (or floating base) it maps to.
-
-    Parameters
-    ----------
-    name : str
-        Canonical (MuJoCo) joint name.
-    kind : str
-        ``"free"``, ``"hinge"`` or ``"slide"``.
-    link : int
-        The iDynTree link it moves (the base link for the free joint).
-    qadr, vadr : int
-        Canonical addresses.
-    dof : int
-        iDynTree's DOF (-1 for the base).
-    """
-
-    name: str
-    kind: str
-    link: int
-    qadr: int
-    vadr: int
-    dof: int
+from koenig_check.engines.joint_pairs import EngineJoint, LinkJointPair, pair_by_name
 
 
 def joint_kind(joint: object) -> str:
@@ -66,9 +37,7 @@ def joint_kind(joint: object) -> str:
     return "fixed" if joint.isFixedJoint() else "spherical"  # type: ignore[attr-defined]
 
 
-def pair_joints(
-    mj_model: mujoco.MjModel, model: object, path: str, base: int, floating: bool
-) -> list[IDynTreeJointPair]:
+def pair_joints(mj_model: mujoco.MjModel, model: object, path: str, base: int, floating: bool) -> list[LinkJointPair]:
     """Pair every MuJoCo joint with iDynTree's joint of the same name (the free root with the floating base).
 
     Parameters
@@ -82,7 +51,7 @@ def pair_joints(
 
     Returns
     -------
-    list of IDynTreeJointPair
+    list of LinkJointPair
 
     Raises
     ------
@@ -93,37 +62,18 @@ def pair_joints(
     for j in range(model.getNrOfJoints()):  # type: ignore[attr-defined]
         joint = model.getJoint(j)  # type: ignore[attr-defined]
         if joint.getNrOfDOFs() > 0:
-            joints[model.getJointName(j)] = joint  # type: ignore[attr-defined]
-    used: set[str] = set()
-    pairs, only_mj, mismatch = [], [], []
-    for j, name in enumerate(mujoco_joint_names(mj_model)):
-        kind = _MJ_KIND[int(mj_model.jnt_type[j])]
-        qadr, vadr = int(mj_model.jnt_qposadr[j]), int(mj_model.jnt_dofadr[j])
-        if kind == "free" and floating and mj_model.body_parentid[mj_model.jnt_bodyid[j]] == 0:
-            pairs.append(IDynTreeJointPair(name, kind, base, qadr, vadr, -1))
-            continue
-        joint = joints.get(name)
-        if joint is None:
-            only_mj.append(name)
-            continue
-        used.add(name)
-        if joint_kind(joint) != kind:
-            mismatch.append(f"{name}: mujoco {kind} vs idyntree {joint_kind(joint)}")
-            continue
-        pairs.append(
-            IDynTreeJointPair(name, kind, int(joint.getSecondAttachedLink()), qadr, vadr, int(joint.getDOFsOffset()))
-        )
-    only_idt = [n for n in joints if n not in used]
-    if only_mj or only_idt or mismatch:
-        parts = []
-        if only_mj:
-            parts.append(f"only in MuJoCo: {', '.join(only_mj)}")
-        if only_idt:
-            parts.append(f"only in iDynTree: {', '.join(only_idt)}")
-        if mismatch:
-            parts.append(f"incompatible types: {', '.join(mismatch)}")
-        raise IDynTreeLoadError(f"{path}: joints do not match between MuJoCo and iDynTree ({'; '.join(parts)})")
-    return pairs
+            kind = joint_kind(joint)
+            link, dof = int(joint.getSecondAttachedLink()), int(joint.getDOFsOffset())
+            joints[model.getJointName(j)] = EngineJoint(kind, kind, link, dof)  # type: ignore[attr-defined]
+
+    def floating_base(j: int) -> int | None:
+        return base if floating and mj_model.body_parentid[mj_model.jnt_bodyid[j]] == 0 else None
+
+    pairing = pair_by_name(mj_model, joints, "idyntree", floating_base)
+    failure = pairing.failure(path, "iDynTree")
+    if failure is not None:
+        raise IDynTreeLoadError(failure)
+    return pairing.pairs
 
 
 class IDynTreeStateMap(VelocityMapped):
@@ -131,7 +81,7 @@ class IDynTreeStateMap(VelocityMapped):
 
     Parameters
     ----------
-    pairs : list of IDynTreeJointPair
+    pairs : list of LinkJointPair
     n_dofs : int
         iDynTree's joint DOFs.
     nq, nv : int
@@ -144,7 +94,7 @@ class IDynTreeStateMap(VelocityMapped):
 
     def __init__(
         self,
-        pairs: list[IDynTreeJointPair],
+        pairs: list[LinkJointPair],
         n_dofs: int,
         nq: int,
         nv: int,

@@ -29,7 +29,7 @@ import numpy as np
 
 from koenig_check.engines.base import Engine, as_batches, check_points, rows, states_point_velocities, symmetrize
 from koenig_check.engines.canonical import mujoco_joint_names
-from koenig_check.engines.mujoco.dynamics import MujocoDynamics, energy_model, inverse_dynamics_model
+from koenig_check.engines.mujoco.dynamics import MujocoDynamics
 from koenig_check.engines.mujoco.gravity import MujocoGravity
 from koenig_check.engines.planes import (
     entry_index,
@@ -80,8 +80,6 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
         self.nq, self.nv = int(model.nq), int(model.nv)
         self.joint_names = tuple(mujoco_joint_names(model))
         self._data = mujoco.MjData(model)
-        self._m_energy = energy_model(model)
-        self._m_dyn = inverse_dynamics_model(model)
         self._build_segments()
         for body, finding in body_findings or []:
             bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body)
@@ -200,7 +198,6 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
         xpos, xmat = np.empty((P, nb * 3)), np.empty((P, nb * 9))
         cvel, sub = np.empty((P, nb * 6)), np.empty((P, nb * 3))
         rigid = np.empty(P)
-        m_energy = self._m_energy
         kinematics, com_pos, com_vel = mujoco.mj_kinematics, mujoco.mj_comPos, mujoco.mj_comVel
         make_m, energy_vel = mujoco.mj_makeM, mujoco.mj_energyVel
         # MjData's arrays are views of its own buffers: taken once (flat), each attribute access would build a new view.
@@ -214,8 +211,8 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
             com_vel(m, d)
             xpos[p], xmat[p], cvel[p], sub[p] = d_xpos, d_xmat, d_cvel, d_sub
             if energies:
-                make_m(m_energy, d)
-                energy_vel(m_energy, d)
+                make_m(m, d)
+                energy_vel(m, d)
                 rigid[p] = d_energy[1]
         index = self._index
         out = {name: gather_planes(raw, index[name]) for name, raw in zip(index, (xpos, xmat, cvel, sub), strict=True)}

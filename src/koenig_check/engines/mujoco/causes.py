@@ -72,4 +72,5 @@ def measure(path: Path) -> Measurement:
         gravity_forces={j: float(d.qfrc_bias[i]) for j, i in one_dof.items()},  # q̇ = 0: g(q0)
         armature={j: float(m.dof_armature[i]) for j, i in one_dof.items() if m.dof_armature[i]},
         com=tuple(float(c) for c in com),
+        spectrum=tuple(float(x) for x in np.linalg.eigvalsh(np.asarray(full, dtype=float))),
     )

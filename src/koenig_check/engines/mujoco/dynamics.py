@@ -1,15 +1,16 @@
 """MuJoCo's dynamics: reported kinetic energy, mass matrix, inverse dynamics and their armature parts.
 
-What MuJoCo 4.0 includes (verified, see ``self_consistency``): ``mj_energyVel`` (with ``mjENBL_ENERGY``, after
-``mj_makeM``) is ``½ q̇ᵀ M q̇`` where ``M`` (``mj_fullM``) carries ``dof_armature`` on its diagonal, so the
-reported energy includes the armature; ``mj_rne`` excludes the armature, ``mj_inverse`` includes it.  Inverse
-dynamics here is ``mj_inverse`` on a copy with gravity zero and constraints, springs, dampers and fluid forces
-disabled.
+What MuJoCo 4.0 includes (verified, see ``self_consistency``): ``mj_energyVel`` (after ``mj_makeM``; it reads no
+flag, ``mjENBL_ENERGY`` only makes ``mj_forward`` call it) is ``½ q̇ᵀ M q̇`` where ``M`` (``mj_fullM``) carries
+``dof_armature`` on its diagonal, so the reported energy includes the armature; ``mj_rne`` excludes the armature,
+``mj_inverse`` includes it.  Inverse dynamics here is ``mj_inverse`` with gravity zero and constraints, springs,
+dampers and fluid forces disabled for the call (:func:`inverse_dynamics_options`).
 """
 
 from __future__ import annotations
 
-import copy
+import contextlib
+from collections.abc import Iterator
 
 import mujoco
 import numpy as np
@@ -18,40 +19,33 @@ from koenig_check.engines.base import as_batches
 from koenig_check.engines.energy import EnergyParts
 
 
-def energy_model(model: mujoco.MjModel) -> mujoco.MjModel:
-    """A copy of the model whose ``mj_energyVel`` evaluates the kinetic energy (``mjENBL_ENERGY`` on).
+@contextlib.contextmanager
+def inverse_dynamics_options(model: mujoco.MjModel) -> Iterator[mujoco.MjModel]:
+    """The model with gravity, fluid forces, constraints, springs and dampers off, for the ``with`` block only.
+
+    The options are set on the model itself and restored, not on a copy: a copy of a model with large meshes
+    weighed on the suite's memory (dm_control's fruitfly: 65 MB a copy).
 
     Parameters
     ----------
     model : mujoco.MjModel
 
-    Returns
-    -------
+    Yields
+    ------
     mujoco.MjModel
+        ``model`` itself.
     """
-    out = copy.copy(model)
-    out.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
-    return out
-
-
-def inverse_dynamics_model(model: mujoco.MjModel) -> mujoco.MjModel:
-    """A copy of the model with gravity, fluid forces, constraints, springs and dampers off.
-
-    Parameters
-    ----------
-    model : mujoco.MjModel
-
-    Returns
-    -------
-    mujoco.MjModel
-    """
-    out = copy.copy(model)
-    out.opt.gravity[:] = 0.0
-    out.opt.density = 0.0
-    out.opt.viscosity = 0.0
-    off = mujoco.mjtDisableBit
-    out.opt.disableflags |= int(off.mjDSBL_CONSTRAINT | off.mjDSBL_SPRING | off.mjDSBL_DAMPER)
-    return out
+    opt = model.opt
+    saved = (opt.gravity.copy(), float(opt.density), float(opt.viscosity), int(opt.disableflags))
+    try:
+        opt.gravity[:] = 0.0
+        opt.density = 0.0
+        opt.viscosity = 0.0
+        off = mujoco.mjtDisableBit
+        opt.disableflags |= int(off.mjDSBL_CONSTRAINT | off.mjDSBL_SPRING | off.mjDSBL_DAMPER)
+        yield model
+    finally:
+        opt.gravity[:], opt.density, opt.viscosity, opt.disableflags = saved
 
 
 class MujocoDynamics:
@@ -69,12 +63,10 @@ class MujocoDynamics:
     nq: int
     nv: int
     _data: mujoco.MjData
-    _m_energy: mujoco.MjModel  # energy_model(model)
-    _m_dyn: mujoco.MjModel  # inverse_dynamics_model(model)
 
     def _energy(self, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
         """Return ``mj_energyVel`` (``½ q̇ᵀ M q̇``, armature included) pose by pose."""
-        model = self._m_energy
+        model = self.model
         d = mujoco.MjData(model)
         reported = np.empty(qpos.shape[0])
         for p in range(qpos.shape[0]):
@@ -119,15 +111,15 @@ class MujocoDynamics:
     def inverse_dynamics(self, qpos: np.ndarray, qvel: np.ndarray, qacc: np.ndarray) -> np.ndarray:
         """Return ``mj_inverse`` forces with gravity, constraints and passive forces off."""
         qpos, qvel, qacc = as_batches(qpos, self.nq, (qvel, "qvel"), (qacc, "qacc"), nv=self.nv)
-        m = self._m_dyn
-        d = mujoco.MjData(m)
         out = np.empty_like(qvel)
-        for p in range(qpos.shape[0]):
-            d.qpos[:] = qpos[p]
-            d.qvel[:] = qvel[p]
-            d.qacc[:] = qacc[p]
-            mujoco.mj_inverse(m, d)
-            out[p] = d.qfrc_inverse
+        with inverse_dynamics_options(self.model) as m:
+            d = mujoco.MjData(m)
+            for p in range(qpos.shape[0]):
+                d.qpos[:] = qpos[p]
+                d.qvel[:] = qvel[p]
+                d.qacc[:] = qacc[p]
+                mujoco.mj_inverse(m, d)
+                out[p] = d.qfrc_inverse
         return out
 
     def armature_per_dof(self) -> np.ndarray:

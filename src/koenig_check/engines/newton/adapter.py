@@ -30,6 +30,7 @@ import numpy as np
 
 from koenig_check.engines.base import Engine, as_batches, symmetrize
 from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.joint_pairs import dofs_by_kind, per_dof
 from koenig_check.engines.newton.state_map import FIXED, NewtonStateMap
 from koenig_check.findings import Finding, Kind
 from koenig_check.segments import SegmentStates
@@ -325,17 +326,9 @@ class NewtonEngine(Engine):
         -------
         ndarray, shape (nv,)
         """
-        out = np.zeros(self.nv)
-        for p in self.state_map.pairs:
-            if p.kind in ("hinge", "slide"):
-                out[p.vadr] = self._arm[p.nv]
-        return out
+        return per_dof(self.state_map.pairs, self.nv, lambda p: self._arm[p.nv])
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by Newton joint type (``revolute``, ``free``, ...)."""
-        width = {"free": 6, "ball": 3}
         kinds = {"free": "free", "ball": "ball", "hinge": "revolute", "slide": "prismatic"}
-        groups: dict[str, list[int]] = {}
-        for p in self.state_map.pairs:
-            groups.setdefault(kinds[p.kind], []).extend(range(p.vadr, p.vadr + width.get(p.kind, 1)))
-        return {k: np.array(v, dtype=int) for k, v in groups.items()}
+        return dofs_by_kind(self.state_map.pairs, lambda p: kinds[p.kind])

@@ -35,12 +35,15 @@ def load_newton_engine(source: Any, mj_model: Any, floating: bool = False, cause
         Newton refuses the file, or its joints cannot be paired with MuJoCo's.
     """
     from koenig_check.engines.newton.adapter import NewtonEngine
-    from koenig_check.engines.newton.loader import build, warning_findings
+    from koenig_check.engines.newton.loader import build, finalized, parse, warning_findings
     from koenig_check.engines.newton.state_map import FREE, NewtonStateMap, match_joints
 
     path = Path(source.path)
-    load = partial(build, path, source.format, floating, tuple(getattr(source, "package_dirs", ())))
-    model, warned = load()
+    package_dirs = tuple(getattr(source, "package_dirs", ()))
+    load = partial(build, path, source.format, floating, package_dirs)
+    robot, parsed = parse(path, source.format, floating, package_dirs)  # the file read once, with its meshes
+    model, done = finalized(robot, path)
+    warned = list(dict.fromkeys(parsed + done))
     pairs = match_joints(mj_model, model, str(path), source.format == "mjcf")
     jtype, child = model.joint_type.numpy(), model.joint_child.numpy()
     com = model.body_com.numpy()
@@ -61,8 +64,36 @@ def load_newton_engine(source: Any, mj_model: Any, floating: bool = False, cause
 
         segment_of_joint = _segments_of_joints(mj_model)
         engine.findings += anchor_findings(mj_model, model, pairs, segment_of_joint)
-        engine.findings += attach_causes(path, source.format, load, model, engine.segment_of_body())
+        variant = _Variants(robot, path, load)
+        engine.findings += attach_causes(path, source.format, variant, model, engine.segment_of_body())
     return engine
+
+
+class _Variants:
+    """The file in Newton with other ``finalize`` or parser options, from the builder already parsed where they allow.
+
+    ``finalize`` options reuse the builder (``finalize`` leaves it as it is); ``collapse_fixed_joints=True``, which
+    Newton's parsers apply to the builder at the end, is applied to it in place, its last use; another parser option
+    (``floating=False``), or any load after the collapse, parses the file again with ``load``.
+    """
+
+    def __init__(self, robot: Any, path: Path, load: Any) -> None:
+        self.robot: Any = robot
+        self.path, self.load = path, load
+
+    def __call__(
+        self, finalize: dict[str, Any] | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[Any, list[str]]:
+        from koenig_check.engines.newton.loader import finalized
+
+        rest = dict(options or {})
+        collapse = bool(rest.pop("collapse_fixed_joints", False))
+        if rest or self.robot is None:
+            return self.load(finalize=finalize, options=options)
+        robot = self.robot
+        if collapse:
+            self.robot = None
+        return finalized(robot, self.path, finalize=finalize, collapse=collapse)
 
 
 def _segments_of_joints(mj_model: Any) -> dict[str, str]:

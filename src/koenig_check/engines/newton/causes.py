@@ -33,6 +33,10 @@ def _as_written(*engines: tuple[str, str]) -> tuple[Reading, ...]:
     return tuple(Reading(e, "as written", measured=v) for e, v in engines)
 
 
+def _newton(reads: str, how: str) -> Reading:
+    return Reading("newton", reads, how, measured=MEASURED)
+
+
 _OTHERS = _as_written(("mujoco", _MUJOCO), ("pinocchio", _PINOCCHIO), ("drake", _DRAKE))
 
 CAUSES: tuple[Cause, ...] = (
@@ -42,12 +46,10 @@ CAUSES: tuple[Cause, ...] = (
         formats=("mjcf", "urdf"),
         readings=(
             *_OTHERS,
-            Reading(
-                "newton",
+            _newton(
                 "differently",
                 "merges each welded body with its central inertia shifted to the fixed joint's origin instead of "
                 "the merged COM, and the parent's never shifted (mass and COM right, inertia wrong)",
-                measured=MEASURED,
             ),
         ),
         quantities=("inertia",),
@@ -62,9 +64,7 @@ CAUSES: tuple[Cause, ...] = (
         readings=(
             Reading("mujoco", "differently", "mass from the geoms (MuJoCo's URDF compiler)", measured=_MUJOCO),
             *_as_written(("pinocchio", _PINOCCHIO), ("drake", _DRAKE)),
-            Reading(
-                "newton", "differently", "mass and inertia from the collision shapes, density 1000", measured=MEASURED
-            ),
+            _newton("differently", "mass and inertia from the collision shapes, density 1000"),
         ),
         quantities=("mass", "inertia"),
         brief="a link without <inertial> given mass from its collision shapes by Newton",
@@ -77,12 +77,10 @@ CAUSES: tuple[Cause, ...] = (
         formats=("mjcf", "urdf"),
         readings=(
             *_OTHERS,
-            Reading(
-                "newton",
+            _newton(
                 "differently",
                 "finalize() replaces a zero inertia by 1.0001e-6 kg·m² per axis whatever the body's size, and "
                 "balances triangle-inequality violations (MuJoCo refuses those)",
-                measured=MEASURED,
             ),
         ),
         quantities=("inertia",),
@@ -97,12 +95,7 @@ CAUSES: tuple[Cause, ...] = (
         readings=(
             *_as_written(("mujoco", _MUJOCO), ("pinocchio", _PINOCCHIO)),
             Reading("drake", "refuses", "a 0-dof joint cannot mimic a joint", measured=_DRAKE),
-            Reading(
-                "newton",
-                "refuses",
-                "Mimic followers and references only support PRISMATIC, REVOLUTE, D6 joints",
-                measured=MEASURED,
-            ),
+            _newton("refuses", "Mimic followers and references only support PRISMATIC, REVOLUTE, D6 joints"),
         ),
         quantities=("joints",),
         brief="Newton refuses a <mimic> inside a fixed joint",
@@ -113,7 +106,7 @@ CAUSES: tuple[Cause, ...] = (
         id=SOLVER_PGS,
         construct='<option solver="PGS">',
         formats=("mjcf",),
-        readings=(*_OTHERS, Reading("newton", "refuses", "invalid literal for int(): 'pgs'", measured=MEASURED)),
+        readings=(*_OTHERS, _newton("refuses", "invalid literal for int(): 'pgs'")),
         quantities=("joints",),
         brief='Newton refuses <option solver="PGS">',
         hint='remove solver="PGS" from <option> for Newton (it does not change the dynamics checked here)',
@@ -126,7 +119,7 @@ CAUSES: tuple[Cause, ...] = (
         readings=(
             *_as_written(("mujoco", _MUJOCO), ("pinocchio", _PINOCCHIO)),
             Reading("drake", "differently", "ignores the geom (with a warning)", measured=_DRAKE),
-            Reading("newton", "refuses", "IndexError: invalid index", measured=MEASURED),
+            _newton("refuses", "IndexError: invalid index"),
         ),
         quantities=("mass", "inertia"),
         brief="Newton refuses a box geom given by fromto",
@@ -139,11 +132,9 @@ CAUSES: tuple[Cause, ...] = (
         formats=("mjcf",),
         readings=(
             *_OTHERS,
-            Reading(
-                "newton",
+            _newton(
                 "differently",
                 "floating=False replaces the root body's own joints by a fixed joint (floating=None keeps them)",
-                measured=MEASURED,
             ),
         ),
         quantities=("joints",),
@@ -159,11 +150,9 @@ CAUSES: tuple[Cause, ...] = (
         readings=(
             *_as_written(("mujoco", _MUJOCO), ("pinocchio", _PINOCCHIO)),
             Reading("drake", "differently", "drops the body's pos for the first joint", measured=_DRAKE),
-            Reading(
-                "newton",
+            _newton(
                 "differently",
                 "merges them into one D6 joint anchored at the first joint's pos: the others turn about it",
-                measured=MEASURED,
             ),
         ),
         quantities=("kinematics",),

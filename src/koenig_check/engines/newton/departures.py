@@ -1,14 +1,14 @@
 """What Newton does to the user's robot that the file does not say, measured on this robot with Newton's own arrays.
 
-Each function loads the file again with one of Newton's loading options changed (or reads the file as written) and
-compares Newton's own arrays: the body masses and inertias ``finalize()`` leaves, or the mass matrix
+Each function compares the robot as checked with Newton's model of the file under one of its loading options
+(given to it, read from the one parsed builder where the option allows, or loaded again), or reads the file as
+written; it compares Newton's own arrays: the body masses and inertias ``finalize()`` leaves, or the mass matrix
 ``eval_mass_matrix`` gives.  They return plain values; :mod:`koenig_check.engines.newton.findings` turns them into
 findings with the catalogue's cause ids.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from koenig_check.engines.newton.state_map import FIXED, short_name
+from koenig_check.modelfile.urdf_links import links_without_inertial
 
 #: Poses (besides the file's pose) at which an option's effect on M is measured, and their seed.
 EFFECT_POSES = 4
@@ -65,7 +66,7 @@ def static_bodies(model: Any) -> set[int]:
     return out
 
 
-def validation_changes(load: Callable[..., Any], model: Any) -> list[BodyChange]:
+def validation_changes(raw: Any, model: Any) -> list[BodyChange]:
     """The bodies whose inertia ``finalize()``'s inertia validation changed.
 
     Zero inertias replaced, 1e-6 kg·m² added, triangle-inequality violations balanced: measured against the same
@@ -73,8 +74,8 @@ def validation_changes(load: Callable[..., Any], model: Any) -> list[BodyChange]
 
     Parameters
     ----------
-    load : callable
-        ``load(**options) -> (newton.Model, warnings)``: the file in Newton, with options.
+    raw : newton.Model
+        The file finalized with ``skip_validation_inertia=True``.
     model : newton.Model
         The file as Newton users load it (validation on).
 
@@ -82,7 +83,6 @@ def validation_changes(load: Callable[..., Any], model: Any) -> list[BodyChange]
     -------
     list of BodyChange
     """
-    raw, _ = load(finalize={"skip_validation_inertia": True})
     out = []
     m0, m1 = raw.body_mass.numpy(), model.body_mass.numpy()
     i0, i1 = raw.body_inertia.numpy(), model.body_inertia.numpy()
@@ -94,26 +94,6 @@ def validation_changes(load: Callable[..., Any], model: Any) -> list[BodyChange]
         if m0[b] != m1[b] or float(np.abs(i0[b] - i1[b]).max()) > 1e-6 * scale:
             out.append(BodyChange(short_name(label), float(m0[b]), float(m1[b]), _diag(i0[b]), _diag(i1[b])))
     return out
-
-
-def links_without_inertial(path: Path) -> list[str]:
-    """The URDF links that declare no ``<inertial>`` (massless by the URDF convention).
-
-    Parameters
-    ----------
-    path : Path
-
-    Returns
-    -------
-    list of str
-    """
-    from koenig_check.modelfile.validate import parse_xml
-
-    try:
-        root = parse_xml(path).getroot()
-    except Exception:  # an unreadable file is reported by the engines that read it
-        return []
-    return [str(link.get("name")) for link in root.iter("link") if link.find("inertial") is None]
 
 
 def collision_masses(path: Path, model: Any) -> list[BodyChange]:

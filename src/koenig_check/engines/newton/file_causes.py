@@ -111,10 +111,11 @@ def attach_causes(
         if bare:
             effect = _effect_without(load, model, [c.body for c in bare])
             out.append(_changed_bodies(ids.NO_INERTIAL, bare, segment_of, effect))
-    changed = validation_changes(load, model)
+    raw, _ = load(finalize={"skip_validation_inertia": True})
+    changed = validation_changes(raw, model)
     if changed:
-        raw, _ = load(finalize={"skip_validation_inertia": True})
         out.append(_changed_bodies(ids.VALIDATION, changed, segment_of, option_effect(raw, model)))
+    del raw  # one model of the file at a time besides the one checked
     # a change within Newton's round-off is not a difference: said, as a loading fact, not a departure
     out = [f if f.values.get("M change", 1.0) > PRECISION else _below_precision(f) for f in out]
     welded = welded_massive_bodies(model)

@@ -14,6 +14,7 @@ import contextlib
 import io
 import os
 import warnings
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -113,6 +114,40 @@ def build(
     ------
     NewtonLoadError
     """
+    robot, parsed = parse(path, fmt, floating, package_dirs, options)
+    model, done = finalized(robot, path, copies, finalize)
+    return model, list(dict.fromkeys(parsed + done))
+
+
+@contextlib.contextmanager
+def _caught() -> Iterator[list[str]]:
+    """Newton's warnings recorded (one entry per distinct message) and its printing dropped."""
+    said: list[str] = []
+    with warnings.catch_warnings(record=True) as caught, contextlib.redirect_stdout(io.StringIO()):
+        warnings.simplefilter("always")
+        try:
+            yield said
+        finally:
+            said.extend(dict.fromkeys(" ".join(str(w.message).split()) for w in caught or []))
+
+
+def parse(
+    path: Path, fmt: str, floating: bool, package_dirs: tuple[Path, ...] = (), options: dict[str, Any] | None = None
+) -> tuple[Any, list[str]]:
+    """Parse a file with Newton's own parser into a ``ModelBuilder`` (the arguments of :func:`build`).
+
+    A builder is finalized as often as wanted (``finalize`` leaves it as it is): the file, with its meshes, is
+    read once for every ``finalize`` option measured on it.
+
+    Returns
+    -------
+    builder : newton.ModelBuilder
+    warned : list of str
+
+    Raises
+    ------
+    NewtonLoadError
+    """
     _quiet_warp()
     import newton
 
@@ -122,21 +157,55 @@ def build(
     kwargs.update(options or {})
     if fmt == "urdf" and package_dirs:
         kwargs["package_dirs"] = [str(d) for d in package_dirs]
-    with warnings.catch_warnings(record=True) as caught, contextlib.redirect_stdout(io.StringIO()):
-        warnings.simplefilter("always")
+    with _caught() as warned:
         try:
             getattr(robot, stage)(os.fspath(path), **kwargs)
         except Exception as err:  # Newton's parser refuses: its own text, whole
             raise refusal(path, stage, err) from err
+    return robot, warned
+
+
+def finalized(
+    robot: Any, path: Path, copies: int = 1, finalize: dict[str, Any] | None = None, collapse: bool = False
+) -> tuple[Any, list[str]]:
+    """Finalize a parsed file on the CPU, ``copies`` worlds of it (``finalize`` leaves the builder as it is).
+
+    Parameters
+    ----------
+    robot : newton.ModelBuilder
+        From :func:`parse`.
+    path : Path
+        For a refusal's message.
+    copies : int
+        Worlds of the same robot (``ModelBuilder.replicate``).
+    finalize : dict, optional
+        Keyword arguments of ``finalize`` other than the device.
+    collapse : bool
+        ``collapse_fixed_joints()`` first (what ``add_*(collapse_fixed_joints=True)`` does at the end of parsing),
+        on the builder itself: it is that robot from then on.
+
+    Returns
+    -------
+    model : newton.Model
+    warned : list of str
+
+    Raises
+    ------
+    NewtonLoadError
+    """
+    import newton
+
+    with _caught() as warned:
         builder = robot
+        if collapse:
+            builder.collapse_fixed_joints()
         if copies > 1:
-            builder = newton.ModelBuilder()
-            builder.replicate(robot, copies)
+            one, builder = builder, newton.ModelBuilder()
+            builder.replicate(one, copies)
         try:
             model = builder.finalize(device="cpu", **(finalize or {}))
         except Exception as err:
             raise refusal(path, "finalize", err) from err
-    warned = list(dict.fromkeys(" ".join(str(w.message).split()) for w in caught or []))
     return model, warned
 
 

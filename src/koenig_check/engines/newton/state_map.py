@@ -24,9 +24,9 @@ import mujoco
 import numpy as np
 
 from koenig_check.engines.canonical import mujoco_joint_names
+from koenig_check.engines.joint_pairs import MJ_KIND, mismatch_message
 from koenig_check.engines.newton.loader import NewtonLoadError
 
-_MJ_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 #: Newton's ``JointType`` values.
 PRISMATIC, REVOLUTE, BALL, FIXED, FREE, D6 = 0, 1, 2, 3, 4, 6
 _SIZES = {"free": (7, 6), "ball": (4, 3), "hinge": (1, 1), "slide": (1, 1)}
@@ -116,7 +116,7 @@ def match_joints(mj_model: mujoco.MjModel, model: Any, path: str, mjcf: bool) ->
     mismatch: list[str] = []
     used: set[int] = set()
     for k, name in enumerate(names):
-        kind = _MJ_KIND[int(mj_model.jnt_type[k])]
+        kind = MJ_KIND[int(mj_model.jnt_type[k])]
         body = int(mj_model.jnt_bodyid[k])
         found = by_name.get(name)
         j = by_body.get(mj_model.body(body).name) if found is None else found
@@ -143,17 +143,12 @@ def match_joints(mj_model: mujoco.MjModel, model: Any, path: str, mjcf: bool) ->
         )
     extra = [labels[j] for j in moving if j not in used]
     n_dof = sum(_SIZES[p.kind][1] for p in pairs)
-    if missing or mismatch or extra or n_dof != int(model.joint_dof_count):
-        parts = []
-        if missing:
-            parts.append("only in MuJoCo: " + ", ".join(missing))
-        if extra:
-            parts.append("only in Newton: " + ", ".join(extra))
-        if mismatch:
-            parts.append("different types: " + "; ".join(mismatch))
-        if not parts:
-            parts.append(f"Newton has {int(model.joint_dof_count)} dofs, MuJoCo {mj_model.nv}")
-        raise NewtonLoadError(f"{path}: Newton's joints cannot be paired with MuJoCo's ({' / '.join(parts)})")
+    failure = mismatch_message(path, "Newton", missing, extra, mismatch)
+    if failure is None and n_dof != int(model.joint_dof_count):
+        dofs = f"Newton has {int(model.joint_dof_count)} dofs, MuJoCo {mj_model.nv}"
+        failure = mismatch_message(path, "Newton", [], [], [], dofs)
+    if failure is not None:
+        raise NewtonLoadError(failure)
     return pairs
 
 

@@ -131,7 +131,7 @@ CAUSES: tuple[Cause, ...] = (
         "<replicate> not read by Pinocchio's MJCF parser",
         "koenig-check export MODEL --to mjcf writes the copies out (no <replicate>, no <frame>)",
         "replicate.xml",
-        drake="skips the element too (not detected by koenig-check for Drake)",
+        drake="skips the element and everything inside it: the copies are missing",
         loses_joints=True,
     ),
     _mjcf(
@@ -161,7 +161,7 @@ CAUSES: tuple[Cause, ...] = (
         "settotalmass not applied by Pinocchio",
         "scale the masses in the file and remove settotalmass",
         "settotalmass.xml",
-        drake="ignores the option too",
+        drake="ignores the option (with a warning): the file's masses unscaled",
     ),
     _mjcf(
         "mesh-mass",
@@ -171,8 +171,7 @@ CAUSES: tuple[Cause, ...] = (
         ("mass", "com", "inertia"),
         "geoms with a mesh, weighed otherwise by Pinocchio",
         "give the body an <inertial> (mass, pos, inertia)",
-        "mesh_mass.xml",
-        drake="ignores a mesh given by vertices in the file (its mass is missing)",
+        "mesh_mass.xml",  # a mesh file; one given by vertices in the file Drake ignores: drake.mjcf.inline-mesh
     ),
     _mjcf(
         "visual-geoms",
@@ -191,7 +190,7 @@ CAUSES: tuple[Cause, ...] = (
         "inertiagrouprange not applied by Pinocchio",
         "give the geoms left out mass 0 (or density 0) and remove inertiagrouprange",
         "inertiagrouprange.xml",
-        drake="ignores the option too (not detected by koenig-check for Drake)",
+        drake="ignores the option (with a warning): every geom's mass counted",
     ),
     Cause(
         id="pinocchio.urdf.planar-axis",
@@ -200,7 +199,12 @@ CAUSES: tuple[Cause, ...] = (
         readings=(
             Reading("mujoco", "as written", measured=_MUJOCO),
             Reading("pinocchio", "differently", "one planar joint about z: ignores the axis", measured=MEASURED),
-            Reading("drake", "differently", "one planar joint, not MuJoCo's three joints", measured=_DRAKE),
+            Reading(
+                "drake",
+                "differently",
+                "one planar joint, not MuJoCo's three, in the same plane (the same M spectrum and g(q))",
+                measured=_DRAKE,
+            ),
         ),
         quantities=("joints", "kinematics"),
         brief="URDF planar joint read about z by Pinocchio, ignoring its axis",
@@ -319,4 +323,5 @@ def measure(path: Path) -> Measurement:
         gravity_forces={j: float(tau[i]) for j, i in one_dof.items()},
         armature={j: float(model.armature[i]) for j, i in one_dof.items() if model.armature[i]},
         com=tuple(float(c) for c in (weighted / mass if mass > 0 else np.zeros(3))),
+        spectrum=tuple(float(x) for x in np.linalg.eigvalsh(np.asarray(full, dtype=float))),
     )

@@ -26,12 +26,14 @@ from pathlib import Path
 
 import numpy as np
 
-from koenig_check.engines.base import Engine, as_batches, symmetrize
+from koenig_check.engines.base import Engine, as_batches
 from koenig_check.engines.energy import EnergyParts
+from koenig_check.engines.joint_pairs import dofs_by_kind
+from koenig_check.engines.link_groups import group_links
 from koenig_check.engines.pybullet.client import Client
 from koenig_check.engines.pybullet.state_map import PyBulletStateMap
 from koenig_check.engines.pybullet.tree import BodyTree, quat_matrix
-from koenig_check.findings import Finding, Kind
+from koenig_check.findings import Finding
 from koenig_check.segments import SegmentStates
 
 
@@ -68,14 +70,14 @@ class PyBulletEngine(Engine):
         self.findings = list(findings or [])
         self.nq, self.nv = state_map.nq, state_map.nv
         self._links = list(range(len(tree.link_names) - 1))
-        self._joint_links = [p.row - 1 for p in sorted(state_map.pairs, key=lambda p: p.u) if p.kind != "free"]
+        self._joint_links = [p.link - 1 for p in sorted(state_map.pairs, key=lambda p: p.dof) if p.kind != "free"]
         self._inertia_local = tree.central_inertia()
         self._build_segments(np.asarray(qpos0, dtype=float))
 
     # -------------------------------------------------------------- segments
     def _carrier(self, row: int) -> int:
         """The row of the segment that carries a link (-1: static, fixed to the world)."""
-        heads = {p.row for p in self.state_map.pairs}
+        heads = {p.link for p in self.state_map.pairs}
         while row not in heads:
             if row == 0:
                 return -1
@@ -84,45 +86,18 @@ class PyBulletEngine(Engine):
 
     def _build_segments(self, qpos0: np.ndarray) -> None:
         tree = self.tree
-        name_of = {p.row: p.name for p in self.state_map.pairs}
-        members: dict[int, list[int]] = {}
-        for row in range(len(tree.link_names)):
-            head = self._carrier(row)
-            if head >= 0 and (tree.mass[row] > 0 or tree.principal[row].any()):  # a massless link's inertia counts
-                members.setdefault(head, []).append(row)
-        members = {h: rows for h, rows in members.items() if tree.mass[rows].sum() > 0}
-        order = {p.name: k for k, p in enumerate(self.state_map.pairs)}
-        heads = sorted(members, key=lambda h: order[name_of[h]])
-        massless = [name_of[h] for h in name_of if h not in members]
-        if massless:
-            self.findings.append(
-                Finding(
-                    Kind.SEGMENTS,
-                    "pybullet",
-                    "segments " + ", ".join(massless),
-                    "massless: left out (no kinetic energy)",
-                )
-            )
-        self.segment_names = tuple(name_of[h] for h in heads)
-        self._heads = np.array(heads, dtype=int)
-        self._members = [np.array(members[h], dtype=int) for h in heads]
+        name_of = {p.link: p.name for p in self.state_map.pairs}
+        weighs = (tree.mass > 0) | tree.principal.any(axis=1)  # a massless link's inertia counts
+        order = [p.name for p in self.state_map.pairs]
+        carriers = [self._carrier(row) for row in range(len(tree.link_names))]
+        groups = group_links(carriers, weighs, tree.mass, name_of, order)
+        self.findings.extend(groups.findings(self.engine))
+        self.segment_names, self._groups = groups.names, groups
+        self._heads, self._members = groups.heads, groups.members
         ref = self._read(qpos0[None], np.zeros((1, self.nv)))
-        mass, inertia = [], []
-        for h, rows in zip(self._heads, self._members, strict=True):
-            m = tree.mass[rows]
-            c = ref["com"][0, rows]
-            com = (m[:, None] * c).sum(0) / m.sum()
-            R_h = ref["R_link"][0, h]
-            total = np.zeros((3, 3))
-            for k, row in enumerate(rows):
-                Rc = ref["R_com"][0, row]
-                I_world = Rc @ np.diag(tree.principal[row]) @ Rc.T
-                d = c[k] - com
-                total += I_world + m[k] * (d @ d * np.eye(3) - np.outer(d, d))
-            mass.append(m.sum())
-            inertia.append(R_h.T @ total @ R_h)
-        self._mass = np.array(mass, dtype=float)
-        self._inertia = symmetrize(np.array(inertia, dtype=float).reshape(-1, 3, 3))
+        R_com = ref["R_com"][0]
+        inertia = R_com @ (tree.principal[:, :, None] * np.swapaxes(R_com, 1, 2))
+        self._mass, self._inertia = groups.lumped(tree.mass, ref["com"][0], inertia, ref["R_link"][0])
         self._ref = self._segments(ref)
 
     # -------------------------------------------------------------- reading PyBullet
@@ -167,10 +142,8 @@ class PyBulletEngine(Engine):
 
     def _segments(self, links: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         """Segment COM, COM velocity, rotation, angular velocity, pole and its velocity, per pose."""
-        m = self.tree.mass
-        com = np.stack([(m[r, None] * links["com"][:, r]).sum(1) / m[r].sum() for r in self._members], axis=1)
-        v = np.stack([(m[r, None] * links["v"][:, r]).sum(1) / m[r].sum() for r in self._members], axis=1)
-        h = self._heads
+        m, h = self.tree.mass, self._heads
+        com, v = self._groups.mass_average(m, links["com"]), self._groups.mass_average(m, links["v"])
         omega, pole = links["omega"][:, h], links["origin"][:, h]
         v_pole = links["v"][:, h] + np.cross(omega, pole - links["com"][:, h])
         return {"com": com, "v_com": v, "R": links["R_link"][:, h], "omega": omega, "pole": pole, "v_pole": v_pole}
@@ -232,8 +205,5 @@ class PyBulletEngine(Engine):
 
     def dofs_by_kind(self) -> dict[str, np.ndarray]:
         """Return canonical dof indices grouped by PyBullet joint type (``floating base``, ``revolute``, ...)."""
-        groups: dict[str, list[int]] = {}
-        for p in self.state_map.pairs:
-            kind = "floating base" if p.kind == "free" else self.tree.joint_types[p.row]
-            groups.setdefault(kind, []).extend(range(p.vadr, p.vadr + (6 if p.kind == "free" else 1)))
-        return {k: np.array(v, dtype=int) for k, v in groups.items()}
+        types = self.tree.joint_types
+        return dofs_by_kind(self.state_map.pairs, lambda p: "floating base" if p.kind == "free" else types[p.link])

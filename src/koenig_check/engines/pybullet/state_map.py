@@ -19,46 +19,19 @@ acceleration is ``T q̈`` plus a term of the velocities (:meth:`PyBulletStateMap
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import mujoco
 import numpy as np
 
-from koenig_check.engines.canonical import VelocityMapped, mujoco_joint_names
+from koenig_check.engines.canonical import VelocityMapped
+from koenig_check.engines.joint_pairs import EngineJoint, LinkJointPair, pair_by_name
 from koenig_check.engines.pybullet.client import PyBulletLoadError
 from koenig_check.engines.pybullet.tree import BodyTree, matrix_quat
 
-_MJ_KIND = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
-_COMPATIBLE = {"hinge": "revolute", "slide": "prismatic"}
+#: PyBullet's joint types that MuJoCo has, in MuJoCo's words.
+_MJ_WORDS = {"revolute": "hinge", "prismatic": "slide"}
 
 
-@dataclass(frozen=True)
-class PyBulletJointPair:
-    """One MuJoCo joint and PyBullet's joint (or floating base) it maps to.
-
-    Parameters
-    ----------
-    name : str
-        Canonical (MuJoCo) joint name.
-    kind : str
-        ``"free"``, ``"hinge"`` or ``"slide"``.
-    row : int
-        The PyBullet link it moves (:class:`BodyTree` row; 0 for the floating base).
-    qadr, vadr : int
-        Canonical addresses.
-    u : int
-        PyBullet's velocity coordinate among the joints' (-1 for the base).
-    """
-
-    name: str
-    kind: str
-    row: int
-    qadr: int
-    vadr: int
-    u: int
-
-
-def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: bool) -> list[PyBulletJointPair]:
+def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: bool) -> list[LinkJointPair]:
     """Pair every MuJoCo joint with PyBullet's joint of the same name (the free root with the floating base).
 
     Parameters
@@ -71,50 +44,33 @@ def pair_joints(mj_model: mujoco.MjModel, tree: BodyTree, path: str, floating: b
 
     Returns
     -------
-    list of PyBulletJointPair
+    list of LinkJointPair
 
     Raises
     ------
     PyBulletLoadError
         Naming the joints found in one engine only, and those whose types differ.
     """
-    rows = {name: k for k, name in enumerate(tree.joint_names) if k and tree.joint_types[k] != "fixed"}
-    used: set[str] = set()
-    pairs, only_mj, mismatch = [], [], []
-    for j, name in enumerate(mujoco_joint_names(mj_model)):
-        kind = _MJ_KIND[int(mj_model.jnt_type[j])]
-        qadr, vadr = int(mj_model.jnt_qposadr[j]), int(mj_model.jnt_dofadr[j])
+    joints = {
+        name: EngineJoint(
+            _MJ_WORDS.get(tree.joint_types[k], tree.joint_types[k]), tree.joint_types[k], k, int(tree.u_index[k])
+        )
+        for k, name in enumerate(tree.joint_names)
+        if k and tree.joint_types[k] != "fixed"
+    }
+
+    def floating_base(j: int) -> int | None:
         body = int(mj_model.jnt_bodyid[j])
-        if (
-            kind == "free"
-            and floating
-            and mj_model.body_parentid[body] == 0
-            and mj_model.body(body).name == tree.link_names[0]
-        ):
-            pairs.append(PyBulletJointPair(name, kind, 0, qadr, vadr, -1))
-            continue
-        row = rows.get(name)
-        if row is None:
-            only_mj.append(name)
-            continue
-        used.add(name)
-        if _COMPATIBLE.get(kind) != tree.joint_types[row]:
-            mismatch.append(f"{name}: mujoco {kind} vs pybullet {tree.joint_types[row]}")
-            continue
-        pairs.append(PyBulletJointPair(name, kind, row, qadr, vadr, int(tree.u_index[row])))
-    only_pb = [n for n in rows if n not in used]
-    if floating and not any(p.kind == "free" for p in pairs):
-        only_pb.append(f"floating base {tree.link_names[0]}")
-    if only_mj or only_pb or mismatch:
-        parts = []
-        if only_mj:
-            parts.append(f"only in MuJoCo: {', '.join(only_mj)}")
-        if only_pb:
-            parts.append(f"only in PyBullet: {', '.join(only_pb)}")
-        if mismatch:
-            parts.append(f"incompatible types: {', '.join(mismatch)}")
-        raise PyBulletLoadError(f"{path}: joints do not match between MuJoCo and PyBullet ({'; '.join(parts)})")
-    return pairs
+        root = mj_model.body_parentid[body] == 0 and mj_model.body(body).name == tree.link_names[0]
+        return 0 if floating and root else None
+
+    pairing = pair_by_name(mj_model, joints, "pybullet", floating_base)
+    if floating and not any(p.kind == "free" for p in pairing.pairs):
+        pairing.only_engine.append(f"floating base {tree.link_names[0]}")
+    failure = pairing.failure(path, "PyBullet")
+    if failure is not None:
+        raise PyBulletLoadError(failure)
+    return pairing.pairs
 
 
 def skew(r: np.ndarray) -> np.ndarray:
@@ -127,13 +83,13 @@ class PyBulletStateMap(VelocityMapped):
 
     Parameters
     ----------
-    pairs : list of PyBulletJointPair
+    pairs : list of LinkJointPair
     tree : BodyTree
     nq, nv : int
         Canonical sizes.
     """
 
-    def __init__(self, pairs: list[PyBulletJointPair], tree: BodyTree, nq: int, nv: int) -> None:
+    def __init__(self, pairs: list[LinkJointPair], tree: BodyTree, nq: int, nv: int) -> None:
         self.pairs = tuple(pairs)
         self.nq, self.nv = nq, nv
         self.base = next((p for p in pairs if p.kind == "free"), None)
@@ -168,7 +124,7 @@ class PyBulletStateMap(VelocityMapped):
         w = self.base_width
         for p in self.pairs:
             if p.kind != "free":
-                T[:, w + p.u, p.vadr] = 1.0
+                T[:, w + p.dof, p.vadr] = 1.0
         if self.base is not None:
             R = self._base_rotation(qpos)
             a = self.base.vadr
@@ -217,7 +173,7 @@ class PyBulletStateMap(VelocityMapped):
         q, v = np.zeros((P, self.n_joints)), np.zeros((P, self.n_joints))
         for p in self.pairs:
             if p.kind != "free":
-                q[:, p.u], v[:, p.u] = qpos[:, p.qadr], qvel[:, p.vadr]
+                q[:, p.dof], v[:, p.dof] = qpos[:, p.qadr], qvel[:, p.vadr]
         return q, v
 
     def base_state(self, qpos: np.ndarray, qvel: np.ndarray) -> tuple[np.ndarray, ...]:

@@ -20,6 +20,7 @@ import numpy as np
 
 from koenig_check.engines.pybullet import SPEC
 from koenig_check.findings import Finding, Kind
+from koenig_check.modelfile.urdf_links import links_without_inertial
 
 #: The value a zeroed-inertia finding carries PyBullet's moments under (what its parser limit reads).
 MOMENTS_IN_PYBULLET = "moments in PyBullet"
@@ -35,23 +36,6 @@ def _urdf(path: Path) -> ET.Element | None:
         return ET.parse(path).getroot()
     except (OSError, ET.ParseError):
         return None
-
-
-def links_without_inertial(path: Path) -> list[str]:
-    """The URDF's links that have no ``<inertial>``, in file order.
-
-    Parameters
-    ----------
-    path : Path
-
-    Returns
-    -------
-    list of str
-    """
-    robot = _urdf(path)
-    if robot is None:
-        return []
-    return [link.get("name", "") for link in robot.findall("link") if link.find("inertial") is None]
 
 
 def missing_meshes(path: Path, package_dirs: tuple[Path, ...]) -> list[str]:
