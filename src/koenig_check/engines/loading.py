@@ -362,4 +362,7 @@ def load_model(
             found = self_consistency(engine, qpos, qvel)
             engine.findings.extend(found)
             findings.extend(found)
-    return LoadedModel(source, mj, pn, state_map, opts, findings)
+    engines, left_out = registry.engines_for(opts.engines, source.format)  # --engines all: those that read it
+    loaded = LoadedModel(source, mj, pn, state_map, replace(opts, engines=engines), findings)
+    loaded.optional_findings += left_out
+    return loaded

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 
 #: The package whose subpackages are the engines.
 ENGINES_PACKAGE = "koenig_check.engines"
+#: The word that asks for every installed engine whose parser reads a model's format (``--engines all``).
+ALL = "all"
 
 
 @dataclass(frozen=True)

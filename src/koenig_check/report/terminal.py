@@ -16,6 +16,7 @@ import numpy as np
 from koenig_check.engines.registry import label, optional, reference, required
 from koenig_check.findings import Finding, Kind
 from koenig_check.line_width import LINE_LIMIT
+from koenig_check.report.engine_sets import engine_set_lines
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.cross_check import CrossCheck
@@ -224,6 +225,10 @@ def terminal_table(check: CrossCheck) -> str:
         lines += _row(model, mw, f"{status:8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
+    engine_sets = engine_set_lines(check)  # a paragraph of its own after the table, continued two spaces in
+    lines += [""] if engine_sets else []
+    for line in engine_sets:
+        lines += _fold(textwrap.wrap(line, width=WIDTH, subsequent_indent="  ", break_long_words=False))
     if not check.summaries:
         return "\n".join(lines + gravity_rows(check, mw))
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})
