@@ -21,7 +21,10 @@ after the other, each in a fresh Python process (so that each one's peak memory 
 
 ``--engine NAME`` measures an optional engine instead, per pose against its own bare loop:
 (d) engine-bare, the engine's own calls as its users make them (``engines/<name>/benchmark.py``'s
-``bare_loop``: Newton's batched ``eval_fk`` + ``eval_mass_matrix``), and (e) engine, the adapter's sweep
+``bare_loop``: Newton's batched ``eval_fk`` + ``eval_mass_matrix``; PyBullet's ``resetJointStatesMultiDof`` +
+``getLinkStates`` with velocities per pose, the energy summed over its links; iDynTree's ``setRobotState``, each
+link's ``getWorldTransform`` and ``getFrameVel``, and ``½ νᵀ M ν`` of ``getFreeFloatingMassMatrix`` per pose), and
+(e) engine, the adapter's sweep
 (segment states and energy in canonical coordinates, what the cross-check reads per pose); both on a model
 already loaded, so that the cost per pose is the result.
 
@@ -40,6 +43,7 @@ Usage::
     python comparisons/benchmark.py [--poses 100000] [--repeat 1] [--jobs 2] [--out comparisons/benchmark.md]
     python comparisons/benchmark.py --smoke       # a few poses, nothing written (run by the test suite)
     python comparisons/benchmark.py --engine newton --poses 10000 --models ur5 talos   # printed, not written
+    python comparisons/benchmark.py --engine pybullet --smoke    # (d) and (e) on a few poses (run by the suite)
 """
 
 from __future__ import annotations
@@ -245,6 +249,8 @@ def main() -> None:
         else:
             print(json.dumps(run_one(kind, model, int(n), int(jobs))))
         return
+    if args.smoke:
+        args.poses, args.repeat = 20, 1
     if args.engine:
         for model in args.models:
             r = {k: _measure_engine(k, model, args.poses, args.engine) for k in ("engine-bare", "engine")}
@@ -254,8 +260,6 @@ def main() -> None:
                 f"{per['engine']:.1f} µs/pose (CPU), ratio {per['engine'] / per['engine-bare']:.2f}"
             )
         return
-    if args.smoke:
-        args.poses, args.repeat = 20, 1
     print(FLOOR_NOTE, flush=True)
     results: dict[str, dict] = {}
     for _ in range(args.repeat):

@@ -71,7 +71,7 @@ def export(
     poses: int = 10,
     seed: int = 0,
     rtol: float = 1e-9,
-    engines: tuple[str, ...] | None = None,
+    engines: tuple[str, ...] | str | None = None,
 ) -> ExportResult:
     """Write a model as URDF or portable MJCF and prove, in every engine, that it is the same robot.
 
@@ -92,8 +92,9 @@ def export(
         URDF: write armature as Drake's ``drake:rotor_inertia``.
     poses, seed, rtol
         The proof: seeded random poses and the relative tolerance.
-    engines : tuple of str, optional
-        Engines the proof uses (those not installed are reported as not compared); default: every engine.
+    engines : tuple of str or "all", optional
+        Engines the proof uses (those not installed are reported as not compared); default: every engine that reads
+        the export's format; ``"all"``: every installed engine that reads both files' formats, each asked for.
 
     Returns
     -------

@@ -313,7 +313,7 @@ def compare(
     models = list(models)
     if not prepared:
         prepare_models(models, load.pinocchio_model)  # extras, names, downloads
-    result = CrossCheck(rtol=rtol)
+    result = CrossCheck(rtol=rtol, not_named=policy.not_named(load.engines))
     advance = getattr(progress, "advance", None)
     labels = given_labels or unique_labels(models, load.floating, load.xacro_args)
     for model, label in zip(models, labels, strict=True):

@@ -60,3 +60,24 @@ def test_drake_consulted_by_default_only_where_the_engines_disagree() -> None:
 def test_dynamics_fails_when_the_asked_engine_cannot_check() -> None:
     result = koenig_check.dynamics(REFUSED_BY_DRAKE, n_poses=1, formulas=["exact"], engines=ALL)
     assert not result.ok and DRAKE_REASON in result.reason()
+
+
+@pytest.mark.parametrize(
+    ("engines", "left"),
+    [
+        (None, ()),  # the default names no engine: nothing to say on each run
+        (("all",), ()),  # every installed engine asked for (one that does not read a format is said on the model)
+        (("mujoco", "pinocchio"), ("drake", "idyntree", "newton", "pybullet")),
+        (("mujoco", "pinocchio", "newton"), ("drake", "idyntree", "pybullet")),
+    ],
+)
+def test_the_engines_not_named_are_said_once_for_the_run(engines, left) -> None:
+    from koenig_check.diagnosis.policy import not_named
+
+    assert not_named(engines) == tuple(e for e in left if installed(e))
+
+
+def test_an_engine_not_named_gets_no_note_on_the_model() -> None:
+    check = koenig_check.compare("gimbal.urdf", n_poses=2, formulas=["exact"], engines=("mujoco", "pinocchio"))
+    assert not [f for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_NOT_USED]
+    assert check.not_named == tuple(e for e in ("drake", "idyntree", "newton", "pybullet") if installed(e))

@@ -204,7 +204,8 @@ def test_a_file_with_one_cause_counts_no_more() -> None:
     check = koenig_check.compare(path, **ONE)
     line = check.reason()
     found = [f for f in check.comparisons[0].findings if f.cause == "pinocchio.mjcf.settotalmass"]
-    (option,) = [f for f in found if f.engine == "mujoco"]  # Drake's, which ignores it too, is its own
+    # the id's engine, which ignores the option; Drake's, which ignores it too, is its own
+    (option,) = [f for f in found if f.engine == "pinocchio"]
     assert option.values["mujoco"] == pytest.approx(float(total), rel=1e-12)  # MuJoCo's total mass: the file's
     assert f"root cause: compiler settotalmass: {catalogued('pinocchio.mjcf.settotalmass').brief}" in line, line
     assert "more" not in line and not line.endswith(" and 2 more"), line

@@ -106,7 +106,7 @@ def test_assert_energy_parity_leads_with_the_root_cause_then_the_departing_engin
     with pytest.raises(AssertionError) as info:
         assert_energy_parity(TIEBREAK / "settotalmass.xml", n_poses=3)
     text = " ".join(str(info.value).split())  # folded lines joined
-    assert "energy parity fails (rtol 1e-09): root cause: mujoco: compiler settotalmass" in text  # first
+    assert "energy parity fails (rtol 1e-09): root cause: pinocchio: compiler settotalmass" in text  # first
     assert "three engines:" not in text  # Drake ignores settotalmass too: no vote (no "MuJoCo departs")
     with pytest.raises(AssertionError, match="Drake cannot check this model: its MJCF parser ignores armature"):
         assert_energy_parity(HERE / "engines" / "models" / "hinge_armature.xml", n_poses=3, engines=ALL)
@@ -258,12 +258,13 @@ def test_a_construct_both_other_engines_skip_is_named_not_blamed_on_mujoco(engin
 
 @needs_drake
 @pytest.mark.parametrize("path", [TIEBREAK / "settotalmass.xml", "dm:suite/cheetah.xml"], ids=str)
-def test_the_cause_list_blames_the_engine_that_applies_the_option(path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_the_cause_list_blames_the_engines_that_ignore_the_option(path, capsys: pytest.CaptureFixture[str]) -> None:
     """settotalmass: the pair's cause says "Pinocchio does not rescale"; with Drake, MuJoCo alone applies it.
 
-    Expected from each engine's own total mass: MuJoCo's is the file's settotalmass, Pinocchio's and Drake's are
-    equal to each other and not to it (the catalogue's reading of Drake, measured on real files).  The parity's
-    root cause is MuJoCo's; Drake's own finding carries the id, and Drake does not vote.
+    Expected from each engine's own total mass: MuJoCo's is the file's settotalmass (the file as written),
+    Pinocchio's and Drake's are equal to each other and not to it (the catalogue's reading of Drake, measured on
+    real files).  The parity's root cause is Pinocchio's, the engine of the id, which departs from the file (never
+    MuJoCo, which applies the option); Drake's own finding carries the id, and Drake does not vote.
     """
     import numpy as np
 
@@ -286,12 +287,12 @@ def test_the_cause_list_blames_the_engine_that_applies_the_option(path, capsys: 
     diagnosis = diagnose(model)
     assert not diagnosis.verdicts
     (cause,) = [c for c in diagnosis.parity.causes if c.element == "compiler settotalmass"]
-    assert cause.engine == "mujoco"
+    assert cause.engine == "pinocchio"
     named = [(f.engine, f.cause) for f in diagnosis.findings if f.element == "compiler settotalmass"]
-    assert named == [("mujoco", "pinocchio.mjcf.settotalmass"), ("drake", "pinocchio.mjcf.settotalmass")]
+    assert named == [("pinocchio", "pinocchio.mjcf.settotalmass"), ("drake", "pinocchio.mjcf.settotalmass")]
     assert main(["parity", str(path)]) == 1
     out, err = capsys.readouterr()
-    assert "changes the kinetic energy] mujoco: compiler settotalmass: " in out
+    assert "changes the kinetic energy] pinocchio: compiler settotalmass: " in out
     assert err.startswith(f"koenig-check: {Path(path).name}: root cause: compiler settotalmass")
 
 

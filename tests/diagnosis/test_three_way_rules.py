@@ -92,8 +92,9 @@ def test_where_all_differ_each_engine_is_named_with_its_own_construct() -> None:
 
     By hand: the pole's class gives it 0.1 kg (Drake); MuJoCo rescales 1 + 0.1 kg to 3 kg (0.1 x 3 / 1.1); Pinocchio
     weighs the capsule (radius 0.045, length 1) at density 1000: 1000 (pi r^2 + 4/3 pi r^3).  The settotalmass cause
-    is MuJoCo's, built so; Drake, which ignores settotalmass too (the catalogue's reading), gets its own finding of
-    that id and casts no vote (it once made "all three engines differ" here).
+    is Pinocchio's (MuJoCo applies the option as the file asks), built so; Drake, which ignores settotalmass too
+    (the catalogue's reading), gets its own finding of that id and casts no vote (it once made "all three engines
+    differ" here).
     """
     pytest.importorskip("pydrake")
     import koenig_check
@@ -115,7 +116,7 @@ def test_where_all_differ_each_engine_is_named_with_its_own_construct() -> None:
     assert not [f.message() for f in findings if f.kind is Kind.VERDICT]
     causes = {(f.engine, f.cause) for f in findings if f.root_cause and f.cause}
     assert {
-        ("mujoco", "pinocchio.mjcf.settotalmass"),
+        ("pinocchio", "pinocchio.mjcf.settotalmass"),
         ("pinocchio", "pinocchio.mjcf.class-geom-mass"),
         ("drake", "pinocchio.mjcf.settotalmass"),
     } <= causes

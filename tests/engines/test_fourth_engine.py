@@ -580,10 +580,8 @@ def test_it_breaks_no_tie_unless_it_declares_so(fourth_engine: str) -> None:
     comparison = koenig_check.compare(path, n_poses=4, formulas=["exact"]).comparisons[0]
     assert [f for f in comparison.findings if f.kind is Kind.MASS and f.engine == "pinocchio"]  # they disagree
     assert "gpu" not in comparison.engines and "gpu_skewed" not in comparison.engines
-    assert [f.engine for f in comparison.findings if f.kind is Kind.ENGINE_NOT_USED and f.engine.startswith("gpu")] == [
-        "gpu",
-        "gpu_skewed",
-    ]
+    # not named and no tie-breaker: no note on each model (a run that names engines says the others once)
+    assert not [f for f in comparison.findings if f.kind is Kind.ENGINE_NOT_USED and f.engine.startswith("gpu")]
     from koenig_check.diagnosis.diagnose import diagnose
     from koenig_check.run.poses import random_pose_range
 

@@ -70,7 +70,7 @@ def test_settotalmass_reads_the_same_in_the_parity_notes_and_the_cause() -> None
     ) in report.findings
     (cause,) = [c for c in report.causes if c.kind is Kind.COMPILER]
     assert (cause.engine, cause.element, cause.root_cause, cause.hint, cause.cause) == (
-        "mujoco",  # the engine that applies the option alone, as the option's record says (not moved later)
+        "pinocchio",  # the engine that departs from the file (it ignores the option): the cause's, built so
         "compiler settotalmass",
         True,
         "",

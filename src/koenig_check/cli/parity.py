@@ -126,7 +126,8 @@ def _cmd_parity(args: argparse.Namespace) -> int:
         and not (f.kind is Kind.ENGINE_NOT_USED and f.engine in unable)
     ]
     if third:  # the optional engines' part, after MuJoCo's and Pinocchio's: their verdicts, their parsers' words
-        used = [e for e in optional() if e in model.engines or model.refusal(e) is not None] or list(optional())
+        said = {f.engine for f in diagnosis.optional_findings}  # attached, refused, or left out by --engines all
+        used = [e for e in optional() if e in model.engines or e in said] or list(optional())
         names = ", ".join(engine_label(e) for e in used)
         head = "The third engine" if len(used) == 1 else "The other engines"
         print(f"\n{head} ({names}): verdicts and what {'its parser' if len(used) == 1 else 'their parsers'} said")

@@ -26,6 +26,7 @@ from koenig_check.diagnosis.pair_causes import model_causes
 from koenig_check.diagnosis.parity_report import PARITY_RTOL, DofParity, ParityReport, SegmentParity
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.sampling import random_states
+from koenig_check.engines.specs import parity_pair
 from koenig_check.findings import Kind
 from koenig_check.modelfile.compiler import compiler_findings
 from koenig_check.segments import SegmentStates
@@ -118,8 +119,9 @@ def import_parity(pair: Any, rtol: float = PARITY_RTOL, extra_poses: int = 3, se
     report.model_mass = float(sum(Y.mass for Y in pn.model.inertias))
     names_a, names_b = list(sa.names), list(sb.names)
     massless = {c.engine: set(c.segments) for c in report.causes if c.kind is Kind.SEGMENTS}
-    report.massless_in_pinocchio = [n for n in names_a if n not in names_b and n in massless.get("pinocchio", ())]
-    report.massless_in_mujoco = [n for n in names_b if n not in names_a and n in massless.get("mujoco", ())]
+    first, second = parity_pair()  # MuJoCo (sa, names_a) and Pinocchio (sb, names_b)
+    report.massless_in_pinocchio = [n for n in names_a if n not in names_b and n in massless.get(second, ())]
+    report.massless_in_mujoco = [n for n in names_b if n not in names_a and n in massless.get(first, ())]
     report.only_in_mujoco = [n for n in names_a if n not in names_b and n not in report.massless_in_pinocchio]
     report.only_in_pinocchio = [n for n in names_b if n not in names_a and n not in report.massless_in_mujoco]
     common = [n for n in names_a if n in names_b]

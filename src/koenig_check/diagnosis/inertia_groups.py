@@ -42,8 +42,8 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
     Returns
     -------
     list of Finding
-        At most one ``COMPILER`` finding (engine ``pinocchio``, element ``compiler inertiagrouprange``): the geoms
-        left out, the segments they weigh on, and their mass in MuJoCo, in Pinocchio and in MuJoCo with every
+        At most one ``COMPILER`` finding (engine ``pinocchio``, the cause's; element ``compiler inertiagrouprange``):
+        the geoms left out, the segments they weigh on, and their mass in MuJoCo, in Pinocchio and in MuJoCo with every
         group counted; empty when the option keeps every group or explains no difference.
     """
     try:
@@ -83,7 +83,7 @@ def inertia_group_causes(pair: Any) -> list[Finding]:
     return [
         Finding(
             Kind.COMPILER,
-            reference(),  # the engine that applies the option (Pinocchio and Drake count every geom)
+            ignores,  # the engine that departs from the file: it counts every geom (Drake does too)
             "compiler inertiagrouprange",
             f"MuJoCo counts only geoms of groups {low} to {high} (geoms {shown_names(left_out)} left out), "
             "Pinocchio counts every geom",

@@ -29,10 +29,20 @@ from koenig_check.diagnosis.root_frame import FrameOffset, _vec, root_frame_offs
 from koenig_check.diagnosis.segment_masses import pinocchio_segment_masses
 from koenig_check.diagnosis.visual_geoms import visual_geom_causes
 from koenig_check.engines.canonical import segment_by_body_id, segment_of_body
+from koenig_check.engines.catalogue import cause
 from koenig_check.engines.parser_traps import file_causes
+from koenig_check.engines.registry import label
+from koenig_check.engines.specs import parity_pair, reference
 from koenig_check.findings import Finding, Kind, shown_names
 from koenig_check.modelfile.compiler import compiler_options, option_text
 from koenig_check.modelfile.mjcf import ClassValue, class_values, read_mjcf
+
+#: The catalogued causes built here (the engine each names departs; the reference engine reads the file), and
+#: (tag, attribute) of a value from a default class -> its cause.
+SETTOTALMASS, MESH_MASS = "pinocchio.mjcf.settotalmass", "pinocchio.mjcf.mesh-mass"
+CLASS_VALUES = {
+    (t, a): f"pinocchio.mjcf.class-{t}-{a}" for t, a in (("geom", "mass"), ("geom", "pos"), ("joint", "pos"))
+}
 
 #: Lengths (m) and masses (kg) under which both engines are taken to agree, relative to the model's size.
 RTOL = 1e-9
@@ -93,26 +103,27 @@ def massless_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> lis
     )
     pin_mass = pinocchio_segment_masses(pair)
     out = []
-    for engine, have, lack in (("pinocchio", mj_mass, pin_mass), ("mujoco", pin_mass, mj_mass)):
-        if engine == "mujoco":
+    first, second = parity_pair()  # the reference (MuJoCo) and the other (Pinocchio), as pair.mujoco, pair.pinocchio
+    for engine, other, have, lack in ((second, first, mj_mass, pin_mass), (first, second, pin_mass, mj_mass)):
+        if engine == first:
             lack = {n: 0.0 for n in _mujoco_massless(pair)}
         names = sorted(n for n, m in have.items() if m > 0 and n in lack and lack[n] <= 0)
         if not names:
             continue
         values: dict[str, Any] = {"segments": tuple(names)}
-        values["mujoco" if engine == "pinocchio" else "pinocchio"] = float(sum(have[n] for n in names))
+        values[other] = float(sum(have[n] for n in names))
         values[engine] = 0.0
         out.append(
             Finding(
                 Kind.SEGMENTS,
                 engine,
                 f"segment {shown_names(names)}",
-                f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'} (mass only in the other engine)",
+                f"massless in {label(engine)} (mass only in the other engine)",
                 values=values,
                 affects_energy=True,
                 root_cause=not set(names) <= explained,
                 segments=tuple(names),
-                brief=f"massless in {'Pinocchio' if engine == 'pinocchio' else 'MuJoCo'}",
+                brief=f"massless in {label(engine)}",
                 tag="segment",
             )
         )
@@ -168,8 +179,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
         if element is None or not segment:
             continue
         if cand.tag == "geom" and cand.attr == "mass":
-            m_a, m_b = segs.mass.get(segment, (0.0, 0.0))
-            shows = abs(m_a - m_b) > RTOL * max(abs(m_a), abs(m_b), 1e-300)
+            shows = _mass_differs(segs, segment)
         elif cand.tag == "geom":
             pair_com = segs.com.get(segment)
             shows = pair_com is not None and float(np.linalg.norm(pair_com[0] - pair_com[1])) > tol_len
@@ -180,6 +190,7 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
             groups.setdefault((cand.tag, cand.attr, cand.cls), []).append((cand, element, segment))
     out = []
     for (tag, attr, cls), members in groups.items():
+        cause_id = CLASS_VALUES[tag, "mass" if attr == "mass" else "pos"]
         names = [c.name for c, _, _ in members]
         segments = tuple(dict.fromkeys(s for _, _, s in members))
         if attr == "mass":
@@ -188,28 +199,28 @@ def class_value_causes(pair: Any, offset: FrameOffset | None = None) -> list[Fin
             except ValueError:  # the raw file does not compile without the loader's fixes (meshes)
                 masses = {  # the engines' own masses of the segments concerned instead
                     f"{engine} mass of segments": float(sum(segs.mass.get(s, (0.0, 0.0))[k] for s in segments))
-                    for k, engine in enumerate(("mujoco", "pinocchio"))
+                    for k, engine in enumerate(parity_pair())
                 }
             values = {"class": cls, "geoms": tuple(names), **masses}
             summary = f"geom mass from default class '{cls}' not applied by Pinocchio; density × volume used"
             kind = Kind.MASS
         else:
             pos = list(dict.fromkeys(_vec(np.array(e.pos, dtype=float)) for _, e, _ in members))
-            values = {"class": cls, f"{tag}s": tuple(names), "mujoco": pos[0] if len(pos) == 1 else tuple(pos)}
-            values["pinocchio"] = (0.0, 0.0, 0.0)
+            values = {"class": cls, f"{tag}s": tuple(names), reference(): pos[0] if len(pos) == 1 else tuple(pos)}
+            values[cause(cause_id).engine] = (0.0, 0.0, 0.0)
             summary = f"{tag} pos from default class '{cls}' not applied by Pinocchio; {tag} placed at the body origin"
             kind = Kind.ANCHOR if tag == "joint" else Kind.COM
         out.append(
             Finding(
                 kind,
-                "pinocchio",
+                cause(cause_id).engine,
                 f"{tag} {shown_names(names)}",
                 summary,
                 values=values,
                 affects_energy=True,
                 root_cause=True,
                 segments=segments,
-                cause=f"pinocchio.mjcf.class-{tag}-{'mass' if attr == 'mass' else 'pos'}",
+                cause=cause_id,
                 tag=tag,
             )
         )
@@ -246,7 +257,10 @@ def _mass_values(spec: mujoco.MjSpec, geoms: list[Any]) -> dict[str, float]:
     finally:
         for g, m in zip(geoms, saved, strict=True):
             g.mass = m
-    return {"mujoco": given, "pinocchio": given + unset - base}
+    return {
+        reference(): given,
+        cause(CLASS_VALUES["geom", "mass"]).engine: given + unset - base,
+    }
 
 
 def compiler_causes(pair: Any) -> list[Finding]:
@@ -273,14 +287,15 @@ def compiler_causes(pair: Any) -> list[Finding]:
         scale = max(m_mj, m_pin, 1e-300)
         if abs(m_mj - option.values["settotalmass"]) <= RTOL * scale and abs(m_mj - m_pin) > RTOL * scale:
             out.append(
-                replace(  # MuJoCo's (the engine that applies it), as the option's record says
+                replace(  # the option's record, blamed on the engine that ignores it (the cause's)
                     option,
+                    engine=cause(SETTOTALMASS).engine,
                     summary=f"{option_text(option)}: {option.summary}, Pinocchio does not",
-                    values={"mujoco": m_mj, "pinocchio": m_pin},
+                    values={reference(): m_mj, cause(SETTOTALMASS).engine: m_pin},
                     root_cause=True,
                     segments=tuple(pair.mujoco.segment_names),
                     hint="",
-                    cause="pinocchio.mjcf.settotalmass",
+                    cause=SETTOTALMASS,
                 )
             )
     return out
@@ -329,24 +344,25 @@ def mesh_causes(pair: Any, explained: AbstractSet[str] = frozenset()) -> list[Fi
         return []
     segments = list(dict.fromkeys(segments))
     geoms = [g for g in geoms if g not in visual] + visual  # those Pinocchio weighs (1 kg each) first
+    weighs = cause(MESH_MASS).engine
     also = f"; {shown_names(visual)}: contype=0 and conaffinity=0, read as visual only, count as nothing" * bool(visual)
     return [
         Finding(
             Kind.MASS,
-            "pinocchio",
+            weighs,
             f"geom {shown_names(geoms)}",
             "geoms with a mesh: Pinocchio's MJCF parser does not compute mass and inertia from the mesh "
             f"(a mesh-typed geom counts as 1 kg with unit inertia, a primitive fitted to a mesh as nothing{also})",
             values={
                 "geoms": tuple(geoms),
                 "visual geoms": tuple(visual),
-                "mujoco": float(sum(segs.mass[s][0] for s in segments)),
-                "pinocchio": float(sum(segs.mass[s][1] for s in segments)),
+                reference(): float(sum(segs.mass[s][0] for s in segments)),
+                weighs: float(sum(segs.mass[s][1] for s in segments)),
             },
             affects_energy=True,
             root_cause=True,
             segments=tuple(segments),
-            cause="pinocchio.mjcf.mesh-mass",
+            cause=MESH_MASS,
             tag="geom",
         )
     ]

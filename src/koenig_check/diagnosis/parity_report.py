@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from koenig_check.engines.registry import label as engine_label
+from koenig_check.engines.specs import parity_pair
 from koenig_check.findings import Finding, Kind
 
 #: Default relative tolerance of parity comparisons.
@@ -255,11 +257,12 @@ class ParityReport:
             segment that one engine lacks.
         """
         out = list(self.causes) + [f for f in self.findings if isinstance(f, Finding)]
+        first, second = parity_pair()  # each pair of values below is (MuJoCo's, Pinocchio's)
         for seg in self.differing_segments:
             for cause in seg.causes:
                 if cause in self.explained(seg.name):
                     continue
-                values: dict[str, float] = {"mujoco": seg.mass[0], "pinocchio": seg.mass[1]} if cause == "mass" else {}
+                values: dict[str, float] = {first: seg.mass[0], second: seg.mass[1]} if cause == "mass" else {}
                 values["relative difference"] = seg.relative.get(cause, float("nan"))
                 out.append(
                     Finding(
@@ -276,7 +279,7 @@ class ParityReport:
             for cause in dof.causes:
                 if cause in self.explained(dof.joint):
                     continue
-                values = {"mujoco": dof.armature[0], "pinocchio": dof.armature[1]} if cause == "armature" else {}
+                values = {first: dof.armature[0], second: dof.armature[1]} if cause == "armature" else {}
                 values["relative difference"] = dof.relative.get(cause, float("nan"))
                 out.append(
                     Finding(
@@ -288,14 +291,14 @@ class ParityReport:
                         affects_energy=True,
                     )
                 )
-        for engine, names in (("mujoco", self.only_in_mujoco), ("pinocchio", self.only_in_pinocchio)):
+        for engine, names in ((first, self.only_in_mujoco), (second, self.only_in_pinocchio)):
             if names:
                 out.append(
                     Finding(
                         Kind.SEGMENTS,
                         engine,
                         "segments " + ", ".join(names),
-                        f"segments only in {'MuJoCo' if engine == 'mujoco' else 'Pinocchio'}",
+                        f"segments only in {engine_label(engine)}",
                         affects_energy=True,
                         segments=tuple(names),
                     )

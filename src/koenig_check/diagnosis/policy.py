@@ -4,8 +4,14 @@
 (:attr:`~koenig_check.engines.specs.EngineSpec.tie_breaker`) is consulted only on a model where the required
 engines disagree, so that agreeing models cost nothing extra; any other optional engine runs only when named.
 An engine the user names (``engines=("mujoco", "pinocchio", "drake")``) runs on every pose of every model;
-when it cannot check a model, the check the user asked for was not made, and the model fails.  Whenever an
-optional engine is not used, an ``ENGINE_NOT_USED`` finding says why.
+when it cannot check a model, the check the user asked for was not made, and the model fails.
+``engines=("all",)`` (``--engines all``) names, per model, every installed engine whose parser reads its format
+(:func:`koenig_check.engines.registry.engines_for`, resolved when the model is loaded): each is then asked for,
+and each installed engine that does not read the format gets an ``ENGINE_NOT_USED`` finding saying so.
+
+An engine named, or consulted, and not used on a model gets an ``ENGINE_NOT_USED`` finding on that model saying
+why.  The installed engines the user did not name get none: the run says so once (:func:`not_named`,
+:func:`koenig_check.report.engine_sets.not_named_line`).
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ from typing import Any
 
 from koenig_check.engines import registry
 from koenig_check.engines.registry import install_hint, label, not_used, optional, required, spec
+from koenig_check.engines.specs import ALL
 from koenig_check.findings import Finding, Kind
 
 
@@ -33,8 +40,47 @@ def asked_for(engines: Sequence[str] | None) -> tuple[str, ...]:
     return tuple(n for n in optional() if engines is not None and n in engines)
 
 
+def considered(name: str, engines: Sequence[str] | None) -> bool:
+    """Whether an optional engine is considered on a model at all: named, or a tie-breaker under the default policy.
+
+    An engine not considered gets no finding on each model: the run says it once
+    (:func:`koenig_check.report.engine_sets.not_named_line`).
+
+    Parameters
+    ----------
+    name : str
+    engines : sequence of str or None
+        The engines the user named (None: the default policy).
+
+    Returns
+    -------
+    bool
+    """
+    return name in engines if engines is not None else spec(name).tie_breaker
+
+
+def not_named(engines: Sequence[str] | None) -> tuple[str, ...]:
+    """The installed optional engines a run leaves out because the user did not name them.
+
+    Parameters
+    ----------
+    engines : sequence of str or None
+        As :attr:`koenig_check.engines.LoadOptions.engines`.  ``None`` (the default policy: the user chose no
+        engine) and ``("all",)`` (an engine that does not read a model's format is said on that model) leave none
+        out by name.
+
+    Returns
+    -------
+    tuple of str
+        In report order.
+    """
+    if engines is None or tuple(engines) == (ALL,):  # the default policy names none: nothing to say on each run
+        return ()
+    return tuple(n for n in optional() if registry.installed(n) and not considered(n, engines))
+
+
 def to_consult(name: str, engines: Sequence[str] | None, disagree: bool) -> Finding | None:
-    """Whether to attach an optional engine to a model: None to attach it, else the finding saying why not.
+    """Whether to attach an optional engine :func:`considered` on a model: None to attach it, else why not.
 
     Parameters
     ----------
@@ -49,12 +95,8 @@ def to_consult(name: str, engines: Sequence[str] | None, disagree: bool) -> Find
     -------
     Finding or None
     """
-    if engines is not None and name not in engines:
-        return not_used(name, "not asked for (engines: " + ", ".join(engines) + ")")
     if not registry.installed(name):
         return not_used(name, f"not installed ({install_hint(name)})")
-    if engines is None and not spec(name).tie_breaker:
-        return not_used(name, "not asked for (it breaks no tie: --engines names it)")
     if engines is None and not disagree:
         return not_used(name, f"not needed, {_and(required())} agree")
     return None
@@ -114,12 +156,13 @@ def attach_engines(model: Any, disagree: bool | None = None, names: Sequence[str
     Returns
     -------
     list of Finding
-        Per optional engine not consulted (in report order), the ``ENGINE_NOT_USED`` finding saying why.
+        Per optional engine :func:`considered` but not consulted (in report order), the ``ENGINE_NOT_USED``
+        finding saying why (the engines not named have none: :func:`not_named`).
     """
     engines = model.options.engines
     why_not: list[Finding] = []
     for name in optional():
-        if name in model.engines or (names is not None and name not in names):
+        if name in model.engines or (names is not None and name not in names) or not considered(name, engines):
             continue
         why = None if name in asked_for(engines) else to_consult(name, engines, bool(disagree))
         if why is None and (disagree is not None or name in asked_for(engines)):

@@ -41,10 +41,11 @@ class LoadOptions:
         Load Pinocchio from this other file of the same mechanism (e.g. the URDF twin of an MJCF).
     allow_coupled : bool
         Deprecated no-op kept for a while: coupled joints are loaded by default and recorded as findings.
-    engines : tuple of str, optional
+    engines : tuple of str or "all", optional
         The engines to run on every model: ``("mujoco", "pinocchio")`` or ``("mujoco", "pinocchio",
-        "drake")``.  ``None`` (default): MuJoCo and Pinocchio, and Drake as tie-breaker on a model where
-        they disagree, when Drake is installed (:mod:`koenig_check.diagnosis.policy`).
+        "drake")``; ``"all"`` (stored as ``("all",)``): per model, every installed engine whose parser reads its
+        format, each asked for as if named.  ``None`` (default): MuJoCo and Pinocchio, and Drake as
+        tie-breaker on a model where they disagree, when Drake is installed (:mod:`koenig_check.diagnosis.policy`).
     xacro_args : mapping or pairs, optional
         ``$(arg NAME)`` values for a ``.xacro`` model (``{"length": "0.7"}``, ``["length=0.7"]``); the file's
         defaults apply to the others.  Stored as sorted ``(name, value)`` pairs.
@@ -124,23 +125,32 @@ def parse_engines(text: str) -> tuple[str, ...]:
     Parameters
     ----------
     text : str
-        Comma-separated engine names; MuJoCo and Pinocchio are always run.
+        Comma-separated engine names; MuJoCo and Pinocchio are always run.  ``"all"``, alone: every installed
+        engine whose parser reads each model's format (resolved per model by
+        :func:`koenig_check.engines.registry.engines_for`).
 
     Returns
     -------
     tuple of str
-        In report order (:func:`koenig_check.engines.specs.names`).
+        In report order (:func:`koenig_check.engines.specs.names`), or ``("all",)``.
 
     Raises
     ------
     ValueError
-        On an unknown name, or a list without MuJoCo and Pinocchio.
+        On an unknown name, a list without MuJoCo and Pinocchio, or ``all`` in a list.
     """
     asked = [n.strip().lower() for n in text.split(",") if n.strip()]
+    if engine_specs.ALL in asked:
+        if asked != [engine_specs.ALL]:
+            raise ValueError(
+                f"engines: {engine_specs.ALL!r} stands alone (every installed engine that reads the "
+                f"file's format), not in a list: {text!r}"
+            )
+        return (engine_specs.ALL,)
     known = engine_specs.names()
     unknown = [n for n in asked if n not in known]
     if unknown:
-        raise ValueError(f"engines: unknown {unknown}; choose among {list(known)}")
+        raise ValueError(f"engines: unknown {unknown}; choose among {list(known)}, or {engine_specs.ALL!r} alone")
     required = [s.name for s in engine_specs.specs() if s.required]
     if not set(required) <= set(asked):
         whole = ",".join(n for n in known if n in {*asked, *required})
@@ -231,8 +241,9 @@ def add_load_arguments(parser: argparse.ArgumentParser) -> None:
         type=_engines_argument,
         default=None,
         metavar="LIST",
-        help="engines to run on every model, e.g. mujoco,pinocchio,drake (default: Drake only as tie-breaker "
-        "where MuJoCo and Pinocchio disagree, when installed)",
+        help="engines to run on every model, e.g. mujoco,pinocchio,drake, or all: every installed engine that "
+        "reads each model's format (default: Drake only as tie-breaker where MuJoCo and Pinocchio disagree, when "
+        "installed)",
     )
     group.add_argument(
         "--xacro-arg",

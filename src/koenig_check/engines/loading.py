@@ -27,6 +27,7 @@ from koenig_check.engines.pinocchio.adapter import PinocchioEngine
 from koenig_check.engines.pinocchio.loader import load_pinocchio
 from koenig_check.engines.pinocchio.state_map import StateMap, build_state_map
 from koenig_check.engines.sampling import random_states
+from koenig_check.engines.specs import parity_pair
 from koenig_check.exceptions import KoenigCheckError, quote_engine
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.validate import preflight
@@ -78,7 +79,8 @@ class LoadedModel:
     _refused: dict[str, Finding] = field(init=False, default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
-        self.engines = {"mujoco": self.mujoco, "pinocchio": self.pinocchio}
+        reference, other = parity_pair()
+        self.engines = {reference: self.mujoco, other: self.pinocchio}
 
     @property
     def path(self) -> str:
@@ -182,7 +184,7 @@ def _armature_findings(mj: MujocoEngine, pn: PinocchioEngine, state_map: StateMa
                     "both",
                     f"joint {p.name}",
                     "armature differs between the engines",
-                    {"mujoco": float(a[0]), "pinocchio": float(b[0])},
+                    dict(zip(parity_pair(), (float(a[0]), float(b[0])), strict=True)),
                     affects_energy=True,
                     segments=(p.name,),
                 )
@@ -300,6 +302,7 @@ def load_model(
     )
     for s in {source.path: source, pin_source.path: pin_source}.values():
         preflight(s.path)
+    reference, other = parity_pair()  # loaded below in MuJoCo and Pinocchio
     try:
         mj_model, mj_findings, body_findings = load_mujoco(
             source, floating=opts.floating, balance_inertia=opts.balance_inertia, repair_inertia=opts.repair_inertia
@@ -317,13 +320,13 @@ def load_model(
             0,
             Finding(
                 Kind.LOAD,
-                "pinocchio",
+                other,
                 f"file {pin_source.path.name}",
                 "Pinocchio loaded from another file than MuJoCo",
-                {"pinocchio": str(pin_source.path), "mujoco": str(source.path)},
+                {other: str(pin_source.path), reference: str(source.path)},
             ),
         )
-    large_values = check_finite(mj_model, pin_model, str(source.path), ("mujoco", "pinocchio"))
+    large_values = check_finite(mj_model, pin_model, str(source.path), (reference, other))
     if mj_model.nv == 0:
         advice = moving_advice(mj_model, urdf=source.path.suffix.lower() == ".urdf")
         err = NoMovingSegmentError(
@@ -335,7 +338,7 @@ def load_model(
     state_map = build_state_map(mj_model, pin_model, str(source.path))
     mj = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
     pn = PinocchioEngine(pin_model, state_map, pin_source.path, pin_findings + state_map.findings)
-    tolerate = frozenset({"pinocchio"}) if opts.balance_inertia or opts.repair_inertia else frozenset()
+    tolerate = frozenset({other}) if opts.balance_inertia or opts.repair_inertia else frozenset()
     pn.findings += check_segments((mj, pn), mj_model.qpos0, str(source.path), tolerate)
     findings = mj.findings + pn.findings + large_values + coupling_findings(source, mj_model)
     findings += _armature_findings(mj, pn, state_map) + _pose_findings(mj, pn)
@@ -359,4 +362,7 @@ def load_model(
             found = self_consistency(engine, qpos, qvel)
             engine.findings.extend(found)
             findings.extend(found)
-    return LoadedModel(source, mj, pn, state_map, opts, findings)
+    engines, left_out = registry.engines_for(opts.engines, source.format)  # --engines all: those that read it
+    loaded = LoadedModel(source, mj, pn, state_map, replace(opts, engines=engines), findings)
+    loaded.optional_findings += left_out
+    return loaded

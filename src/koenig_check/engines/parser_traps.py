@@ -1,9 +1,11 @@
 """Constructs of an MJCF file that Pinocchio's (and Drake's) MJCF parsers read differently from MuJoCo, from the file.
 
-Each is one :class:`~koenig_check.findings.Finding` with ``root_cause=True``: an ``<include>`` ignored, a
-``<frame>`` skipped with everything inside, the root bodies after the first; and the decorator that makes a
-load failure carry them.  What Pinocchio 4.1's ``buildModelFromMJCF`` does was verified on small files
-(``tests/models/causes/``): see :mod:`koenig_check.diagnosis.pair_causes` for the causes read from both
+Each is one :class:`~koenig_check.findings.Finding` with ``root_cause=True``: a ``<frame>`` skipped with
+everything inside (for any engine whose catalogue declares it), and :func:`file_causes`, every cause the file
+alone shows, gathered from the modules where each engine declares its own (Pinocchio's ``<include>``, root
+bodies, bare bodies, ``<attach>``: :mod:`koenig_check.engines.pinocchio.file_traps` and its neighbours); and the
+decorator that makes a load failure carry them.  What Pinocchio 4.1's ``buildModelFromMJCF`` does was verified on
+small files (``tests/models/causes/``): see :mod:`koenig_check.diagnosis.pair_causes` for the causes read from both
 engines' loaded models.
 """
 
@@ -18,9 +20,11 @@ from typing import Any, TypeVar, cast
 
 import mujoco
 
-from koenig_check.engines.bare_bodies import bare_body_causes
 from koenig_check.engines.canonical import segment_of_body
+from koenig_check.engines.catalogue import cause
 from koenig_check.engines.pinocchio.attached_models import attach_causes
+from koenig_check.engines.pinocchio.bare_bodies import bare_body_causes
+from koenig_check.engines.pinocchio.file_traps import FRAME, about_z, include_causes, planar_cause, root_body_causes
 from koenig_check.engines.registry import label
 from koenig_check.engines.replicates import replicate_causes
 from koenig_check.engines.unit_axes import axisangle_causes
@@ -32,13 +36,13 @@ from koenig_check.exceptions import (
     NoMovingSegmentError,
 )
 from koenig_check.findings import Finding, Kind
-from koenig_check.modelfile.mjcf import body_label, frames, includes, joint_names, read_mjcf
+from koenig_check.modelfile.mjcf import frames, includes, read_mjcf
 from koenig_check.modelfile.urdf_links import planar_axes
 
 F = TypeVar("F", bound=Callable[..., Any])
 
 
-def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str = "pinocchio") -> list[Finding]:
+def frame_causes(root: ET.Element, seg_of: dict[str, str], engine: str) -> list[Finding]:
     """The ``<frame>`` elements an engine's MJCF parser does not read, with what they hold.
 
     MuJoCo resolves a ``<frame>`` at compile time (its pose moves every child); Pinocchio 4.1's and
@@ -130,64 +134,15 @@ def file_causes(path: str | os.PathLike[str], mj_model: mujoco.MjModel | None = 
     root = read_mjcf(path)
     if root is None:
         return []
-    out: list[Finding] = []
     seg_of = {} if mj_model is None else segment_of_body(mj_model)
     world_bodies = [b for w in root.findall("worldbody") for b in w.findall("body")]
-    for inc in includes(root, path.parent):
-        if not inc.bodies and not inc.defaults:
-            continue  # assets, visual settings: nothing kinematic
-        moved = tuple(dict.fromkeys(seg_of[b] for b in inc.bodies if seg_of.get(b)))
-        if inc.bodies and not world_bodies:
-            summary = (
-                "<include> ignored by Pinocchio's MJCF parser; the file's <worldbody> has no <body> of its own "
-                "(Pinocchio fails with 'No such node (body)')"
-            )
-        elif inc.bodies:
-            summary = "<include> ignored by Pinocchio's MJCF parser: the included bodies and joints are missing"
-        else:
-            summary = "<include> ignored by Pinocchio's MJCF parser: the default classes it defines are unknown"
-        out.append(
-            Finding(
-                Kind.IGNORED_CONSTRUCT,
-                "pinocchio",
-                f"include {inc.file}",
-                summary,
-                values={
-                    "in": inc.where,
-                    "bodies": inc.bodies,
-                    "joints": inc.joints,
-                    "mujoco": f"{len(inc.bodies)} bodies, {len(inc.joints)} joints",
-                    "pinocchio": "not read",
-                },
-                affects_energy=bool(inc.joints or moved),
-                root_cause=True,
-                segments=moved or inc.joints,
-                hint="load a file without <include> (e.g. the robot's own file)" if inc.bodies else "",
-                cause="pinocchio.mjcf.include",
-                tag="include",
-            )
-        )
-    out += frame_causes(root, seg_of)
+    out = include_causes(includes(root, path.parent), seg_of, bool(world_bodies))
+    out += frame_causes(root, seg_of, cause(FRAME).engine)
     out += attach_causes(root, path.parent, mj_model)
     out += bare_body_causes(root, seg_of)
     out += axisangle_causes(root, seg_of)
     out += replicate_causes(root, seg_of)
-    for body in world_bodies[1:]:
-        joints = tuple(joint_names(body))
-        out.append(
-            Finding(
-                Kind.IGNORED_CONSTRUCT,
-                "pinocchio",
-                f"body {body_label(body, world_bodies)}",
-                f"Pinocchio's MJCF parser reads only the first root body ({body_label(world_bodies[0], world_bodies)})",
-                values={"joints": joints, "mujoco": "loaded", "pinocchio": "not read"},
-                affects_energy=bool(joints),
-                root_cause=True,
-                segments=joints,
-                cause="pinocchio.mjcf.root-bodies",
-                tag="body",
-            )
-        )
+    out += root_body_causes(world_bodies)
     return out
 
 
@@ -279,48 +234,6 @@ def explain_load_failures(load: F) -> F:
     return cast("F", wrapper)
 
 
-def planar_cause(joint: str, axis: tuple[float, ...] = (1.0, 0.0, 0.0)) -> Finding:
-    """A URDF ``planar`` joint about another axis than z: the engines read it in different planes or coordinates.
-
-    MuJoCo's import makes it three joints (slides ``_TX``, ``_TY``, hinge ``_RZ``) with the URDF axis as the
-    plane's normal; Pinocchio 4.1 makes it one ``JointModelPlanar`` about the joint frame's z, whatever the
-    axis.  A planar joint about z is paired (:mod:`koenig_check.engines.pinocchio.planar`); this one is not.
-
-    Parameters
-    ----------
-    joint : str
-    axis : tuple of float
-        The URDF ``<axis>`` (``1 0 0`` when the file writes none).
-
-    Returns
-    -------
-    Finding
-        An ``AXIS`` root cause naming MuJoCo's three joints.
-    """
-    parts = tuple(f"{joint}_{axis}" for axis in ("TX", "TY", "RZ"))
-    written = " ".join(f"{a:g}" for a in axis)
-    return Finding(
-        Kind.AXIS,
-        "both",
-        f"joint {joint}",
-        f"URDF planar joint about axis {written}, which Pinocchio reads about z: MuJoCo's import makes it three "
-        f"joints ({', '.join(parts)}) in the plane normal to the axis, Pinocchio one planar joint about z (it "
-        "ignores the axis); koenig-check pairs a planar joint only about z, where both read the same coordinates",
-        values={"mujoco": parts, "pinocchio": (joint,), "axis": axis},
-        affects_energy=True,
-        root_cause=True,
-        segments=parts,
-        hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
-        cause="pinocchio.urdf.planar-axis",
-        tag="joint",
-    )
-
-
-def _about_z(axis: tuple[float, ...]) -> bool:
-    """Whether a URDF axis is z (scaled), the one planar joint both engines read alike."""
-    return len(axis) == 3 and axis[0] == axis[1] == 0.0 and axis[2] > 0.0
-
-
 def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
     from koenig_check.sources.catalogue import resolve_model
 
@@ -329,7 +242,7 @@ def _file_causes_of(path_or_name: Any, fmt: str | None) -> list[Finding]:
     except Exception:  # the original error says what is wrong with the name
         return []
     if source.format == "urdf":
-        return [planar_cause(name, axis) for name, axis in planar_axes(source.path).items() if not _about_z(axis)]
+        return [planar_cause(name, axis) for name, axis in planar_axes(source.path).items() if not about_z(axis)]
     if source.format != "mjcf":
         return []
     try:

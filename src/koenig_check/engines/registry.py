@@ -17,7 +17,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from koenig_check.engines.errors import EngineUnavailableError
-from koenig_check.engines.specs import EngineSpec, names, reference, spec, specs
+from koenig_check.engines.specs import ALL, EngineSpec, names, parity_pair, reference, spec, specs
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
@@ -30,6 +30,7 @@ __all__ = [
     "EngineSpec",
     "attach",
     "check_engines",
+    "engines_for",
     "install_hint",
     "installed",
     "label",
@@ -38,6 +39,8 @@ __all__ = [
     "names",
     "not_used",
     "optional",
+    "parity_pair",
+    "reading",
     "reference",
     "required",
     "spec",
@@ -172,11 +175,66 @@ def check_engines(engines: Sequence[str] | None) -> None:
     EngineUnavailableError
     """
     for name in engines or ():
-        if name not in required() and not installed(name):
+        if name != ALL and name not in required() and not installed(name):
             module = spec(name).module
             raise EngineUnavailableError(
                 f"engines: {name} asked for but {module} is not installed ({install_hint(name)})", engine=name
             )
+
+
+def reading(fmt: str, *, installed_only: bool = False) -> tuple[str, ...]:
+    """The engines whose parser reads files of a format (their spec's ``formats``), in report order.
+
+    The one answer to "which engines read this file": ``--engines all`` (:func:`engines_for`) and the export's
+    proof (:func:`koenig_check.export.proof.prove`) both ask it.
+
+    Parameters
+    ----------
+    fmt : str
+        ``"mjcf"`` or ``"urdf"`` (:attr:`koenig_check.engines.ModelSource.format`).
+    installed_only : bool
+        Only the installed ones (the required engines always are).
+
+    Returns
+    -------
+    tuple of str
+    """
+    return tuple(
+        s.name for s in specs() if fmt in s.formats and (not installed_only or s.required or installed(s.name))
+    )
+
+
+def engines_for(engines: Sequence[str] | None, fmt: str) -> tuple[tuple[str, ...] | None, list[Finding]]:
+    """The engines a model of a format runs in: ``engines`` as named, or for ``("all",)`` those that read it.
+
+    Parameters
+    ----------
+    engines : sequence of str or None
+        As :attr:`koenig_check.engines.LoadOptions.engines`; ``("all",)`` (``--engines all``) asks for every
+        installed engine whose parser reads ``fmt``.
+    fmt : str
+        The model's format.
+
+    Returns
+    -------
+    engines : tuple of str or None
+        ``engines`` unchanged, or for ``("all",)`` the installed engines that read ``fmt``, in report order: each
+        is then asked for as if named (one that cannot check the model fails it with its own reason).
+    left_out : list of Finding
+        For ``("all",)``, per installed engine that does not read ``fmt``, the ``ENGINE_NOT_USED`` finding saying
+        so (values: ``format``, the file's, and ``reads``, the engine's); otherwise empty.
+    """
+    if engines is None or tuple(engines) != (ALL,):
+        return (None if engines is None else tuple(engines)), []
+    chosen = reading(fmt, installed_only=True)
+    left_out = [
+        not_used(
+            n, "--engines all: its parser does not read the file's format", format=fmt, reads="/".join(spec(n).formats)
+        )
+        for n in optional()
+        if n not in chosen and installed(n)
+    ]
+    return chosen, left_out
 
 
 def mjcf_mesh_formats(engines: Sequence[str]) -> dict[str, tuple[str, ...]]:

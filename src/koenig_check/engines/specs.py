@@ -19,6 +19,8 @@ from dataclasses import dataclass
 
 #: The package whose subpackages are the engines.
 ENGINES_PACKAGE = "koenig_check.engines"
+#: The word that asks for every installed engine whose parser reads a model's format (``--engines all``).
+ALL = "all"
 
 
 @dataclass(frozen=True)
@@ -160,6 +162,26 @@ def reference() -> str:
     if len(found) != 1:
         raise ValueError(f"engines: exactly one spec declares reference=True, found {found}")
     return found[0]
+
+
+def parity_pair() -> tuple[str, str]:
+    """The two required engines whose import parity is checked: the reference first, then the other one.
+
+    Returns
+    -------
+    tuple of str
+        ``(reference, other)`` (MuJoCo, Pinocchio).
+
+    Raises
+    ------
+    ValueError
+        The required engines are not the reference and one other.
+    """
+    first = reference()
+    others = [s.name for s in specs() if s.required and s.name != first]
+    if len(others) != 1 or not spec(first).required:
+        raise ValueError(f"engines: the import-parity pair is the required reference and one other, found {others}")
+    return first, others[0]
 
 
 def spec(name: str) -> EngineSpec:

@@ -6,9 +6,10 @@ import os
 from pathlib import Path
 
 from koenig_check.arguments import ArgumentValueError
-from koenig_check.engines.load_options import LoadOptions
+from koenig_check.engines.load_options import LoadOptions, parse_engines
 from koenig_check.engines.mujoco.loader import load_mujoco
 from koenig_check.engines.registry import mjcf_mesh_formats, names
+from koenig_check.engines.specs import ALL
 from koenig_check.export.carried import NotCarried
 from koenig_check.export.mjcf_from_urdf import write_mjcf_from_urdf
 from koenig_check.export.portable_mjcf import write_portable_mjcf
@@ -61,7 +62,7 @@ def export_model(
     poses: int = PROOF_POSES,
     seed: int = 0,
     rtol: float = PROOF_RTOL,
-    engines: tuple[str, ...] | None = None,
+    engines: tuple[str, ...] | str | None = None,
 ) -> ExportResult:
     """Write ``model`` as URDF or portable MJCF, load it back and compare it with the original.
 
@@ -79,8 +80,10 @@ def export_model(
         URDF: write armature as Drake's ``drake:rotor_inertia``.
     poses, seed, rtol
         The proof's seeded random poses and relative tolerance.
-    engines : tuple of str, optional
-        Engines the proof uses (those not installed are reported, not run); default: every engine.  An MJCF
+    engines : tuple of str or "all", optional
+        Engines the proof uses (those not installed are reported, not run); default: every engine that reads the
+        export's format (:func:`koenig_check.export.proof.prove`); ``"all"``: every installed engine that reads
+        both files' formats, each asked for.  An MJCF
         for engines without Drake keeps mesh geoms of every format MuJoCo reads (Drake's MJCF parser reads
         ``.obj`` only: with Drake, other meshes are listed as not carried; the inertia is explicit either way).
 
@@ -98,13 +101,15 @@ def export_model(
         MuJoCo cannot load the original.
     """
     check_export_arguments(model, to, out, poses, rtol)
+    if isinstance(engines, str):
+        engines = parse_engines(engines)  # "all", or "mujoco,pinocchio,newton"
     options = LoadOptions(floating=floating, repair_inertia=repair_inertia, balance_inertia=balance_inertia)
     source = resolve_model(model)
     mj_model, findings, body_findings = load_mujoco(
         source, floating=floating, balance_inertia=balance_inertia, repair_inertia=repair_inertia
     )
     name = source.path.stem
-    mesh_formats = mjcf_mesh_formats(names() if engines is None else engines)  # the proof's readers
+    mesh_formats = mjcf_mesh_formats(names() if engines in (None, (ALL,)) else engines)  # the proof's readers
     not_carried: list[NotCarried]
     if to == "urdf":
         text, not_carried = write_urdf(

@@ -67,9 +67,10 @@ def load_side(path: str | os.PathLike[str], options: LoadOptions, engines: tuple
         repair_inertia=options.repair_inertia,
     )
     side = EngineSide(str(source.path), mj_model)
-    side.adapters["mujoco"] = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
+    layout = registry.reference()  # MuJoCo: its model is the layout the others are loaded against
+    side.adapters[layout] = MujocoEngine(mj_model, source.path, mj_findings, body_findings)
     for name in registry.names() if engines is None else engines:
-        if name == "mujoco":
+        if name == layout:
             continue
         if not registry.installed(name):
             extra = registry.spec(name).extra

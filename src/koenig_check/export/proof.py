@@ -25,11 +25,12 @@ from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.load_options import LoadOptions
 from koenig_check.engines.mujoco.loader import root_free_joint
 from koenig_check.engines.sampling import random_states
+from koenig_check.engines.specs import ALL
 from koenig_check.export.engine_sides import EngineSide, load_side
 from koenig_check.export.joint_pairing import JointPairing, pair_joints
 from koenig_check.export.result import EngineProof, Proof, SegmentDifference
 from koenig_check.export.unread_constructs import refusal_with_frames
-from koenig_check.sources.catalogue import detect_format
+from koenig_check.sources.catalogue import detect_format, resolve_model
 
 #: A declared precision this coarse is a single-precision engine's (Newton's float32, 1e-5): by default the proof
 #: leaves such an engine out where its round-off reaches the tolerance; named (``engines=``), it is compared at it.
@@ -197,6 +198,11 @@ def export_options(
     return replace(original, floating=floating, pinocchio_model=None, engines=None)
 
 
+def _unread(engine: str, formats: tuple[str, ...]) -> str:
+    """The formats among ``formats`` an engine's parser does not read, for people (``"MJCF"``)."""
+    return " or ".join(dict.fromkeys(f.upper() for f in formats if f not in registry.spec(engine).formats))
+
+
 def prove(
     original: str | os.PathLike[str],
     export: str | os.PathLike[str],
@@ -224,19 +230,29 @@ def prove(
         Default: every engine whose parser reads the export's format (its spec's ``formats``), but a
         single-precision engine (declared precision of :data:`SINGLE_PRECISION` or more, at or above ``rtol``) only
         where it is named; each compared where it loads both files.  Engines named here are asked for: one that
-        cannot compare the files fails the proof.
+        cannot compare the files fails the proof.  ``("all",)`` (``--engines all``): every installed engine
+        whose parser reads both files' formats, each asked for.
 
     Returns
     -------
     Proof
     """
+    target = detect_format(Path(export))
+    left_out: tuple[EngineProof, ...] = ()
+    if engines is not None and tuple(engines) == (ALL,):  # every installed engine that reads both files, asked for
+        source = resolve_model(original).format
+        engines = tuple(n for n in registry.reading(target, installed_only=True) if n in registry.reading(source))
+        left_out = tuple(
+            EngineProof(
+                n, np.nan, np.nan, 0, False, f"its parser does not read {_unread(n, (source, target))} (--engines all)"
+            )
+            for n in registry.optional()
+            if n not in engines and registry.installed(n)
+        )
     asked = () if engines is None else tuple(engines)
     if engines is None:  # every engine whose parser reads the export's format (PyBullet, iDynTree: URDF only)
-        target = detect_format(Path(export))  # a single-precision engine (Newton) only where named, or at a coarse rtol
-        engines = tuple(
-            n
-            for n in registry.names()
-            if target in registry.spec(n).formats and registry.spec(n).precision < max(rtol, SINGLE_PRECISION)
+        engines = tuple(  # a single-precision engine (Newton) only where named, or at a coarse rtol
+            n for n in registry.reading(target) if registry.spec(n).precision < max(rtol, SINGLE_PRECISION)
         )
     else:
         engines = tuple(engines)
@@ -249,10 +265,10 @@ def prove(
             f"{side_a.path}: nothing moves (no joint), so there is no mass matrix to compare "
             "(--floating gives the root body a free joint)"
         )
-        skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "nothing moves") for e in engines)
+        skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "nothing moves") for e in engines) + left_out
         return Proof(skipped, (), poses, seed, rtol, (problem,), asked)
     if pairing.problems:
-        skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "joints do not pair") for e in engines)
+        skipped = tuple(EngineProof(e, np.nan, np.nan, 0, False, "joints do not pair") for e in engines) + left_out
         return Proof(skipped, (), poses, seed, rtol, pairing.problems, asked)
     states = random_states(side_a.mj_model, poses, seed)
     results, segments = [], []
@@ -260,4 +276,4 @@ def prove(
         proof, diffs = compare_engine(engine, side_a, side_b, pairing, states, rtol)
         results.append(proof)
         segments += diffs
-    return Proof(tuple(results), tuple(segments), poses, seed, rtol, asked=asked)
+    return Proof(tuple(results) + left_out, tuple(segments), poses, seed, rtol, asked=asked)

@@ -27,6 +27,7 @@ from koenig_check.arguments import suggest_keywords
 from koenig_check.engines import LoadedModel, load_model
 from koenig_check.engines.canonical import mujoco_coordinate_names
 from koenig_check.engines.load_options import LoadOptions
+from koenig_check.engines.specs import parity_pair, specs
 from koenig_check.exceptions import KoenigCheckError, one_line
 from koenig_check.findings import Finding, Kind
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError
@@ -45,7 +46,8 @@ from koenig_check.run.poses import random_poses
 M_RTOL = 1e-9
 #: Default relative tolerance (Euclidean norm, per pose) for ``Q*`` of ``exact`` against an engine.
 Q_RTOL = 1e-6
-ENGINES = ("mujoco", "pinocchio")
+#: The engines every model is loaded in, the reference first (MuJoCo, Pinocchio): a column each, always.
+ENGINES = parity_pair()
 #: The pseudo-formula under which the engines are compared with each other.
 ENGINE_PARITY = "(engine)"
 
@@ -135,7 +137,9 @@ class DynamicsResult:
         """The tolerance of one comparison.
 
         ``m_rtol`` / ``q_rtol`` by quantity; where two engines' readings of the model meet (the engines against
-        each other, or a route on one engine's states against another engine) the larger of that and ``rtol``.
+        each other, or a route on one engine's states against another engine) the larger of that, ``rtol`` and
+        the precision both engines declare (:attr:`~koenig_check.engines.specs.EngineSpec.precision`: Newton's
+        float32 round-off is no difference).
 
         Parameters
         ----------
@@ -146,7 +150,11 @@ class DynamicsResult:
         float
         """
         tol = self.m_rtol if e.quantity == "M" else self.q_rtol
-        return max(tol, self.rtol) if self._across(e) and self.rtol is not None else tol
+        if not self._across(e):
+            return tol
+        declared = {s.name: s.precision for s in specs()}  # a float32 engine's round-off is no difference
+        tol = max([tol, *(declared.get(name, 0.0) for name in (e.engine, e.route.rpartition("@")[2]))])
+        return max(tol, self.rtol) if self.rtol is not None else tol
 
     @staticmethod
     def _across(e: Discrepancy) -> bool:
@@ -287,13 +295,12 @@ def dynamics_of_pair(
         for engine in ENGINES:
             result.errors.append(discrepancy(r.M, result.engine_mass[engine], name, route, engine))
             result.errors.append(discrepancy(r.Q, result.engine_forces[engine], name, route, engine))
+    first, second = ENGINES
     result.errors.append(
-        discrepancy(result.engine_mass["mujoco"], result.engine_mass["pinocchio"], ENGINE_PARITY, "mujoco", "pinocchio")
+        discrepancy(result.engine_mass[first], result.engine_mass[second], ENGINE_PARITY, first, second)
     )
     result.errors.append(
-        discrepancy(
-            result.engine_forces["mujoco"], result.engine_forces["pinocchio"], ENGINE_PARITY, "mujoco", "pinocchio"
-        )
+        discrepancy(result.engine_forces[first], result.engine_forces[second], ENGINE_PARITY, first, second)
     )
     return result
 
@@ -375,7 +382,7 @@ def dynamics(
     qacc = velocity_scale * _random_accelerations(pair.mujoco.nv, n_poses, seed)
     result = dynamics_of_pair(pair, poses.qpos, poses.qvel, qacc, formulas, m_rtol, q_rtol)
     result.rtol = rtol
-    add_engine_columns(result, pair, options.engines, ENGINE_PARITY)
+    add_engine_columns(result, pair, pair.options.engines, ENGINE_PARITY)  # "all" resolved for the model's format
     tolerance = rtol if rtol is not None else M_RTOL
     result.gravity, result.full_inverse_dynamics = gravity_columns(pair, poses.qpos, poses.qvel, qacc, tolerance)
     return result

@@ -36,6 +36,9 @@ def add_engine_columns(result: Any, pair: Any, engines: Sequence[str] | None, pa
 
     # Whether MuJoCo and Pinocchio disagree: read before any optional engine adds its own comparisons.
     disagree = any(e.formula == parity_label and e.max_rel_error > result.tolerance(e) for e in result.errors)
+    left_out = list(pair.optional_findings)  # said at load: the engines --engines all left out for the format
+    result.findings += left_out
+    result.notes += [f.message() for f in left_out]
     for name in optional():
         before = len(pair.optional_findings)
         found = policy.attach_engines(pair, disagree, names=(name,)) or list(pair.optional_findings[before:])

@@ -13,6 +13,8 @@ from pathlib import Path
 
 from koenig_check.modelfile.validate import parse_xml
 
+#: The root element of an MJCF file: a tag of the file format (named after the engine that defined it).
+ROOT_TAG = "mujoco"
 #: Attributes that Pinocchio 4.1's MJCF parser ignores when they come from a default class.
 CLASS_ATTRIBUTES_IGNORED = (("geom", "mass"), ("geom", "pos"), ("joint", "pos"))
 
@@ -26,7 +28,7 @@ def read_mjcf(path: Path, included: bool = False) -> ET.Element | None:
         root = parse_xml(path).getroot()
     except (ET.ParseError, OSError):
         return None
-    return root if included or root.tag == "mujoco" else None
+    return root if included or root.tag == ROOT_TAG else None
 
 
 _ORDINALS = ("first", "second", "third")
@@ -105,7 +107,7 @@ def includes(root: ET.Element, directory: Path) -> list[Included]:
     for inc in root.iter("include"):
         name = inc.get("file", "")
         parent = parents.get(inc)
-        where = "mujoco" if parent is None or parent.tag == "mujoco" else parent.tag
+        where = ROOT_TAG if parent is None or parent.tag == ROOT_TAG else parent.tag
         if parent is not None and parent.tag == "body":
             where = f"body {parent.get('name')}" if parent.get("name") else body_label(parent, roots)
         sub = read_mjcf(directory / name, included=True)

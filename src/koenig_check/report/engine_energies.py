@@ -15,11 +15,13 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from koenig_check.engines.specs import reference
 from koenig_check.run.records import RecordTable
 from koenig_check.run.stats import relative_error
 
-#: The state source whose ``exact`` rows carry the engines' energies (every run has MuJoCo's states).
-SOURCE = "mujoco"
+#: The state source whose ``exact`` rows carry the engines' energies: the reference engine's (every run has
+#: MuJoCo's states).
+SOURCE = reference()
 
 
 @dataclass(frozen=True)
@@ -96,12 +98,14 @@ class EngineEnergies:
         """
         return str(self.poses[k].as_py())
 
-    def gap(self, engine: str, reference: str = "mujoco") -> np.ndarray:
+    def gap(self, engine: str, reference: str = SOURCE) -> np.ndarray:
         """``|E_engine − E_reference| / |E_reference|`` per pose.
 
         Parameters
         ----------
-        engine, reference : str
+        engine : str
+        reference : str
+            Default: the reference engine (MuJoCo).
 
         Returns
         -------
@@ -134,7 +138,7 @@ def engine_energies(
         None when the chunks do not hold every engine's energy at each of the run's poses.
     """
     mine = [c for c in chunks if c.model == model]
-    if not mine or "mujoco" not in engines or n_poses <= 0 or any(set(engines) - set(c.energy) for c in mine):
+    if not mine or SOURCE not in engines or n_poses <= 0 or any(set(engines) - set(c.energy) for c in mine):
         return None
     energy = {e: np.concatenate([c.energy[e] for c in mine])[skip : skip + n_poses] for e in engines}
     if any(v.size != n_poses for v in energy.values()):

@@ -24,6 +24,7 @@ from matplotlib.figure import Figure
 from matplotlib.text import Text
 from matplotlib.ticker import MaxNLocator
 
+from koenig_check.engines.specs import reference as reference_engine
 from koenig_check.engines.specs import spec
 from koenig_check.report.engine_energies import EngineEnergies
 from koenig_check.roundoff import ROUNDOFF, fmt
@@ -231,7 +232,7 @@ def engine_gap_figure(
     -------
     Path
     """
-    others = [e for e in energies.energy if e != "mujoco"]
+    others = [e for e in energies.energy if e != reference_engine()]  # each engine's gap to the reference (MuJoCo)
     gaps = {e: energies.gap(e) for e in others}
     n = len(energies.poses)
     fig = Figure(figsize=(SIDE_WIDTH, 3.6), layout="constrained")
@@ -271,7 +272,7 @@ def error_map_figure(
     comparison: ModelComparison,
     formulas: Sequence[str],
     path: Path,
-    engine: str = "mujoco",
+    engine: str | None = None,
     caption: str = "",
     dpi: int = 110,
 ) -> Path:
@@ -283,8 +284,8 @@ def error_map_figure(
         Built on a grid :class:`~koenig_check.run.poses.PoseSet`.
     formulas : sequence of str
     path : Path
-    engine : str
-        Whose states and energy are used.
+    engine : str, optional
+        Whose states and energy are used; default: the reference engine (MuJoCo).
     caption : str
         Conditions of the run (joint rates), printed in the title.
     dpi : int
@@ -293,6 +294,7 @@ def error_map_figure(
     -------
     Path
     """
+    engine = engine or reference_engine()
     grid = comparison.poses.grid if comparison.poses is not None else None
     if grid is None:
         raise ValueError(f"{comparison.model}: the poses are not a grid sweep")
@@ -359,10 +361,11 @@ def trajectory_figure(
     for engine, rigid in energy.items():
         if len(rigid):
             ax.plot(times, rigid, linewidth=4, alpha=0.4, color=engine_color(engine), label=f"{engine} energy")
-    mj = energy.get("mujoco", np.empty(0))
+    first = reference_engine()  # the formulas are evaluated on its states, against its energy
+    mj = energy.get(first, np.empty(0))
     palette = dict(zip(formulas, (f"C{k + 2}" for k in range(10)), strict=False))
     for formula in formulas:
-        rows = comparison.records.where(formula=formula, scope="total", source="mujoco", reference="mujoco")
+        rows = comparison.records.where(formula=formula, scope="total", source=first, reference=first)
         if not len(rows):
             continue
         value = rows["value"]

@@ -13,9 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from koenig_check.engines.registry import label, optional
+from koenig_check.engines.registry import label, optional, reference, required
 from koenig_check.findings import Finding, Kind
 from koenig_check.line_width import LINE_LIMIT
+from koenig_check.report.engine_sets import engine_set_lines
 from koenig_check.roundoff import ROUNDOFF, shown
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.cross_check import CrossCheck
@@ -80,8 +81,8 @@ def optional_gap(comparison: ModelComparison, engine: str | None = None) -> tupl
     if gap is not None and gap.where:
         return gap.value, True
     for f in comparison.findings:
-        if f.kind is Kind.VERDICT and f.element == "rigid-body energy" and {"mujoco", engine} <= set(f.values):
-            mujoco, other = float(f.values["mujoco"]), float(f.values[engine])
+        if f.kind is Kind.VERDICT and f.element == "rigid-body energy" and {reference(), engine} <= set(f.values):
+            mujoco, other = float(f.values[reference()]), float(f.values[engine])
             return float(np.abs(relative_error(np.array([other]), np.array([mujoco])))[0]), False
     return None
 
@@ -189,7 +190,7 @@ def terminal_table(check: CrossCheck) -> str:
     widths = {e: max(10, len(e) + 4) for e in ran}
     scale = f"(tolerance {rtol:g} relative; 0: below {ROUNDOFF:g}, rounding)"
     if ran:
-        engines = ", ".join(label(e) for e in ("mujoco", "pinocchio", *ran[:-1])) + f" and {label(ran[-1])}"
+        engines = ", ".join(label(e) for e in (*required(), *ran[:-1])) + f" and {label(ran[-1])}"
         columns = "".join(f"{e + ' gap':>{widths[e]}s}  " for e in ran)
         lines = [
             f"Models: do {engines} agree? {scale}",
@@ -224,6 +225,10 @@ def terminal_table(check: CrossCheck) -> str:
         lines += _row(model, mw, f"{status:8s}  {blank}  {'':>12s}  ", short)
     for e in [e for e in ran if e in tiebreak]:
         lines.append(f"*: {label(e)} as tie-breaker on the first poses: its gap where the engines differ most")
+    engine_sets = engine_set_lines(check)  # a paragraph of its own after the table, continued two spaces in
+    lines += [""] if engine_sets else []
+    for line in engine_sets:
+        lines += _fold(textwrap.wrap(line, width=WIDTH, subsequent_indent="  ", break_long_words=False))
     if not check.summaries:
         return "\n".join(lines + gravity_rows(check, mw))
     rows = formula_rows(check.summaries, {c.model: c.n_poses for c in check.comparisons})

@@ -17,6 +17,7 @@ import numpy as np
 import pyarrow as pa
 
 from koenig_check.arguments import RECORD_MODES as RECORD_MODES  # its home: what a user may ask for
+from koenig_check.engines.specs import parity_pair
 from koenig_check.formulas import FORMULAS, NotPlaneParallelError, integrate_angular_velocity
 from koenig_check.formulas.cache import SharedStates
 from koenig_check.run.engine_runs import EngineRun, VerdictPoses
@@ -163,7 +164,7 @@ def evaluate_chunk(
     if pending:  # every group's totals against its reference at once (add_rows)
         groups, totals, references_of = zip(*pending, strict=True)
         add_rows(list(groups), np.array(totals), np.array(references_of), rtol, ids)
-    if "mujoco" in runs and "pinocchio" in runs:
+    if set(parity_pair()) <= runs.keys():
         _agreement_stats(stats, runs, ids, exact_totals)
     table = None
     if records != "none":
@@ -201,7 +202,8 @@ def add_rows(groups: list[GroupStats], values: np.ndarray, references: np.ndarra
 def _agreement_stats(
     stats: ModelStats, runs: dict[str, EngineRun], ids: Sequence[str], exact_totals: dict[str, np.ndarray]
 ) -> None:
-    mj, pn = runs["mujoco"], runs["pinocchio"]
+    reference, other = parity_pair()
+    mj, pn = runs[reference], runs[other]
     agreement = stats.agreement
     agreement.rigid.offer(np.abs(relative_error(pn.rigid, mj.rigid)), ids, extra=(mj.rigid, pn.rigid))
     arm = np.abs(pn.armature - mj.armature)
@@ -210,7 +212,7 @@ def _agreement_stats(
     agreement.armature_scaled = max(agreement.armature_scaled, float((arm / scale).max()))
     for name, run in runs.items():
         agreement.self_rel[name] = float(np.abs(relative_error(exact_totals[name], run.rigid)).max())
-        if name != "mujoco":  # each engine's gap to MuJoCo (Drake's too, when it runs on every pose)
+        if name != reference:  # each engine's gap to MuJoCo (Drake's too, when it runs on every pose)
             agreement.gaps.setdefault(name, Extreme()).offer(np.abs(relative_error(run.rigid, mj.rigid)), ids)
 
 

@@ -44,6 +44,9 @@ class CrossCheck(ResultLookup):
     settings : dict
         Per model label, the pose settings of its run (``pose_kind``, ``n_poses``, ``seed``,
         ``velocity_scale``, ``duration``), for the report's captions.
+    not_named : tuple of str
+        The installed optional engines the run left out because the user did not name them
+        (:func:`koenig_check.diagnosis.policy.not_named`): said once for the run, not on each model.
     """
 
     comparisons: list[ModelComparison] = field(default_factory=list)
@@ -55,6 +58,7 @@ class CrossCheck(ResultLookup):
     failure_causes: dict[str, tuple[Finding, ...]] = field(default_factory=dict)
     rtol: float = DEFAULT_RTOL
     settings: dict[str, dict[str, Any]] = field(default_factory=dict)
+    not_named: tuple[str, ...] = ()
 
     @property
     def records(self) -> RecordTable:

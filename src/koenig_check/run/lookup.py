@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from koenig_check.engines.specs import reference as reference_engine
 from koenig_check.run.comparison import ModelComparison
 from koenig_check.run.summaries import FormulaSummary
 
@@ -49,7 +50,9 @@ class ResultLookup:
             raise KeyError(f"{model!r} failed: {failed[model]}")
         raise KeyError(f"no model {model!r}; models: {[c.model for c in self.comparisons]}")
 
-    def summary(self, model: str, formula: str, source: str = "mujoco", reference: str | None = None) -> FormulaSummary:
+    def summary(
+        self, model: str, formula: str, source: str | None = None, reference: str | None = None
+    ) -> FormulaSummary:
         """The summary of one formula on one model (``check.summary("gimbal.xml", "koenig_world")``).
 
         Parameters
@@ -57,8 +60,8 @@ class ResultLookup:
         model : str
             The model's label.
         formula : str
-        source : str
-            The engine whose segment states the formula was evaluated on.
+        source : str, optional
+            The engine whose segment states the formula was evaluated on (default: the reference engine, MuJoCo).
         reference : str, optional
             The engine whose own energy it is compared with (default: ``source``).
 
@@ -71,6 +74,7 @@ class ResultLookup:
         KeyError
             When there is no such summary (the message lists what there is for that model).
         """
+        source = reference_engine() if source is None else source
         reference = source if reference is None else reference
         for s in self.summaries:
             if (s.model, s.formula, s.source, s.reference) == (model, formula, source, reference):

@@ -3,7 +3,8 @@
 Each entry is a string — a path relative to the pyproject.toml, or any name the command line accepts
 (``gimbal``, ``ur5``, ``menagerie:unitree_g1``, ``rd:ur5e_description``) — or an inline table with ``model`` and
 any of: a load option (``floating``, ``balance_inertia``, ``repair_inertia``, ``pinocchio_model``, ``xacro_args``,
-``engines``), ``rtol``, ``poses``, ``seed``, ``dynamics = true`` (also require ``koenig-check dynamics`` to pass)::
+``engines``: a list, or ``"all"``), ``rtol``, ``poses``, ``seed``, ``dynamics = true`` (also require ``koenig-check
+dynamics`` to pass)::
 
     [tool.koenig-check]
     models = [

@@ -1,4 +1,5 @@
-"""Newton named by ``--engines`` (command line), ``engines=`` (API, ``assert_energy_parity``) and the pytest plugin."""
+"""Newton named by ``--engines`` (command line) and ``engines=`` (API, ``assert_energy_parity``); the pytest plugin
+with each new engine is in ``tests/testing/test_plugin_engines.py``."""
 
 from __future__ import annotations
 
@@ -63,25 +64,6 @@ def test_dynamics_has_newtons_column() -> None:
 
 def test_parity_command_with_newton(capsys) -> None:
     assert main(["parity", "serial7.urdf", "--engines", ",".join(ENGINES)]) == 0
-
-
-def test_pytest_plugin_with_newton(pytester: pytest.Pytester) -> None:
-    """``pytest --koenig-check`` with an entry naming Newton: it passes where the three agree, fails on a cause."""
-    import shutil
-
-    from koenig_check.engines import resolve_model
-
-    (pytester.path / "models").mkdir()
-    shutil.copy(resolve_model("serial7.urdf").path, pytester.path / "models")  # installed or editable alike
-    shutil.copy(fixture_path(cause(ids.VALIDATION)), pytester.path / "models" / "foot.urdf")
-    entries = [
-        f'{{ model = "models/{m}", engines = ["mujoco", "pinocchio", "newton"], poses = 3 }}'
-        for m in ("serial7.urdf", "foot.urdf")
-    ]
-    pytester.makepyprojecttoml("[tool.koenig-check]\nmodels = [\n" + ",\n".join(entries) + "\n]\n")
-    result = pytester.runpytest_subprocess("--koenig-check", "-v", "-p", "no:cacheprovider")
-    result.assert_outcomes(passed=1, failed=1)
-    result.stdout.fnmatch_lines(["*serial7.urdf PASSED*", "*Newton cannot check this model*foot*"])
 
 
 def test_export_proof_with_newton_named(tmp_path: Path) -> None:

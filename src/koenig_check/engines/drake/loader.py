@@ -46,6 +46,7 @@ from koenig_check.engines.drake.ignored_geoms import ignored_geom, ignored_geom_
 from koenig_check.exceptions import ModelLoadError, without_build_location
 from koenig_check.findings import Finding, Kind
 from koenig_check.modelfile.edited_copy import edited_copy
+from koenig_check.modelfile.mjcf import ROOT_TAG
 from koenig_check.modelfile.validate import parse_xml
 from koenig_check.sources.catalogue import ModelSource
 
@@ -193,7 +194,7 @@ def _needs_model_name(path: Path) -> bool:
         root = parse_xml(path).getroot()
     except ET.ParseError:
         return False
-    return root.tag == "mujoco" and not root.get("model")
+    return root.tag == ROOT_TAG and not root.get("model")
 
 
 @contextmanager

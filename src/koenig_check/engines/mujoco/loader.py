@@ -25,6 +25,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from koenig_check.engines.catalogue import cause
 from koenig_check.engines.errors import InertiaError, ModelLoadError, NotFloatableError
 from koenig_check.engines.mujoco.compiling import (
     MAX_REPAIR_TRIES,
@@ -42,6 +43,8 @@ from koenig_check.sources.catalogue import ModelSource
 
 __all__ = ["MAX_REPAIR_TRIES", "REPAIR_HINT", "ROOT_JOINT_NAME", "BodyFinding", "load_mujoco", "root_free_joint"]
 
+#: The catalogued cause of a compiler settotalmass (MuJoCo applies it as the file asks; Pinocchio departs).
+SETTOTALMASS = "pinocchio.mjcf.settotalmass"
 #: Name given to the free joint added for a floating base, in both engines (Pinocchio's default).
 ROOT_JOINT_NAME = "root_joint"
 
@@ -237,6 +240,9 @@ def _load(
     # altered an explicit inertial is boundmass / boundinertia, which Pinocchio 4's parser applies as well
     # (the same masses and moments as MuJoCo's): a change from the file, not a difference between engines.
     rescaled = options["settotalmass"] > 0
+    # the engine that departs from the file is the cause's (it ignores the option); a bound MuJoCo applied is
+    # MuJoCo's own change, no difference between engines
+    concerned = cause(SETTOTALMASS).engine if rescaled else "mujoco"
     for n in altered:
         bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n)
         summary = (
@@ -250,13 +256,13 @@ def _load(
                 n,
                 Finding(
                     Kind.COMPILER,
-                    "mujoco",
+                    concerned,
                     f"{what} {n}",
                     summary,
                     {"mass in the file": file_inertia[n][0], "mass compiled": float(model.body_mass[bid]), **options},
                     affects_energy=rescaled,
                     root_cause=rescaled,
-                    cause="pinocchio.mjcf.settotalmass" if rescaled else "",
+                    cause=SETTOTALMASS if rescaled else "",
                     tag=what,
                 ),
             )

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 import mujoco
 import numpy as np
 
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind
 
 if TYPE_CHECKING:
@@ -94,7 +95,7 @@ def planar_notes(pairs: Sequence[JointPair], pin_names: Sequence[str]) -> list[F
             f"URDF planar joint: MuJoCo's import makes it three joints ({', '.join(names)}: slide x, slide y, hinge "
             "z), Pinocchio one JointModelPlanar (q = x, y, cos θ, sin θ; v = the velocity in the joint's own "
             "frame, ω); the state map pairs them",
-            {"mujoco": tuple(names), "pinocchio": (pin_names[i],)},
+            {reference(): tuple(names), "pinocchio": (pin_names[i],)},
         )
         for i, names in parts.items()
     ]

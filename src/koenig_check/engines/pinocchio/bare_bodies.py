@@ -10,8 +10,13 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
+from koenig_check.engines.catalogue import cause
+from koenig_check.engines.specs import reference
 from koenig_check.findings import Finding, Kind, shown_names
 from koenig_check.modelfile.mjcf import joint_names
+
+#: The catalogued cause of a ``<body>`` without any attribute.
+BARE_BODY = "pinocchio.mjcf.bare-body"
 
 
 def bare_body_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
@@ -32,6 +37,7 @@ def bare_body_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
         which Pinocchio hangs from the world); it changes the energy when it has joints or sits in a moving body.
     """
     parents = {child: parent for parent in root.iter() for child in parent}
+    skips, reads = cause(BARE_BODY).engine, reference()
     out = []
     for world in root.findall("worldbody"):
         for body in world.iter("body"):
@@ -53,20 +59,20 @@ def bare_body_causes(root: ET.Element, seg_of: dict[str, str]) -> list[Finding]:
             out.append(
                 Finding(
                     Kind.IGNORED_CONSTRUCT,
-                    "pinocchio",
+                    skips,
                     f"body without attributes in {where}",
                     "<body> without any attribute skipped by Pinocchio's MJCF parser: its geoms and joints are "
                     "missing, its child bodies hang from the world",
                     values={
                         "geoms": geoms,
                         "joints": tuple(j.get("name", "?") for j in own),
-                        "mujoco": "loaded",
-                        "pinocchio": "not read",
+                        reads: "loaded",
+                        skips: "not read",
                     },
                     affects_energy=moves,
                     root_cause=True,
                     segments=segments,
-                    cause="pinocchio.mjcf.bare-body",
+                    cause=BARE_BODY,
                     tag="body",
                     hint=f"give it a name (or any attribute); joints below: {shown_names(joints)}"
                     if joints
