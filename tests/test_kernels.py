@@ -8,11 +8,11 @@ import pytest
 from koenig_check.formulas.analytic import random_rotations
 from koenig_check.formulas.terms import SYM6
 from koenig_check.kernels import (
+    ROWS,
     body_point_velocities,
     components,
     congruence,
     cross,
-    dot3_rows,
     fold,
     inertia_world_components,
     matrix_components,
@@ -41,15 +41,13 @@ def test_kernels_match_their_generic_forms(rng: np.random.Generator) -> None:
     )
 
 
-def test_dot3_rows_is_the_three_term_sum_against_broadcast_rows(rng: np.random.Generator) -> None:
+def test_rows_subscripts_sum_the_three_terms_against_broadcast_rows(rng: np.random.Generator) -> None:
     """Σ_k a_k b_k over stacked planes, b broadcast from the right (tiled constants), within rounding of the terms."""
     out = np.empty(1)
-    np.testing.assert_array_equal(
-        dot3_rows(np.array([[1.0], [2.0], [3.0]]), np.array([[4.0], [5.0], [-6.0]]), out), -4.0
-    )
+    np.einsum(ROWS, np.array([[1.0], [2.0], [3.0]]), np.array([[4.0], [5.0], [-6.0]]), out=out)
+    np.testing.assert_array_equal(out, -4.0)
     a, b = rng.normal(size=(3, 7, 10)), rng.normal(size=(3, 10))
-    out = np.empty((7, 10))
-    assert dot3_rows(a, b, out) is out
+    out = np.einsum(ROWS, a, b, out=np.empty((7, 10)))
     bound = 4 * np.finfo(float).eps * (np.abs(a[0] * b[0]) + np.abs(a[1] * b[1]) + np.abs(a[2] * b[2]))
     assert np.all(np.abs(out - (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])) <= bound)
 

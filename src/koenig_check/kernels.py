@@ -15,6 +15,9 @@ import numpy as np
 _ROW = 2048
 #: Elements per plane in one block of a transposing copy (see :func:`matrix_components`).
 _BLOCK = 1024
+#: ``numpy.einsum`` subscripts of ``Σ_k a[k] b[k]`` over stacked planes, ``b`` broadcast from the right (tiled
+#: constants): :func:`dot3`'s sum in its order of terms, in one pass (each element read once, not five passes).
+ROWS = "k...,k...->..."
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -150,7 +153,7 @@ def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, o
     a, tmp = np.empty((3, *Rc.shape[1:])), np.empty(Rc.shape[1:])
     for n in range(half if symmetric else K):
         for i in range(3):  # a = R r_n
-            dot3_rows(Rc[3 * i : 3 * i + 3], r[n], a[i])
+            np.einsum(ROWS, Rc[3 * i : 3 * i + 3], r[n], out=a[i])
         for i, j, l in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):  # u_i = w_j a_l − w_l a_j = (ω × R r_n)_i
             u = folded[n, i]
             np.multiply(w[j], a[l], out=u)
@@ -295,7 +298,7 @@ def inertia_world_components(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
     A, tmp = np.empty((3, 3, *shape)), np.empty(shape)  # A = R I
     for i in range(3):
         for c in range(3):
-            dot3_rows(Rf[3 * i : 3 * i + 3], I[:, c], A[i, c])
+            np.einsum(ROWS, Rf[3 * i : 3 * i + 3], I[:, c], out=A[i, c])
     out = np.empty((6, *R.shape[1:]))
     folded = out.reshape(6, *shape)
     for n, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))):
@@ -323,7 +326,7 @@ def times_transpose_components(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
     folded = out.reshape(Rf.shape)
     for i in range(3):
         for j in range(3):
-            dot3_rows(Rf[3 * i : 3 * i + 3], ref[j], folded[3 * i + j])
+            np.einsum(ROWS, Rf[3 * i : 3 * i + 3], ref[j], out=folded[3 * i + j])
     return out
 
 
@@ -361,29 +364,6 @@ def dot3(
     np.multiply(a2, b2, out=tmp)
     first += tmp
     return first
-
-
-def dot3_rows(a: np.ndarray, b: np.ndarray, out: np.ndarray) -> np.ndarray:
-    """``a[0] b[0] + a[1] b[1] + a[2] b[2]`` of stacked planes, summed left to right, into ``out``.
-
-    :func:`dot3` of three consecutive planes against three rows broadcast against them (a
-    per-segment constant tiled by :func:`tile`), in one ``numpy.einsum`` pass: each element is read
-    once and the result written once (:func:`dot3` makes five passes through a scratch plane).
-    The same order of the terms, hence the same numbers to rounding.
-
-    Parameters
-    ----------
-    a : ndarray, shape (3, ...)
-    b : ndarray, shape (3, ...), broadcasting against ``a`` from the right
-    out : ndarray
-        The result's shape; not one of the inputs.
-
-    Returns
-    -------
-    ndarray
-        ``out``.
-    """
-    return np.einsum("k...,k...->...", a, b, out=out)
 
 
 def scale(planes: np.ndarray, constants: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from koenig_check.kernels import dot3, dot3_rows, fold, tile
+from koenig_check.kernels import ROWS, dot3, fold, tile
 
 
 def gather_planes(raw: np.ndarray, index: np.ndarray) -> np.ndarray:
@@ -88,7 +88,7 @@ def rotate_constant(R: np.ndarray, v: np.ndarray) -> np.ndarray:
     out = np.empty((3, *R.shape[1:]))
     folded = out.reshape(3, *Rf.shape[1:])
     for i in range(3):
-        dot3_rows(Rf[3 * i : 3 * i + 3], c, folded[i])
+        np.einsum(ROWS, Rf[3 * i : 3 * i + 3], c, out=folded[i])
     return out
 
 
