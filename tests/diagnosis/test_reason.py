@@ -195,17 +195,20 @@ def test_the_table_row_and_the_error_line_show_the_same_reason() -> None:
 
 
 def test_an_engines_own_text_is_said_once_under_the_first_line() -> None:
-    """A refusal whose summary carries the engine's text on its next lines (Newton's): the one-line reason ends at
-    the refusal, the lines under it give the engine's text once, as written, and the table's row holds it whole."""
+    """A refusal with the engine's own text (Newton's, two lines here): the one-line reason ends at the refusal, the
+    lines under it give the engine's text once, as written, and the table's row holds it whole on one line."""
     from koenig_check.diagnosis.message import finding_lines
     from koenig_check.diagnosis.model_reason import model_reason
+    from koenig_check.engines.registry import ENGINE_TEXT
 
-    words = "ValueError: Mimic followers and references only support PRISMATIC, REVOLUTE, D6 joints. " + "x" * 120
+    words = "ValueError: Mimic followers and references only support PRISMATIC, REVOLUTE, D6 joints.\n  " + "x" * 120
     summary = "Newton asked for (--engines) but it could not check the model: Newton's add_urdf refuses the file"
-    unable = Finding(Kind.ENGINE_UNABLE, "newton", "model", f"{summary}\n    {words}", hint="check it without Newton")
+    unable = Finding(
+        Kind.ENGINE_UNABLE, "newton", "model", summary, {ENGINE_TEXT: words}, hint="check it without Newton"
+    )
     reason = model_reason("talos", [unable])
     line = reason.line()
     assert line == f"talos: {summary}; check it without Newton" and "\n" not in line
     below = finding_lines([unable], line, width=1000)
-    assert below == [f"    {words}"]  # once, whole, indented; the summary's first line and the hint not again
-    assert reason.whole() == f"talos: {summary} {words}; check it without Newton"
+    assert below == ["    " + w for w in words.splitlines()]  # once, whole, indented; the summary and hint not again
+    assert reason.whole() == f"talos: {summary}: {' '.join(words.split())}; check it without Newton"

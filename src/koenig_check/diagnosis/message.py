@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Sequence
 
+from koenig_check.engines.registry import ENGINE_TEXT
 from koenig_check.findings import Finding, Kind
 from koenig_check.line_width import LINE_LIMIT, fold
 
@@ -115,13 +116,13 @@ def finding_lines(findings: Sequence[Finding], first: str = "", width: int = LIN
     for f in findings:
         if f.kind is not Kind.ENGINE_UNABLE:
             continue
-        head, *text = f.summary.splitlines()  # the engine's own text, if any, on the lines after the first
-        head = " ".join(head.split())
+        head = f.summary  # one line: the engine's own text is a value of its own
         shown = _said_part(head, said)
         if shown < len(head):  # the part of the reason the first line did not hold
             items.append([f"{f.engine}: " + (head if shown == 0 else "…" + head[shown:].lstrip(":; "))])
-        if text:
-            items.append([line[len(INDENT) :] if line.startswith(INDENT) else line.strip() for line in text])
+        text = str(f.values.get(ENGINE_TEXT, ""))  # the engine's own words, whole, as it wrote them
+        if text.strip():
+            items.append([line.rstrip() for line in text.strip("\n").splitlines()])
         if f.hint and f.hint not in said:
             items.append([f"hint: {f.hint}"])
     return _indented(items, width)

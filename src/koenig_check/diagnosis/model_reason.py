@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 from koenig_check.diagnosis.cause_groups import CauseGroup, cause_groups, more_causes
 from koenig_check.diagnosis.reason import REASON_WIDTH, ordered_causes
+from koenig_check.engines.registry import ENGINE_TEXT
 from koenig_check.findings import Finding, Kind
 from koenig_check.line_width import closed_cut
 
@@ -184,11 +185,10 @@ def model_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     Reason
     """
     unable_findings = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
-    # Each summary names its engine and gives its reason on its first line; the engine's own text, if any, follows
-    # on the next lines: the one-line reason takes the first lines (the lines under it give the engine's text
-    # whole), the verdict table's row the whole of each, joined into one line.
-    unmade = "; ".join(f.summary.splitlines()[0] for f in unable_findings)
-    unmade_whole = "; ".join(" ".join(f.summary.split()) for f in unable_findings)
+    # Each summary names its engine and gives its reason; the engine's own text, if it gave one, is a value: the
+    # lines under the one-line reason give it whole, the verdict table's row after the summary, on one line.
+    unmade = "; ".join(f.summary for f in unable_findings)
+    unmade_whole = "; ".join(_with_engine_text(f) for f in unable_findings)
     hints = "; ".join(f.hint for f in unable_findings if f.hint)
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
     groups = cause_groups(f for f in ordered_causes(findings) if f.engine not in unable)
@@ -197,3 +197,9 @@ def model_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
 
 #: The room a reason keeps for a check asked for and not made (the rest of its text is in the verdict table's row).
 _UNMADE_ROOM = 80
+
+
+def _with_engine_text(finding: Finding) -> str:
+    """A check not made: its summary, then the engine's own text on the same line (white space made one space)."""
+    text = " ".join(str(finding.values.get(ENGINE_TEXT, "")).split())
+    return f"{finding.summary}: {text}" if text else finding.summary

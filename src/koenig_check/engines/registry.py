@@ -26,6 +26,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ATTACH",
+    "ENGINE_TEXT",
     "LABEL",
     "EngineSpec",
     "attach",
@@ -253,6 +254,11 @@ def mjcf_mesh_formats(engines: Sequence[str]) -> dict[str, tuple[str, ...]]:
     """
     known = set(names())
     return {e: spec(e).mjcf_meshes for e in engines if e in known and spec(e).mjcf_meshes}
+
+
+#: The key of a refusal's value holding the engine's own text, whole, as it raised it (the summary says the refusal
+#: in a few words; the lines under a verdict give this text indented).
+ENGINE_TEXT = "engine's text"
 
 
 def not_used(name: str, why: str, **values: Any) -> Finding:

@@ -32,9 +32,11 @@ from koenig_check.export.result import EngineProof, Proof, SegmentDifference
 from koenig_check.export.unread_constructs import refusal_with_frames
 from koenig_check.sources.catalogue import detect_format, resolve_model
 
-#: A declared precision this coarse is a single-precision engine's (Newton's float32, 1e-5): by default the proof
+#: A declared precision this coarse is a single-precision engine's (Newton's float32, 3e-5): by default the proof
 #: leaves such an engine out where its round-off reaches the tolerance; named (``engines=``), it is compared at it.
-SINGLE_PRECISION = 1e-6
+#: A double-precision engine with a coarser reading of some quantity (PyBullet's diagonalized inertias, 3e-6) is
+#: compared, at its declared precision.
+SINGLE_PRECISION = 1e-5
 #: Default relative tolerance of the proof.
 PROOF_RTOL = 1e-9
 #: Default number of seeded random poses.

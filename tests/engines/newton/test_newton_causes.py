@@ -12,6 +12,8 @@ from functools import cache
 import numpy as np
 import pytest
 
+from koenig_check.engines.registry import ENGINE_TEXT
+
 pytest.importorskip("newton", reason="Newton (the optional extra [newton]) is not installed: its tests are skipped")
 
 import koenig_check
@@ -88,7 +90,8 @@ def test_a_refusal_carries_newtons_whole_text(cause_id: str, parser: str) -> Non
         getattr(builder, parser)(str(fixture_path(cause(cause_id))))
     finding = _named(cause_id)
     assert finding.kind is Kind.ENGINE_NOT_USED and finding.engine == "newton"
-    assert f"{type(raised.value).__name__}: {raised.value}" in finding.summary
+    assert finding.summary == f"Newton not used: Newton's {parser} refuses the file"  # a few words, one line
+    assert finding.values[ENGINE_TEXT] == f"{type(raised.value).__name__}: {raised.value}".rstrip()  # whole, apart
     assert not _findings(cause_id)[0]  # Newton was asked for: the check was not made
 
 

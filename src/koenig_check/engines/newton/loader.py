@@ -23,7 +23,20 @@ from koenig_check.findings import Finding, Kind
 
 
 class NewtonLoadError(ModelLoadError):
-    """Newton refuses a model file (or its joints cannot be paired with MuJoCo's): the file named, Newton's text."""
+    """Newton refuses a model file (or its joints cannot be paired with MuJoCo's): the file named, Newton's text.
+
+    Attributes
+    ----------
+    reason : str
+        The refusal in a few words (``"Newton's add_urdf refuses the file"``), without the file.
+    engine_text : str
+        Newton's own text, whole, as it raised it (empty when the message is the tool's).
+    """
+
+    def __init__(self, message: str, reason: str = "", engine_text: str = "") -> None:
+        super().__init__(message)
+        self.reason = reason
+        self.engine_text = engine_text
 
 
 def refusal(path: Path, stage: str, err: BaseException) -> NewtonLoadError:
@@ -43,7 +56,8 @@ def refusal(path: Path, stage: str, err: BaseException) -> NewtonLoadError:
     """
     text = f"{type(err).__name__}: {err}".rstrip()
     body = "\n".join("    " + line for line in text.splitlines() or [type(err).__name__])
-    return NewtonLoadError(f"{path}: Newton's {stage} refuses the file\n{body}")
+    reason = f"Newton's {stage} refuses the file"
+    return NewtonLoadError(f"{path}: {reason}\n{body}", reason, text)
 
 
 def _quiet_warp() -> Any:
