@@ -33,6 +33,7 @@ def _mjcf(
     fixture: str,
     drake: str = "",
     loses_joints: bool = False,
+    twin: str = "",
 ) -> Cause:
     """A construct of an MJCF file Pinocchio's parser reads differently; Drake reads it as written unless ``drake``."""
     return Cause(
@@ -51,6 +52,7 @@ def _mjcf(
         hint=hint,
         fixture=fixture,
         loses_joints=loses_joints,
+        twin=twin,
     )
 
 
@@ -103,6 +105,7 @@ CAUSES: tuple[Cause, ...] = (
         "frame.xml",
         drake="skips the element and everything inside it (drake.mjcf.frame)",
         loses_joints=True,
+        twin="frame_twin.xml",
     ),
     _mjcf(
         "bare-body",
@@ -133,6 +136,7 @@ CAUSES: tuple[Cause, ...] = (
         "replicate.xml",
         drake="skips the element and everything inside it: the copies are missing",
         loses_joints=True,
+        twin="replicate_twin.xml",
     ),
     _mjcf(
         "root-bodies",
@@ -162,6 +166,7 @@ CAUSES: tuple[Cause, ...] = (
         "scale the masses in the file and remove settotalmass",
         "settotalmass.xml",
         drake="ignores the option (with a warning): the file's masses unscaled",
+        twin="settotalmass_twin.xml",
     ),
     _mjcf(
         "mesh-mass",
@@ -172,6 +177,7 @@ CAUSES: tuple[Cause, ...] = (
         "geoms with a mesh, weighed otherwise by Pinocchio",
         "give the body an <inertial> (mass, pos, inertia)",
         "mesh_mass.xml",  # a mesh file; one given by vertices in the file Drake ignores: drake.mjcf.inline-mesh
+        twin="mesh_mass_twin.xml",
     ),
     _mjcf(
         "visual-geoms",
@@ -191,6 +197,7 @@ CAUSES: tuple[Cause, ...] = (
         "give the geoms left out mass 0 (or density 0) and remove inertiagrouprange",
         "inertiagrouprange.xml",
         drake="ignores the option (with a warning): every geom's mass counted",
+        twin="inertiagrouprange_twin.xml",
     ),
     Cause(
         id="pinocchio.urdf.planar-axis",
@@ -210,6 +217,7 @@ CAUSES: tuple[Cause, ...] = (
         brief="URDF planar joint read about z by Pinocchio, ignoring its axis",
         hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
         fixture="planar_axis.urdf",
+        twin="planar_axis_twin.xml",
     ),
     Cause(
         id="pinocchio.mjcf.option-gravity",
@@ -238,6 +246,8 @@ CAUSES: tuple[Cause, ...] = (
         brief='<flag gravity="disable"/> ignored: gravity (0, 0, -9.81)',
         hint="set pinocchio_model.gravity to zero after loading",
         fixture="flag_gravity_disable.xml",
+        twin="flag_gravity_disable_twin.xml",
+        twin_causes=("pinocchio.mjcf.option-gravity",),
     ),
     Cause(
         id="pinocchio.mjcf.welded-root-pose",
@@ -279,6 +289,7 @@ CAUSES: tuple[Cause, ...] = (
         hint="load a file with the attached bodies written out (MuJoCo's MjSpec.to_xml of the composed model)",
         fixture="attach.xml",
         loses_joints=True,
+        twin="attach_twin.xml",
     ),
 )
 
