@@ -108,23 +108,29 @@ def _same_robot(a: Measurement, b: Measurement, rtol: float) -> set[str]:
 
 
 def _check_against_the_twin(c: Cause, reading: Reading, where: str) -> None:
-    """An engine's reading of the fixture against every installed engine's reading of the twin (its own included)."""
-    readers = _twin_readers(c)
-    assert reading.engine in readers, f"{where}: reads the fixture as written but is not compared on the twin"
-    measured = _measure(reading.engine, fixture_path(c))
+    """An engine's reading of the fixture against every installed engine's reading of the twin (its own included):
+    the same robot where it reads the fixture as written, another in the cause's quantities where differently."""
     twin = twin_path(c)
     assert twin is not None
-    for engine in readers:
-        differ = _same_robot(measured, _measure(engine, twin), _rtol(reading.engine, engine))
-        assert not differ, (
-            f"{where} departs from {spec(engine).label}'s reading of the twin {c.twin} in {sorted(differ)}"
-        )
+    measured = _measure(reading.engine, fixture_path(c))
+    for engine in _twin_readers(c):
+        rtol = _rtol(reading.engine, engine)
+        theirs = _measure(engine, twin)
+        if reading.reads == "as written":
+            differ = _same_robot(measured, theirs, rtol)
+            assert not differ, f"{where} departs from {spec(engine).label}'s reading of the twin in {sorted(differ)}"
+            continue
+        differ = differences(measured, theirs, rtol) & fields(c.quantities)
+        assert differ, f"{where} reads the fixture as {spec(engine).label} reads the twin: the cause no longer applies"
+        if reading.engine == c.engine and not c.loses_joints:
+            assert differ - {"joints"}, f"{where} departs from the twin in joint names only, not the robot"
 
 
 @pytest.mark.parametrize("c", TWINNED, ids=lambda c: c.id)
 def test_the_twin_is_the_robot_as_written(c: Cause) -> None:
-    """The twin is plain: the engines that read it agree on it, and those that read the fixture differently depart
-    from it in the cause's quantities (so they depart from the robot as written, not from one engine's reading)."""
+    """The twin is plain: the engines that read it agree on it; those that read the fixture as written read the robot
+    of the twin, those that read it differently depart from it in the cause's quantities (from the robot as
+    written, not from one engine's reading)."""
     twin = twin_path(c)
     assert twin is not None and twin.is_file(), f"{c.id}: twin {c.twin} missing from koenig_check/causes/fixtures/"
     readers = _twin_readers(c)
@@ -135,17 +141,11 @@ def test_the_twin_is_the_robot_as_written(c: Cause) -> None:
     for engine in readers[1:]:
         differ = _same_robot(readings[first], readings[engine], _rtol(first, engine))
         assert not differ, (
-            f"{c.id}: {spec(engine).label} and {spec(first).label} read the twin {c.twin} apart in {sorted(differ)}"
+            f"{c.id}: {spec(engine).label} and {spec(first).label} read the twin apart in {sorted(differ)}"
         )
     for r in c.readings:
-        if r.reads != "differently" or not _installed(r.engine) or not applies(c.id, r.engine):
-            continue
-        measured = _measure(r.engine, fixture_path(c))
-        for engine in readers:
-            differ = differences(measured, readings[engine], _rtol(r.engine, engine)) & fields(c.quantities)
-            assert differ, f"{c.id}: {spec(r.engine).label} reads the fixture as {spec(engine).label} reads the twin"
-            if r.engine == c.engine and not c.loses_joints:
-                assert differ - {"joints"}, f"{c.id}: {spec(r.engine).label} departs from the twin in joint names only"
+        if r.reads != "refuses" and _installed(r.engine) and applies(c.id, r.engine):
+            _check_against_the_twin(c, r, f"{c.id}: {spec(r.engine).label} {installed_version(r.engine)}")
 
 
 @pytest.mark.parametrize("c", CAUSES, ids=lambda c: c.id)
