@@ -126,6 +126,34 @@ def _check_against_the_twin(c: Cause, reading: Reading, where: str) -> None:
             assert differ - {"joints"}, f"{where} departs from the twin in joint names only, not the robot"
 
 
+def test_twin_causes_name_declared_causes() -> None:
+    """A twin subject to a cause names it by id; an id the catalogue lacks is refused when the catalogue is built."""
+    from koenig_check.engines import catalogue as module
+
+    for c in TWINNED:
+        assert all(cause(t).id == t for t in c.twin_causes)
+    bad = Cause(
+        "mujoco.mjcf.x",
+        "c",
+        ("mjcf",),
+        (Reading("mujoco", "refuses", "x"),),
+        ("mass",),
+        "b",
+        "",
+        "f.xml",
+        twin="t.xml",
+        twin_causes=("pinocchio.mjcf.no-such-cause",),
+    )
+    fake = type("M", (), {"CAUSES": (bad,)})
+    real = importlib.import_module
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(
+            module.importlib, "import_module", lambda name: fake if name.endswith("mujoco.causes") else real(name)
+        )
+        with pytest.raises(ValueError, match=r"twin_causes name unknown causes: pinocchio\.mjcf\.no-such-cause"):
+            module._collected.__wrapped__(module.specs())
+
+
 @pytest.mark.parametrize("c", TWINNED, ids=lambda c: c.id)
 def test_the_twin_is_the_robot_as_written(c: Cause) -> None:
     """The twin is plain: the engines that read it agree on it; those that read the fixture as written read the robot
@@ -172,7 +200,7 @@ def test_causes_json_lists_every_cause(capsys: pytest.CaptureFixture[str]) -> No
     listed = json.loads(capsys.readouterr().out)
     assert [c["id"] for c in listed] == [c.id for c in CAUSES]
     for entry in listed:
-        assert {"id", "engines", "formats", "summary", "fixture"} <= set(entry)
+        assert {"id", "engines", "formats", "summary", "fixture", "twin", "twin_causes"} <= set(entry)
         assert entry["engines"][entry["id"].split(".")[0]]["reads"] in ("differently", "refuses")
 
 
@@ -190,6 +218,18 @@ def test_a_misdeclared_cause_is_refused() -> None:
         Cause("mujoco.mjcf.x", "c", ("mjcf",), (Reading("mujoco", "as written"),), ("mass",), "b", "", "f.xml")
     with pytest.raises(ValueError, match="expected <engine>"):
         Cause("Bad Id", "c", ("mjcf",), (Reading("mujoco", "refuses", "x"),), ("mass",), "b", "", "f.xml")
+    with pytest.raises(ValueError, match="without a twin"):
+        Cause(
+            "mujoco.mjcf.x",
+            "c",
+            ("mjcf",),
+            (Reading("mujoco", "refuses", "x"),),
+            ("mass",),
+            "b",
+            "",
+            "f.xml",
+            twin_causes=("pinocchio.mjcf.option-gravity",),
+        )
 
 
 def test_a_cause_fires_only_for_the_engine_versions_it_declares(monkeypatch: pytest.MonkeyPatch) -> None:
