@@ -8,6 +8,7 @@ import pytest
 from koenig_check.formulas.analytic import random_rotations
 from koenig_check.formulas.terms import SYM6
 from koenig_check.kernels import (
+    ROWS,
     body_point_velocities,
     components,
     congruence,
@@ -38,6 +39,17 @@ def test_kernels_match_their_generic_forms(rng: np.random.Generator) -> None:
     np.testing.assert_allclose(
         times_transpose(R, R_ref[None]), R @ np.swapaxes(R_ref, -1, -2)[None], rtol=1e-14, atol=1e-15
     )
+
+
+def test_rows_subscripts_sum_the_three_terms_against_broadcast_rows(rng: np.random.Generator) -> None:
+    """Σ_k a_k b_k over stacked planes, b broadcast from the right (tiled constants), within rounding of the terms."""
+    out = np.empty(1)
+    np.einsum(ROWS, np.array([[1.0], [2.0], [3.0]]), np.array([[4.0], [5.0], [-6.0]]), out=out)
+    np.testing.assert_array_equal(out, -4.0)
+    a, b = rng.normal(size=(3, 7, 10)), rng.normal(size=(3, 10))
+    out = np.einsum(ROWS, a, b, out=np.empty((7, 10)))
+    bound = 4 * np.finfo(float).eps * (np.abs(a[0] * b[0]) + np.abs(a[1] * b[1]) + np.abs(a[2] * b[2]))
+    assert np.all(np.abs(out - (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])) <= bound)
 
 
 def test_point_velocities_symmetric_and_general_sets(rng: np.random.Generator) -> None:

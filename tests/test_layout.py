@@ -222,10 +222,10 @@ ENGINE_NAMES_ALLOWED: dict[str, frozenset[str]] = {
     # MuJoCo applies the compiler options it reads (modelfile is below engines: no registry there).
     "modelfile/compiler.py": frozenset({"mujoco"}),
     # A cause's readings name each engine it was measured in: declared data, one Reading per engine.
-    "engines/pinocchio/causes.py": frozenset({"mujoco", "drake"}),
+    "engines/pinocchio/causes.py": frozenset({"mujoco", "drake", "newton"}),
     "engines/newton/causes.py": frozenset({"mujoco", "pinocchio", "drake"}),
     "engines/pybullet/causes.py": frozenset({"mujoco", "pinocchio", "idyntree"}),
-    "engines/idyntree/causes.py": frozenset({"mujoco", "pinocchio", "pybullet"}),
+    "engines/idyntree/causes.py": frozenset({"mujoco", "pinocchio", "pybullet", "drake", "newton"}),
     "engines/drake/causes.py": frozenset({"mujoco", "pinocchio"}),
     "engines/mujoco/causes.py": frozenset({"pinocchio", "drake"}),
 }

@@ -15,6 +15,9 @@ import numpy as np
 _ROW = 2048
 #: Elements per plane in one block of a transposing copy (see :func:`matrix_components`).
 _BLOCK = 1024
+#: ``numpy.einsum`` subscripts of ``Σ_k a[k] b[k]`` over stacked planes, ``b`` broadcast from the right (tiled
+#: constants): :func:`dot3`'s sum in its order of terms, in one pass (each element read once, not five passes).
+ROWS = "k...,k...->..."
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -150,7 +153,7 @@ def body_point_velocities(v_com: np.ndarray, omega: np.ndarray, R: np.ndarray, o
     a, tmp = np.empty((3, *Rc.shape[1:])), np.empty(Rc.shape[1:])
     for n in range(half if symmetric else K):
         for i in range(3):  # a = R r_n
-            dot3(Rc[3 * i], Rc[3 * i + 1], Rc[3 * i + 2], r[n, 0], r[n, 1], r[n, 2], a[i], tmp)
+            np.einsum(ROWS, Rc[3 * i : 3 * i + 3], r[n], out=a[i])
         for i, j, l in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):  # u_i = w_j a_l − w_l a_j = (ω × R r_n)_i
             u = folded[n, i]
             np.multiply(w[j], a[l], out=u)
@@ -295,7 +298,7 @@ def inertia_world_components(R: np.ndarray, inertia: np.ndarray) -> np.ndarray:
     A, tmp = np.empty((3, 3, *shape)), np.empty(shape)  # A = R I
     for i in range(3):
         for c in range(3):
-            dot3(Rf[3 * i], Rf[3 * i + 1], Rf[3 * i + 2], I[0, c], I[1, c], I[2, c], A[i, c], tmp)
+            np.einsum(ROWS, Rf[3 * i : 3 * i + 3], I[:, c], out=A[i, c])
     out = np.empty((6, *R.shape[1:]))
     folded = out.reshape(6, *shape)
     for n, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))):
@@ -320,10 +323,10 @@ def times_transpose_components(R: np.ndarray, R_ref: np.ndarray) -> np.ndarray:
     Rf, k = fold(R)
     ref = tile(np.moveaxis(np.asarray(R_ref, dtype=float), 0, -1), k)  # (3, 3, k B)
     out = np.empty(R.shape)
-    folded, tmp = out.reshape(Rf.shape), np.empty(Rf.shape[1:])
+    folded = out.reshape(Rf.shape)
     for i in range(3):
         for j in range(3):
-            dot3(Rf[3 * i], Rf[3 * i + 1], Rf[3 * i + 2], ref[j, 0], ref[j, 1], ref[j, 2], folded[3 * i + j], tmp)
+            np.einsum(ROWS, Rf[3 * i : 3 * i + 3], ref[j], out=folded[3 * i + j])
     return out
 
 

@@ -6,6 +6,7 @@ import pytest
 from koenig_check.formulas.analytic import constant_rotation_states, random_rotations, rigid_states
 from koenig_check.formulas.angles import (
     euler_xyz_angles,
+    euler_xyz_double_angles,
     integrate_angular_velocity,
     paper_angles,
     rotvec_angles,
@@ -61,6 +62,54 @@ def test_euler_xyz_at_gimbal_lock_sets_c_to_zero_among_ordinary_poses(b: float) 
     assert got[1, 2] == 0.0
     np.testing.assert_allclose(got[1, 1], b, atol=1e-7)
     np.testing.assert_allclose(_extrinsic_xyz(*got[1]), R[1], atol=1e-12)
+
+
+def _entries(R: np.ndarray) -> np.ndarray:
+    """Row-major entries of a stack of matrices as planes (9, n)."""
+    return np.ascontiguousarray(R.reshape(-1, 9).T)
+
+
+def test_euler_xyz_double_angles_are_sin_and_cos_of_twice_the_hand_angles(rng: np.random.Generator) -> None:
+    """sin 2θ and cos 2θ of each extrinsic angle, read from the matrix entries without the angles.
+
+    The expected values are those of the angles the matrices are built from (by hand, :func:`_extrinsic_xyz`);
+    |b| stays below π/2 − 0.07, where a and c are determined to a few ulps over cos b.
+    """
+    angles = np.column_stack(
+        [rng.uniform(-np.pi, np.pi, 300), rng.uniform(-1.5, 1.5, 300), rng.uniform(-np.pi, np.pi, 300)]
+    )
+    angles[:3] = [[0.0, 0.0, 0.0], [np.pi / 2, 0.0, -np.pi / 2], [np.pi, 0.0, np.pi / 4]]
+    R = np.stack([_extrinsic_xyz(*abc) for abc in angles])
+    sin2, cos2 = euler_xyz_double_angles(_entries(R))
+    np.testing.assert_allclose(sin2, np.sin(2 * angles).T, atol=1e-13)
+    np.testing.assert_allclose(cos2, np.cos(2 * angles).T, atol=1e-13)
+    one_sin, one_cos = euler_xyz_double_angles(_entries(R[3:4])[:, 0])  # one matrix, entries (9,)
+    np.testing.assert_allclose(one_sin, np.sin(2 * angles[3]), atol=1e-13)
+    np.testing.assert_allclose(one_cos, np.cos(2 * angles[3]), atol=1e-13)
+
+
+@pytest.mark.parametrize("b", [np.pi / 2, -np.pi / 2])
+def test_euler_xyz_double_angles_at_gimbal_lock(b: float) -> None:
+    """At |b| = π/2, c = 0 (sin 0, cos 0) and a carries a ∓ c, as the angles themselves (by hand)."""
+    a, c = 0.4, 0.7
+    carried = a - c if b > 0 else a + c
+    R = np.stack([_extrinsic_xyz(0.3, -0.4, 1.1), _extrinsic_xyz(a, b, c)])
+    sin2, cos2 = euler_xyz_double_angles(_entries(R))
+    np.testing.assert_allclose(sin2[:, 1], [np.sin(2 * carried), 0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(cos2[:, 1], [np.cos(2 * carried), -1.0, 1.0], atol=1e-12)
+    np.testing.assert_allclose(sin2[:, 0], np.sin(2 * np.array([0.3, -0.4, 1.1])), atol=1e-13)
+
+
+def test_euler_xyz_double_angles_of_undefined_angles_and_nan() -> None:
+    """Where both entries of an angle vanish atan2 gives 0: (sin, cos) = (0, 1); a NaN entry stays NaN."""
+    sin2, cos2 = euler_xyz_double_angles(np.zeros((9, 2)))
+    np.testing.assert_array_equal(sin2, 0.0)
+    np.testing.assert_array_equal(cos2, 1.0)
+    r = _entries(np.eye(3)[None])
+    r[7] = np.nan  # a = atan2(r₇, r₈)
+    sin2, cos2 = euler_xyz_double_angles(r)
+    assert np.isnan(sin2[0, 0]) and np.isnan(cos2[0, 0])
+    np.testing.assert_array_equal(sin2[1:, 0], 0.0)
 
 
 def test_integrated_angles_follow_the_path_not_the_state() -> None:

@@ -88,3 +88,33 @@ def test_other_integrated_angles_on_the_same_cache_are_not_served_stale(rng: np.
         np.testing.assert_array_equal(
             FORMULAS[name](shared, angles=angles.tolist()), FORMULAS[name](states, angles=angles)
         )
+
+
+def test_values_per_model_are_computed_once_per_constants_read_only_and_not_kept_on_error() -> None:
+    """per_model: equal constants (another chunk of the model) reuse the value; other constants compute afresh."""
+    from koenig_check.formulas.cache import per_model
+
+    calls: list[int] = []
+
+    def compute(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        calls.append(1)
+        return a * 2.0, a + 1.0
+
+    a = np.arange(6.0).reshape(2, 3)
+    first = per_model("test:double", (a,), lambda: compute(a))
+    again = per_model("test:double", (a.copy(),), lambda: compute(a))  # equal values, another array
+    assert again is first and len(calls) == 1
+    assert not first[0].flags.writeable and not first[1].flags.writeable
+    other = a.copy()
+    other[1, 2] = 7.0
+    np.testing.assert_array_equal(per_model("test:double", (other,), lambda: compute(other))[0], other * 2.0)
+    assert per_model("test:other-name", (a,), lambda: compute(a)) is not first and len(calls) == 3
+
+    def failing() -> None:
+        calls.append(1)
+        raise ValueError("non-physical")
+
+    for _ in range(2):  # an error is raised every time, not kept
+        with pytest.raises(ValueError, match="non-physical"):
+            per_model("test:failing", (a,), failing)
+    assert len(calls) == 5

@@ -28,15 +28,16 @@ def _blocks(P: int, seed: int, segments: bool) -> list:
     return blocks
 
 
-def _one_by_one(label: str, ids: list[str], blocks: list) -> list[tuple]:
+def _one_by_one(label: str, ids: list[str], blocks: list, names: tuple = ()) -> list[tuple]:
     """The records in pose order, written out with Python loops (the independent route)."""
+    formulas, sources, references, scopes_of = names or (FORMULAS, SOURCES, REFERENCES, SCOPES)
     rows = []
     for p, pose in enumerate(ids):
         for f, s, r, seg, value, ref in blocks:
             scopes = [0] if seg is None else list(seg)
             for k, scope in enumerate(scopes):
                 v, rv = (value[p], ref[p]) if seg is None else (value[p, k], ref[p, k])
-                rows.append((label, pose, FORMULAS[f], SOURCES[s], REFERENCES[r], SCOPES[scope], v, rv))
+                rows.append((label, pose, formulas[f], sources[s], references[r], scopes_of[scope], v, rv))
     return rows
 
 
@@ -83,3 +84,20 @@ def test_records_of_a_chunk_are_each_formula_evaluated_alone_on_the_engine_state
                 np.testing.assert_array_equal(rows["reference_value"], exact[:, k], err_msg=f"{name}@{source}")
             totals = records.where(formula=name, source=source, scope="total", reference=source)
             np.testing.assert_array_equal(totals["value"], alone.sum(axis=1), err_msg=f"{name}@{source} total")
+
+
+def test_chunk_tables_of_one_layout_carry_each_models_label_and_names() -> None:
+    """Chunks of two models with one layout (pose count and blocks): each table has its own label and names.
+
+    The columns but the values and pose names are built once per layout and reused: the model's label and
+    the formula, source, reference and scope names must be part of what they are reused for.
+    """
+    P, fields = 4, ("model", "pose", "formula", "source", "reference", "scope", "value", "reference_value")
+    blocks = _blocks(P, seed=1, segments=True)
+    first = (FORMULAS, SOURCES, REFERENCES, SCOPES)
+    second = (["exact", "koenig_world", "planar"], ["pinocchio", "mujoco"], REFERENCES[::-1], ["total", "a", "b", "c"])
+    for label, names in (("m", first), ("n", first), ("n", second), ("m", first)):
+        ids = [f"{label}.{p}" for p in range(P)]
+        table = RecordTable(_chunk_table(label, ids, P, blocks, *(list(n) for n in names)))
+        got = [tuple(row[f] for f in fields) for row in table]
+        assert got == _one_by_one(label, ids, blocks, names), (label, names[0])

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from koenig_check.kernels import dot3, fold, tile
+from koenig_check.kernels import ROWS, dot3, fold, tile
 
 
 def gather_planes(raw: np.ndarray, index: np.ndarray) -> np.ndarray:
@@ -86,9 +86,9 @@ def rotate_constant(R: np.ndarray, v: np.ndarray) -> np.ndarray:
     Rf, k = fold(R)
     c = tile(np.ascontiguousarray(np.asarray(v, dtype=float).T), k)  # (3, k B)
     out = np.empty((3, *R.shape[1:]))
-    folded, tmp = out.reshape(3, *Rf.shape[1:]), np.empty(Rf.shape[1:])
+    folded = out.reshape(3, *Rf.shape[1:])
     for i in range(3):
-        dot3(Rf[3 * i], Rf[3 * i + 1], Rf[3 * i + 2], c[0], c[1], c[2], folded[i], tmp)
+        np.einsum(ROWS, Rf[3 * i : 3 * i + 3], c, out=folded[i])
     return out
 
 

@@ -15,9 +15,10 @@ from typing import Literal
 import numpy as np
 
 from koenig_check.formulas import terms
-from koenig_check.formulas.angles import Convention, angle_components
+from koenig_check.formulas.angles import Convention, angle_components, euler_xyz_double_angles
 from koenig_check.formulas.cache import memo, memo_of
 from koenig_check.formulas.exact import translational
+from koenig_check.formulas.terms import delta_rotation_components
 from koenig_check.kernels import scale
 from koenig_check.segments import SegmentStates, second_moments
 
@@ -147,7 +148,14 @@ def double_angle_trig(dtheta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _shared_trig(states, convention: Convention, angles: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-    """``(sin 2Δθ, cos 2Δθ)`` as planes (3, P, B), once per convention and shared state set."""
+    """``(sin 2Δθ, cos 2Δθ)`` as planes (3, P, B), once per convention and shared state set.
+
+    For ``euler_xyz`` they come from ``ΔR``'s entries without the angles (:func:`euler_xyz_double_angles`).
+    """
+    if convention == "euler_xyz" and angles is None:
+        return memo(
+            states, "double_angle_trig:euler_xyz", lambda: euler_xyz_double_angles(delta_rotation_components(states))
+        )
     dtheta = angle_components(states, convention, angles)
     if angles is None:
         return memo(states, f"double_angle_trig:{convention}", lambda: double_angle_trig(dtheta))

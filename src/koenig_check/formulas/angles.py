@@ -184,6 +184,73 @@ def euler_xyz_components(r: np.ndarray) -> np.ndarray:
     return out
 
 
+def euler_xyz_double_angles(r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(sin 2Δθ, cos 2Δθ)`` of the :func:`euler_xyz_components` angles, from the entries alone.
+
+    Each angle is ``φ = atan2(y, x)`` of two entries (as :func:`euler_xyz_components` reads them:
+    ``a`` of ``(r₈, r₇)``, ``b`` of ``(h, −r₆)`` with ``h = √(r₀² + r₃²)``, ``c`` of ``(r₀, r₃)``; at
+    gimbal lock, ``h < 10⁻¹²``, ``a`` of ``(r₄, −r₅)`` and ``c = 0``), so that
+    ``sin 2φ = 2xy / (x² + y²)`` and ``cos 2φ = (x² − y²) / (x² + y²)``: no ``arctan2``, ``hypot``
+    or ``tan`` (the same numbers as :func:`~koenig_check.formulas.alyushin.double_angle_trig` of the
+    angles, to rounding).  Where ``x = y = 0`` (``atan2`` gives 0): ``(0, 1)``.
+
+    Parameters
+    ----------
+    r : ndarray, shape (9, ...)
+        Row-major entries of rotation matrices.
+
+    Returns
+    -------
+    (ndarray, ndarray), each shape (3, ...)
+        For ``(a, b, c)``.
+    """
+    if r.ndim == 1:  # one matrix: as a batch of one
+        sin2, cos2 = euler_xyz_double_angles(r[:, None])
+        return sin2[:, 0], cos2[:, 0]
+    shape = r.shape[1:]
+    sin2, cos2 = np.empty((3, *shape)), np.empty((3, *shape))
+    xx, yy, h2 = np.empty(shape), np.empty(shape), np.empty(shape)
+    np.multiply(r[0], r[0], out=xx)
+    np.multiply(r[3], r[3], out=yy)
+    np.add(xx, yy, out=h2)  # h², the denominator of c
+    _double_angle(r[0], r[3], xx, yy, h2, sin2[2], cos2[2])
+    h = np.sqrt(h2)
+    np.multiply(r[6], r[6], out=yy)
+    n = np.add(h2, yy, out=xx)
+    _double_angle(h, r[6], h2, yy, n, sin2[1], cos2[1])
+    np.negative(sin2[1], out=sin2[1])  # y = −r₆
+    np.multiply(r[8], r[8], out=xx)
+    np.multiply(r[7], r[7], out=yy)
+    _double_angle(r[8], r[7], xx, yy, np.add(xx, yy, out=h2), sin2[0], cos2[0])
+    lock = h < 1e-12
+    if lock.any():  # a of (r₄, −r₅), c = 0
+        x, y = r[4][lock], -r[5][lock]
+        xx_l, yy_l = x * x, y * y
+        sin_l, cos_l = np.empty(x.shape), np.empty(x.shape)
+        _double_angle(x, y, xx_l, yy_l, xx_l + yy_l, sin_l, cos_l)
+        sin2[0][lock], cos2[0][lock] = sin_l, cos_l
+        sin2[2][lock], cos2[2][lock] = 0.0, 1.0
+    return sin2, cos2
+
+
+def _double_angle(
+    x: np.ndarray, y: np.ndarray, xx: np.ndarray, yy: np.ndarray, n: np.ndarray, sin2: np.ndarray, cos2: np.ndarray
+) -> None:
+    """``sin 2φ = 2xy / n``, ``cos 2φ = (x² − y²) / n`` into ``sin2``, ``cos2``, given ``x²``, ``y²``, ``n = x² + y²``.
+
+    Where ``n = 0`` (``x = y = 0``, ``atan2`` gives 0): ``(0, 1)``; a NaN stays a NaN.
+    """
+    zero = n == 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        np.multiply(x, y, out=sin2)
+        sin2 *= 2.0
+        sin2 /= n
+        np.subtract(xx, yy, out=cos2)
+        cos2 /= n
+    if zero.any():
+        sin2[zero], cos2[zero] = 0.0, 1.0
+
+
 def rotvec_angles(states: States) -> np.ndarray:
     """Δθ as the world-axis components of the rotation vector of ``R R_ref^T``.
 

@@ -62,8 +62,15 @@ class SharedStates:
         return self.memo("inertia_world", self.states.inertia_world)
 
     def inertia_world_ref(self) -> np.ndarray:
-        """Return the central inertia in world axes at the reference configuration (B, 3, 3), computed once."""
-        return self.memo("inertia_world_ref", self.states.inertia_world_ref)
+        """Return the central inertia in world axes at the reference configuration (B, 3, 3), computed once per model.
+
+        It depends only on the model's constants (``rotation_ref``, ``inertia_body``): every chunk of the model
+        shares it (:func:`per_model`).
+        """
+        states = self.states
+        return per_model(
+            "inertia_world_ref", (states.rotation_ref, states.inertia_body), states.inertia_world_ref, memo=self
+        )
 
 
 #: What a formula accepts: plain states, or states wrapped with the shared cache.
@@ -114,3 +121,52 @@ def memo_of(states: SegmentStates | SharedStates, key: str, source: Any, compute
     if entry[0] is not source:
         entry = states._memo[key] = (source, compute())
     return entry[1]
+
+
+#: Values derived from a model's constant arrays, kept across the state sets (chunks) of the model.
+_PER_MODEL: dict[tuple, Any] = {}
+#: Entries kept at most (a few models' worth); beyond, the cache starts afresh.
+_PER_MODEL_LIMIT = 32
+
+
+def per_model(
+    key: str, constants: tuple[np.ndarray, ...], compute: Callable[[], Any], memo: SharedStates | None = None
+) -> Any:
+    """``compute()`` once per value of ``constants`` (a model's mass properties, its reference pose), read-only.
+
+    Every chunk of a model has the same constants: what is derived from them alone (principal axes,
+    equimomental points, the reference inertia in world axes) is computed for the first chunk and
+    reused by the next ones, looked up by the constants' bytes (a few kilobytes).  The arrays of the
+    value are made read-only.  A ``compute`` that raises is not kept (it raises again next time).
+
+    Parameters
+    ----------
+    key : str
+        Name of the derived value.
+    constants : tuple of ndarray
+        Everything the value depends on.
+    compute : callable
+        Called without arguments on first use.
+    memo : SharedStates, optional
+        Also kept in this state set's own cache (a cheaper lookup for the chunk's next formulas).
+
+    Returns
+    -------
+    object
+    """
+    if memo is not None and key in memo._memo:
+        return memo._memo[key]
+    arrays = tuple(np.asarray(c) for c in constants)
+    full_key = (key, *((a.dtype.str, a.shape, a.tobytes()) for a in arrays))
+    value = _PER_MODEL.get(full_key)
+    if value is None:
+        value = compute()
+        for a in value if isinstance(value, tuple) else (value,):
+            if isinstance(a, np.ndarray):
+                a.setflags(write=False)
+        if len(_PER_MODEL) >= _PER_MODEL_LIMIT:
+            _PER_MODEL.clear()
+        _PER_MODEL[full_key] = value
+    if memo is not None:
+        memo._memo[key] = value
+    return value

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from koenig_check.formulas import terms
+from koenig_check.formulas.cache import per_model
 from koenig_check.formulas.exact import translational
 from koenig_check.kernels import scale
 from koenig_check.segments import SegmentStates
@@ -62,7 +63,7 @@ def koenig_principal(states: SegmentStates) -> np.ndarray:
     -------
     ndarray, shape (P, B)
     """
-    moments, axes = principal_axes(states.inertia_body)
+    moments, axes = per_model("principal_axes", (states.inertia_body,), lambda: principal_axes(states.inertia_body))
     R, w = terms.rotation_components(states), terms.omega_components(states)
     w_body = np.empty((3, *w.shape[1:]))
     for i in range(3):  # Rᵀ ω

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from koenig_check.formulas.cache import per_model
 from koenig_check.formulas.terms import dot3
 from koenig_check.kernels import scale
 from koenig_check.segments import SegmentStates, second_moments
@@ -107,7 +108,11 @@ def point_masses(states: SegmentStates, point_velocities: np.ndarray | None = No
     -------
     ndarray, shape (P, B)
     """
-    offsets, masses = equimomental_points(states.mass, states.inertia_body, states.names)
+    offsets, masses = per_model(
+        "equimomental_points",
+        (states.mass, states.inertia_body),
+        lambda: equimomental_points(states.mass, states.inertia_body, states.names),
+    )
     if point_velocities is None:
         v = rigid_point_velocities(states, offsets)
     else:

@@ -231,34 +231,50 @@ def _chunk_table(
         return STORED_SCHEMA.empty_table()
     values = np.concatenate([b[4].reshape(P, -1) for b in blocks], axis=1)
     refs = np.concatenate([b[5].reshape(P, -1) for b in blocks], axis=1)
-    model, pose, f, s, r, sc = _record_codes(P, blocks)
-    arrays = [
-        categorical(model, [label], "model"),
-        categorical(pose, list(ids), "pose"),
-        categorical(f, formulas, "formula"),
-        categorical(s, sources, "source"),
-        categorical(r, references, "reference"),
-        categorical(sc, scopes, "scope"),
-        pa.array(values.ravel()),
-        pa.array(refs.ravel()),
-    ]
+    model, pose, f, s, r, sc = _record_columns(P, blocks, label, formulas, sources, references, scopes)
+    pose_column = categorical(pose, list(ids), "pose")
+    arrays = [model, pose_column, f, s, r, sc, pa.array(values.ravel()), pa.array(refs.ravel())]
     return pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
 
 
-#: The code columns of the last chunk layouts (every chunk of a model but its last has the same).
-_CODES: dict[tuple, tuple[np.ndarray, ...]] = {}
+#: The columns of the last chunk layouts but the values (every chunk of a model but its last has the same).
+_CODES: dict[tuple, tuple[Any, ...]] = {}
+
+
+def _record_columns(
+    P: int, blocks: list, label: str, formulas: list[str], sources: list[str], references: list[str], scopes: list[str]
+) -> tuple[Any, ...]:
+    """The model, formula, source, reference and scope columns of a chunk's P × K records, and its pose codes.
+
+    They depend only on the number of poses, the layout of the blocks and the names, so they are built once
+    per layout and reused by every chunk of that layout (Arrow arrays are immutable; the pose codes are
+    read-only); only the pose column's words, the chunk's pose ids, are the chunk's own.
+    """
+    key = (
+        P,
+        tuple((b[0], b[1], b[2], None if b[3] is None else b[3].tobytes()) for b in blocks),
+        label,
+        *(tuple(names) for names in (formulas, sources, references, scopes)),
+    )
+    columns = _CODES.get(key)
+    if columns is None:
+        model, pose, f, s, r, sc = _record_codes(P, blocks)
+        columns = (
+            categorical(model, [label], "model"),
+            pose,
+            categorical(f, formulas, "formula"),
+            categorical(s, sources, "source"),
+            categorical(r, references, "reference"),
+            categorical(sc, scopes, "scope"),
+        )
+        if len(_CODES) >= 4:  # a model's full chunks and its last one; a new model starts afresh
+            _CODES.clear()
+        _CODES[key] = columns
+    return columns
 
 
 def _record_codes(P: int, blocks: list) -> tuple[np.ndarray, ...]:
-    """The model, pose, formula, source, reference and scope codes of a chunk's P × K records.
-
-    They depend only on the number of poses and the layout of the blocks, so they are built once
-    per layout and reused (read-only) by every chunk of that layout.
-    """
-    key = (P, tuple((b[0], b[1], b[2], None if b[3] is None else b[3].tobytes()) for b in blocks))
-    codes = _CODES.get(key)
-    if codes is not None:
-        return codes
+    """The model, pose, formula, source, reference and scope codes of a chunk's P × K records."""
     widths = [1 if b[3] is None else len(b[3]) for b in blocks]
     # Codes built in their stored widths (the columns' index types), so that no column is converted.
     f = np.repeat(np.array([b[0] for b in blocks], dtype=np.int8), widths)
@@ -276,7 +292,4 @@ def _record_codes(P: int, blocks: list) -> tuple[np.ndarray, ...]:
     )
     for c in codes:
         c.setflags(write=False)
-    if len(_CODES) >= 4:  # a model's full chunks and its last one; a new model starts afresh
-        _CODES.clear()
-    _CODES[key] = codes
     return codes

@@ -137,3 +137,19 @@ def test_an_inertia_breaking_the_triangle_inequality_is_zeroed_and_pybullet_does
     assert pybullet.mass_matrix(np.zeros((1, 1)))[0, 0, 0] == 0.0  # the COM is on the axis: only Ixx was left
     check = koenig_check.compare(str(path), n_poses=2, formulas=["exact"], engines=ALL, repair_inertia=True)
     assert "pybullet" in [f.engine for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]
+
+
+def test_an_inertia_zero_but_for_round_off_is_not_a_reason_to_abstain(tmp_path) -> None:
+    """example-robot-data's icub_reduced writes inertias of 1e-20 breaking A + B >= C: PyBullet's zero is the same.
+
+    Turned about z, the arm's M is 2 · 0.2² = 0.08 kg m² without its moments; 2.5e-20 is far below PyBullet's
+    precision times that.
+    """
+    path = tmp_path / "round_off.urdf"
+    text = UNBALANCED.replace('ixx="0.1" iyy="0.1" izz="0.25"', 'ixx="1e-20" iyy="1e-20" izz="2.5e-20"')
+    path.write_text(text.replace('<axis xyz="1 0 0"/>', '<axis xyz="0 0 1"/>'))
+    pair = load_model(str(path), repair_inertia=True)
+    assert pair.attach("pybullet") is not None
+    assert not [f for f in pair.optional_findings if f.cause == "pybullet.urdf.zeroed-inertia"]
+    check = koenig_check.compare(str(path), n_poses=2, formulas=["exact"], engines=ALL, repair_inertia=True)
+    assert "pybullet" not in [f.engine for f in check.comparisons[0].findings if f.kind is Kind.ENGINE_UNABLE]

@@ -1,7 +1,7 @@
 """PyBullet as an engine: a mass matrix by hand, and MuJoCo's and Pinocchio's every answer on the project's URDFs.
 
 Each quantity of the Engine interface (energy, M, inverse dynamics, segment states) is compared within PyBullet's
-declared precision (1e-7: it diagonalizes every inertia) on the project's URDF models, fixed and floating; the
+declared precision (3e-6: it diagonalizes every inertia) on the project's URDF models, fixed and floating; the
 floating base exercises the state map's conventions (the base's inertial frame, ``(ω, v_COM)`` in its axes, the
 classical acceleration ``calculateInverseDynamics`` takes).
 """

@@ -14,8 +14,12 @@ from koenig_check.findings import Finding, Kind
 
 
 def _replaced(finding: Finding, mj_model: Any) -> bool:
-    """An ``INERTIA`` finding on a link whose ``<inertial>`` Drake's URDF parser replaced by its own."""
-    return MASS_IN_DRAKE in finding.values
+    """An ``INERTIA`` finding on a moving link whose ``<inertial>`` Drake's URDF parser replaced by its own.
+
+    A link welded to the world (in no segment: pybullet_data's kuka_iiwa base, a ROS base link) changes no energy
+    and no M (measured: Drake's M of the kuka equals Pinocchio's to 7e-16): Drake still checks the robot.
+    """
+    return MASS_IN_DRAKE in finding.values and bool(finding.segments)
 
 
 #: Drake's parser limits: the pos of a body with several joints dropped for the first of them (which moves

@@ -103,6 +103,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         refusal = not_used("idyntree", one_line(err).removeprefix(f"{model.source.path}: "))
         if model.source.format not in SPEC.formats:
             refusal = replace(refusal, cause="idyntree.mjcf.no-mjcf-reader")
+        refusal = replace(refusal, cause=getattr(err, "cause", refusal.cause))
         return None, [refusal]
     except ImportError as err:
         return None, [not_used("idyntree", f"idyntree cannot be imported: {one_line(err)}")]

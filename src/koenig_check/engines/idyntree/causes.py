@@ -61,6 +61,29 @@ CAUSES: tuple[Cause, ...] = (
         hint="give the link its mass, or fold its inertia into the link it is fixed to",
         fixture="idyntree_massless_link_inertia.urdf",
     ),
+    Cause(
+        id="idyntree.urdf.xml-version",
+        construct='an XML declaration of a version other than 1.x (<?xml version="0.0" ?>)',
+        formats=("urdf",),
+        readings=(
+            Reading("mujoco", "as written", measured="4.0.0"),
+            Reading("pinocchio", "as written", measured="4.1.0"),
+            Reading("pybullet", "as written", measured="3.2.7"),
+            Reading("drake", "as written", measured="1.51.1"),
+            Reading("newton", "as written", measured="1.8.0"),
+            Reading(
+                "idyntree",
+                "refuses",
+                "its XML parser says \"Unsupported version '0.0'\" and ModelLoader then crashes the process "
+                "(segmentation fault): koenig-check does not hand it the file",
+                measured=MEASURED,
+            ),
+        ),
+        quantities=("mass", "inertia", "joints"),
+        brief="XML version other than 1.x crashes iDynTree",
+        hint='write <?xml version="1.0" ?> (pybullet_data\'s minitaur, quadruped and bike URDFs have "0.0")',
+        fixture="idyntree_xml_version.urdf",
+    ),
 )
 
 

@@ -228,8 +228,10 @@ def _dof_names(path: Path, model: Any) -> dict[int, list[str]]:
     from koenig_check.engines.newton.state_map import D6, short_name
     from koenig_check.modelfile.validate import parse_xml
 
-    joints_of = {
-        b.get("name"): [j.get("name") for j in b.findall("joint")] for b in parse_xml(path).getroot().iter("body")
+    joints_of = {  # Newton's D6 lists the slides first, then the hinges (each in the file's order)
+        b.get("name"): [j.get("name") for j in b.findall("joint") if j.get("type") == "slide"]
+        + [j.get("name") for j in b.findall("joint") if j.get("type") != "slide"]
+        for b in parse_xml(path).getroot().iter("body")
     }
     qds, jtype, child = model.joint_qd_start.numpy(), model.joint_type.numpy(), model.joint_child.numpy()
     out = {}

@@ -10,7 +10,8 @@ Newton 1.8's conventions (verified against MuJoCo's kinematics, energy and mass 
   ``ω_W × (ω_W × R c)``.
 * ball: ``q`` = quaternion ``x y z w`` of the child relative to the parent (MuJoCo's ``w x y z``), ``q̇`` = angular
   velocity in the parent's joint frame, ``R(q) ω_child`` (MuJoCo's is in the child frame); ``d/dt (R ω) = R ω̇``.
-* A body with several MJCF joints is one Newton D6 joint whose dofs are the MuJoCo joints in order.
+* A body with several MJCF joints is one Newton D6 joint whose dofs are its slides, then its hinges, each in the
+  file's order (:func:`d6_position`; measured: brax's prismaversal_2dof_joint.xml, a hinge written before a slide).
 
 ``q̇_N = T(q) q̇`` with ``T`` a block matrix per joint; mass matrices convert with ``Tᵀ M T``, forces with ``Tᵀ τ``.
 """
@@ -31,6 +32,31 @@ from koenig_check.engines.newton.loader import NewtonLoadError
 PRISMATIC, REVOLUTE, BALL, FIXED, FREE, D6 = 0, 1, 2, 3, 4, 6
 _SIZES = {"free": (7, 6), "ball": (4, 3), "hinge": (1, 1), "slide": (1, 1)}
 _COMPATIBLE = {"free": {FREE}, "ball": {BALL}, "hinge": {REVOLUTE, D6}, "slide": {PRISMATIC, D6}}
+
+
+def d6_position(mj_model: mujoco.MjModel, body: int, k: int) -> int:
+    """The dof of MuJoCo joint ``k`` within the D6 joint Newton makes of its body's joints: slides first, then hinges.
+
+    Parameters
+    ----------
+    mj_model : mujoco.MjModel
+    body : int
+        The body joint ``k`` moves.
+    k : int
+        MuJoCo joint index.
+
+    Returns
+    -------
+    int
+        Newton lists a D6 joint's linear axes before its angular ones, each group in the file's order.
+    """
+    first, count = int(mj_model.body_jntadr[body]), int(mj_model.body_jntnum[body])
+    joints = range(first, first + count)
+    slide = int(mujoco.mjtJoint.mjJNT_SLIDE)
+    ordered = [i for i in joints if int(mj_model.jnt_type[i]) == slide] + [
+        i for i in joints if int(mj_model.jnt_type[i]) != slide
+    ]
+    return ordered.index(k)
 
 
 def short_name(label: str) -> str:
@@ -126,7 +152,7 @@ def match_joints(mj_model: mujoco.MjModel, model: Any, path: str, mjcf: bool) ->
         if int(jtype[j]) not in _COMPATIBLE[kind]:
             mismatch.append(f"{name}: mujoco {kind} vs newton type {int(jtype[j])}")
             continue
-        within = k - int(mj_model.body_jntadr[body]) if int(jtype[j]) == D6 else 0
+        within = d6_position(mj_model, body, k) if int(jtype[j]) == D6 else 0
         used.add(j)
         offset = float(mj_model.qpos0[mj_model.jnt_qposadr[k]]) if mjcf and kind in ("hinge", "slide") else 0.0
         pairs.append(

@@ -153,7 +153,8 @@ class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
         (k, P, B) planes: ``rotation`` (9, row-major), ``origin`` (3), ``velocity`` (6: the joint
         frame's linear then angular velocity, in its own axes).  With ``energies``, the pass runs on
         the armature-free copy (the same kinematic tree, so the same placements and velocities, bit
-        for bit) and evaluates ``computeKineticEnergy`` there: ``rigid`` of :meth:`kinetic_energy`.
+        for bit) as ``computeKineticEnergy(q, v)``, which runs ``forwardKinematics(q, v)`` itself and
+        then sums the energy: ``rigid`` of :meth:`kinetic_energy`, with one engine call per pose.
         """
         P, nj = q.shape[0], self.model.njoints
         m, d = (self._m_rigid, self._d_rigid) if energies else (self.model, self._data)
@@ -164,9 +165,10 @@ class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
         rigid = np.empty(P)
         placements_live, motions_live = d.oMi, d.v  # follow every pose: taken once, outside the loop
         for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
-            kinematics(m, d, q_p, v_p)
-            if energies:
-                rigid[p] = kinetic(m, d)
+            if energies:  # computeKineticEnergy(q, v) runs the kinematic pass itself: one call per pose
+                rigid[p] = kinetic(m, d, q_p, v_p)
+            else:
+                kinematics(m, d, q_p, v_p)
             if place_view is not None:
                 placements[p] = place_view
             else:

@@ -20,7 +20,7 @@ MEASURED = "4.1.0"
 _OPTION_IGNORED = "ignores all of <option>: its gravity is always (0, 0, -9.81)"
 
 #: The releases of the other engines these readings were measured on.
-_MUJOCO, _DRAKE = "4.0.0", "1.51.1"
+_MUJOCO, _DRAKE, _NEWTON = "4.0.0", "1.51.1", "1.8.0"
 
 
 def _mjcf(
@@ -34,8 +34,12 @@ def _mjcf(
     drake: str = "",
     loses_joints: bool = False,
     twin: str = "",
+    newton: str = "",
 ) -> Cause:
-    """A construct of an MJCF file Pinocchio's parser reads differently; Drake reads it as written unless ``drake``."""
+    """A construct of an MJCF file Pinocchio's parser reads differently; Drake reads it as written unless ``drake``.
+
+    ``newton``: how Newton's ``add_mjcf`` reads it differently too (measured on real files: dm_control's cheetah).
+    """
     return Cause(
         id=f"pinocchio.mjcf.{slug}",
         construct=construct,
@@ -46,6 +50,7 @@ def _mjcf(
             Reading("drake", "differently", drake, measured=_DRAKE)
             if drake
             else Reading("drake", "as written", measured=_DRAKE),
+            *([Reading("newton", "differently", newton, measured=_NEWTON)] if newton else []),
         ),
         quantities=quantities,
         brief=brief,
@@ -137,6 +142,7 @@ CAUSES: tuple[Cause, ...] = (
         drake="skips the element and everything inside it: the copies are missing",
         loses_joints=True,
         twin="replicate_twin.xml",
+        newton="skips the element and everything inside it: the copies are missing",
     ),
     _mjcf(
         "root-bodies",
@@ -167,6 +173,7 @@ CAUSES: tuple[Cause, ...] = (
         "settotalmass.xml",
         drake="ignores the option (with a warning): the file's masses unscaled",
         twin="settotalmass_twin.xml",
+        newton="ignores the option too: the file's masses unscaled (model.body_mass)",
     ),
     _mjcf(
         "mesh-mass",
@@ -227,6 +234,7 @@ CAUSES: tuple[Cause, ...] = (
             Reading("mujoco", "as written", measured="4.0.0"),
             Reading("pinocchio", "differently", _OPTION_IGNORED, measured=MEASURED),
             Reading("drake", "as written", measured="1.51.1"),
+            Reading("newton", "differently", "add_mjcf ignores it too: model.gravity (0, 0, -9.81)", measured=_NEWTON),
         ),
         quantities=("gravity",),
         brief="<option gravity> ignored: gravity (0, 0, -9.81)",
@@ -283,6 +291,7 @@ CAUSES: tuple[Cause, ...] = (
                 "ignores <attach> with a warning ('currently unsupported and will be ignored')",
                 measured="1.51.1",
             ),
+            Reading("newton", "differently", "add_mjcf ignores <attach> too", measured=_NEWTON),
         ),
         quantities=("joints", "mass"),
         brief="<attach> not read by Pinocchio's MJCF parser",

@@ -96,6 +96,6 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
     except ImportError as err:
         return None, [not_used("pybullet", f"pybullet cannot be imported: {one_line(err)}")]
     path = Path(source.path)
-    traps = inertial_findings(engine, path) + zeroed_findings(engine, path)
+    traps = inertial_findings(engine, path) + zeroed_findings(engine, path, model.mujoco.model)
     traps += option_findings(engine, source, model.mujoco.model)
     return engine, list(engine.findings) + traps

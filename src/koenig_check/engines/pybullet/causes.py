@@ -105,6 +105,31 @@ CAUSES: tuple[Cause, ...] = (
         fixture="pybullet_missing_mesh.urdf",
     ),
     Cause(
+        id="pybullet.urdf.zeroed-inertia",
+        construct="an <inertia> whose principal moments break the triangle inequality (A + B < C)",
+        formats=("urdf",),
+        readings=(
+            Reading(
+                "mujoco",
+                "refuses",
+                "inertia must satisfy A + B >= C (--repair-inertia or --balance-inertia loads it)",
+                measured="4.0.0",
+            ),
+            Reading("pinocchio", "as written", measured="4.1.0"),
+            Reading("idyntree", "as written", measured="15.1.0"),
+            Reading(
+                "pybullet",
+                "differently",
+                "'Bad inertia tensor properties, setting inertia to zero': the link keeps its mass, not its inertia",
+                measured=MEASURED,
+            ),
+        ),
+        quantities=("inertia",),
+        brief="inertia breaking A + B >= C set to zero by PyBullet",
+        hint="give the link principal moments with A + B >= C",
+        fixture="pybullet_zeroed_inertia.urdf",
+    ),
+    Cause(
         id="pybullet.mjcf.load-mjcf",
         construct="an MJCF file",
         formats=("mjcf",),

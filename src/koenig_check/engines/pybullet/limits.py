@@ -10,8 +10,8 @@ from __future__ import annotations
 from typing import Any
 
 from koenig_check.engines.limit import ParserLimit
-from koenig_check.engines.pybullet.traps import MOMENTS_IN_PYBULLET
-from koenig_check.findings import Finding, Kind
+from koenig_check.engines.pybullet.traps import MOMENTS_IN_PYBULLET, ZEROED
+from koenig_check.findings import Finding
 
 
 def _zeroed(finding: Finding, mj_model: Any) -> bool:
@@ -28,5 +28,5 @@ LIMITS = (
         names="links",
         cause="pybullet.urdf.floating-root-without-inertial",
     ),
-    ParserLimit("sets inertias breaking A + B >= C to zero", names="links", kind=Kind.INERTIA, when=_zeroed),
+    ParserLimit("sets inertias breaking A + B >= C to zero", names="links", cause=ZEROED, when=_zeroed),
 )

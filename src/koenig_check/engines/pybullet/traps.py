@@ -24,6 +24,8 @@ from koenig_check.modelfile.urdf_links import links_without_inertial
 
 #: The value a zeroed-inertia finding carries PyBullet's moments under (what its parser limit reads).
 MOMENTS_IN_PYBULLET = "moments in PyBullet"
+#: The cause of an inertia PyBullet set to zero (:func:`zeroed_findings`).
+ZEROED = "pybullet.urdf.zeroed-inertia"
 #: The loading options measured on each robot: cause id -> the flags its users pass.
 OPTIONS = {
     "pybullet.urdf.inertia-from-collision": (),
@@ -138,7 +140,16 @@ def _file_moments(link: ET.Element) -> np.ndarray | None:
     return np.linalg.eigvalsh(tensor)
 
 
-def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
+def _negligible(engine: Any, mj_model: Any) -> float:
+    """An inertia no larger than PyBullet's precision times its M's largest entry at the reference pose (kg m²).
+
+    Setting such an inertia to zero changes no entry of M by more than PyBullet's round-off.
+    """
+    qpos0 = np.asarray(mj_model.qpos0, dtype=float)[None]
+    return float(SPEC.precision * np.abs(engine.mass_matrix(qpos0)[0]).max())
+
+
+def zeroed_findings(engine: Any, path: Path, mj_model: Any) -> list[Finding]:
     """Links whose inertia breaks the triangle inequality (A + B < C): PyBullet sets it to zero (measured on 3.2.7).
 
     Such a link is another robot than the file's in PyBullet: the finding shows one of its parser limits
@@ -148,10 +159,13 @@ def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
     ----------
     engine : PyBulletEngine
     path : Path
+    mj_model : mujoco.MjModel
+        MuJoCo's model of the file (the reference pose, where an inertia too small to matter is judged).
 
     Returns
     -------
     list of Finding
+        One per link, unless its inertia as written changes M by no more than PyBullet's round-off.
     """
     robot = _urdf(path)
     if robot is None:
@@ -165,6 +179,8 @@ def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
         if moments is None or row not in segment or tree.principal[row].any():
             continue
         if not moments[0] + moments[1] < moments[2]:  # sorted: A + B >= C holds, PyBullet keeps it
+            continue
+        if np.abs(moments).max() <= _negligible(engine, mj_model):  # round-off (icub's 1e-20): nothing lost
             continue
         out.append(
             Finding(
@@ -180,6 +196,7 @@ def zeroed_findings(engine: Any, path: Path) -> list[Finding]:
                 affects_energy=True,
                 root_cause=True,
                 segments=(segment[row],) if row in segment else (),
+                cause=ZEROED,
                 tag="link",
             )
         )
