@@ -119,7 +119,9 @@ def test_a_check_not_made_closes_the_line_after_the_root_cause() -> None:
     assert line.endswith("; Drake asked for (--engines) but it could not check the model")
     from koenig_check.diagnosis.message import finding_lines
 
-    assert " ".join(" ".join(finding_lines([unable, root], line)).split()) == f"drake: {drake.strip()}"
+    # the lines after it give the rest of the reason whole, not what the first line already said
+    rest = drake.strip().removeprefix("Drake asked for (--engines) but it could not check the model: ")
+    assert " ".join(" ".join(finding_lines([unable, root], line)).split()) == f"drake: …{rest}"
     whole = short_reason("hand.xml", [unable, root], width=1000)
     assert whole.endswith(drake.strip())
 
@@ -190,3 +192,20 @@ def test_the_table_row_and_the_error_line_show_the_same_reason() -> None:
     assert check.reasons(cli=True) == [why.line()]
     row = " ".join(terminal_table(check).split())  # folded under its column: the words in order
     assert " ".join(why.whole().removeprefix(f"{path.name}: ").split()) in row
+
+
+def test_an_engines_own_text_is_said_once_under_the_first_line() -> None:
+    """A refusal whose summary carries the engine's text on its next lines (Newton's): the one-line reason ends at
+    the refusal, the lines under it give the engine's text once, as written, and the table's row holds it whole."""
+    from koenig_check.diagnosis.message import finding_lines
+    from koenig_check.diagnosis.model_reason import model_reason
+
+    words = "ValueError: Mimic followers and references only support PRISMATIC, REVOLUTE, D6 joints. " + "x" * 120
+    summary = "Newton asked for (--engines) but it could not check the model: Newton's add_urdf refuses the file"
+    unable = Finding(Kind.ENGINE_UNABLE, "newton", "model", f"{summary}\n    {words}", hint="check it without Newton")
+    reason = model_reason("talos", [unable])
+    line = reason.line()
+    assert line == f"talos: {summary}; check it without Newton" and "\n" not in line
+    below = finding_lines([unable], line, width=1000)
+    assert below == [f"    {words}"]  # once, whole, indented; the summary's first line and the hint not again
+    assert reason.whole() == f"talos: {summary} {words}; check it without Newton"

@@ -115,11 +115,23 @@ def finding_lines(findings: Sequence[Finding], first: str = "", width: int = LIN
     for f in findings:
         if f.kind is not Kind.ENGINE_UNABLE:
             continue
-        if f.summary not in said:
-            items.append([f"{f.engine}: {f.summary}"])
+        head, *text = f.summary.splitlines()  # the engine's own text, if any, on the lines after the first
+        head = " ".join(head.split())
+        shown = _said_part(head, said)
+        if shown < len(head):  # the part of the reason the first line did not hold
+            items.append([f"{f.engine}: " + (head if shown == 0 else "…" + head[shown:].lstrip(":; "))])
+        if text:
+            items.append([line[len(INDENT) :] if line.startswith(INDENT) else line.strip() for line in text])
         if f.hint and f.hint not in said:
             items.append([f"hint: {f.hint}"])
     return _indented(items, width)
+
+
+def _said_part(head: str, said: str) -> int:
+    """How much of ``head`` the first line already says: all of it, a part ending at a clause, or none (0)."""
+    if head in said:
+        return len(head)
+    return max((end for end in clause_ends(head) if head[:end] in said), default=0)
 
 
 def error_message(first: str, err: BaseException, **details: object) -> str:

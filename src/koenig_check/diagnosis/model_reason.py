@@ -51,6 +51,9 @@ class Reason:
         What to do about them (said when they are the whole reason).
     limit : int
         At most this many causes are named.
+    unmade_whole : str
+        The checks not made with each engine's own text after its reason, on one line (the verdict table's row);
+        empty: the same as ``unmade``.
     """
 
     label: str
@@ -60,6 +63,7 @@ class Reason:
     unmade: str = ""
     hints: str = ""
     limit: int = 3
+    unmade_whole: str = ""
 
     def whole(self) -> str:
         """The verdict table's row: the sentence as :meth:`line` fits it, then the checks not made whole.
@@ -70,10 +74,11 @@ class Reason:
         -------
         str
         """
-        if self.unmade and not self.head and not self.gap:  # the check not made is the whole reason
-            return f"{self.label}: {self.unmade}" + (f"; {self.hints}" if self.hints else "")
+        unmade = self.unmade_whole or self.unmade
+        if unmade and not self.head and not self.gap:  # the check not made is the whole reason
+            return f"{self.label}: {unmade}" + (f"; {self.hints}" if self.hints else "")
         text = self._sentence(REASON_WIDTH, 0)
-        return f"{text}{'' if text.endswith(': ') else '; '}{self.unmade}" if self.unmade else text
+        return f"{text}{'' if text.endswith(': ') else '; '}{unmade}" if unmade else text
 
     def line(self, width: int = REASON_WIDTH) -> str:
         """The reason in at most ``width`` characters, whole parts dropped to fit, cut at a word only at last.
@@ -179,11 +184,15 @@ def model_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     Reason
     """
     unable_findings = [f for f in findings if f.kind is Kind.ENGINE_UNABLE]
-    unmade = "; ".join(f.summary for f in unable_findings)  # each summary names its engine and gives its reason
+    # Each summary names its engine and gives its reason on its first line; the engine's own text, if any, follows
+    # on the next lines: the one-line reason takes the first lines (the lines under it give the engine's text
+    # whole), the verdict table's row the whole of each, joined into one line.
+    unmade = "; ".join(f.summary.splitlines()[0] for f in unable_findings)
+    unmade_whole = "; ".join(" ".join(f.summary.split()) for f in unable_findings)
     hints = "; ".join(f.hint for f in unable_findings if f.hint)
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
     groups = cause_groups(f for f in ordered_causes(findings) if f.engine not in unable)
-    return Reason(label, _departures(findings), tuple(groups), gap, unmade, hints, limit)
+    return Reason(label, _departures(findings), tuple(groups), gap, unmade, hints, limit, unmade_whole)
 
 
 #: The room a reason keeps for a check asked for and not made (the rest of its text is in the verdict table's row).

@@ -36,7 +36,10 @@ def chunk_size(n_segments: int) -> int:
     -------
     int
     """
-    return int(np.clip(CHUNK_SEGMENT_POSES // max(n_segments, 1), CHUNK_MIN, CHUNK_MAX))
+    poses = int(np.clip(CHUNK_SEGMENT_POSES // max(n_segments, 1), CHUNK_MIN, CHUNK_MAX))
+    # The nearest power of two: a chunk of random poses then covers whole blocks of the seeded sequence, or a
+    # part of one block (RANDOM_BLOCK, 1024), instead of straddling two and drawing both (Talos: 992 → 1024).
+    return int(2 ** round(np.log2(poses)))
 
 
 @dataclass(frozen=True)
