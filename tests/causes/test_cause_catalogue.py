@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from koenig_check.causes import applies, catalogue, cause, fixture_path, installed_version, markdown
+from koenig_check.causes import applies, catalogue, cause, fixture_path, installed_version, markdown, twin_path
 from koenig_check.cli import main
 from koenig_check.engines.cause import Cause, Reading
 from koenig_check.engines.measurement import Measurement, differences, fields
@@ -70,6 +70,9 @@ def test_each_engine_reads_the_fixture_as_declared(c: Cause, reading: Reading) -
     refs = [
         r.engine for r in c.readings if r.reads == "as written" and r.engine != reading.engine and _installed(r.engine)
     ]
+    if not refs and c.twin:  # the one engine that reads it as written: checked against the twin instead
+        _check_against_the_twin(c, reading, where)
+        return
     if not refs:
         pytest.skip(f"{where}: no installed engine reads it as written")
     ref = refs[0]
@@ -82,6 +85,95 @@ def test_each_engine_reads_the_fixture_as_declared(c: Cause, reading: Reading) -
             assert differ - {"joints"}, f"{where} departs from {spec(ref).label} in joint names only, not the robot"
     else:
         assert not differ, f"{where} now departs from {spec(ref).label} in {sorted(differ)}"
+
+
+TWINNED = [c for c in CAUSES if c.twin]
+
+
+def _twin_readers(c: Cause) -> list[str]:
+    """The installed engines of the cause's readings, but those that depart on a cause its twin is subject to."""
+    departs = {r.engine for t in c.twin_causes for r in cause(t).readings if r.reads != "as written"}
+    return [r.engine for r in c.readings if _installed(r.engine) and r.engine not in departs]
+
+
+def _rtol(*engines: str) -> float:
+    return max([spec(e).precision for e in engines] + [1e-9])
+
+
+def _same_robot(a: Measurement, b: Measurement, rtol: float) -> set[str]:
+    """Where two readings of one robot differ: joint names alone do not count when the whole M's spectrum agrees
+    (Pinocchio composes one body's joints into one, named after the first: another coordinate choice)."""
+    differ = differences(a, b, rtol)
+    return differ - {"joints"} if a.spectrum and b.spectrum and "spectrum" not in differ else differ
+
+
+def _check_against_the_twin(c: Cause, reading: Reading, where: str) -> None:
+    """An engine's reading of the fixture against every installed engine's reading of the twin (its own included):
+    the same robot where it reads the fixture as written, another in the cause's quantities where differently."""
+    twin = twin_path(c)
+    assert twin is not None
+    measured = _measure(reading.engine, fixture_path(c))
+    for engine in _twin_readers(c):
+        rtol = _rtol(reading.engine, engine)
+        theirs = _measure(engine, twin)
+        if reading.reads == "as written":
+            differ = _same_robot(measured, theirs, rtol)
+            assert not differ, f"{where} departs from {spec(engine).label}'s reading of the twin in {sorted(differ)}"
+            continue
+        differ = differences(measured, theirs, rtol) & fields(c.quantities)
+        assert differ, f"{where} reads the fixture as {spec(engine).label} reads the twin: the cause no longer applies"
+        if reading.engine == c.engine and not c.loses_joints:
+            assert differ - {"joints"}, f"{where} departs from the twin in joint names only, not the robot"
+
+
+def test_twin_causes_name_declared_causes() -> None:
+    """A twin subject to a cause names it by id; an id the catalogue lacks is refused when the catalogue is built."""
+    from koenig_check.engines import catalogue as module
+
+    for c in TWINNED:
+        assert all(cause(t).id == t for t in c.twin_causes)
+    bad = Cause(
+        "mujoco.mjcf.x",
+        "c",
+        ("mjcf",),
+        (Reading("mujoco", "refuses", "x"),),
+        ("mass",),
+        "b",
+        "",
+        "f.xml",
+        twin="t.xml",
+        twin_causes=("pinocchio.mjcf.no-such-cause",),
+    )
+    fake = type("M", (), {"CAUSES": (bad,)})
+    real = importlib.import_module
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(
+            module.importlib, "import_module", lambda name: fake if name.endswith("mujoco.causes") else real(name)
+        )
+        with pytest.raises(ValueError, match=r"twin_causes name unknown causes: pinocchio\.mjcf\.no-such-cause"):
+            module._collected.__wrapped__(module.specs())
+
+
+@pytest.mark.parametrize("c", TWINNED, ids=lambda c: c.id)
+def test_the_twin_is_the_robot_as_written(c: Cause) -> None:
+    """The twin is plain: the engines that read it agree on it; those that read the fixture as written read the robot
+    of the twin, those that read it differently depart from it in the cause's quantities (from the robot as
+    written, not from one engine's reading)."""
+    twin = twin_path(c)
+    assert twin is not None and twin.is_file(), f"{c.id}: twin {c.twin} missing from koenig_check/causes/fixtures/"
+    readers = _twin_readers(c)
+    if len(readers) < 2:
+        pytest.skip(f"{c.id}: fewer than two installed engines read the twin {c.twin}")
+    readings = {e: _measure(e, twin) for e in readers}
+    first = readers[0]
+    for engine in readers[1:]:
+        differ = _same_robot(readings[first], readings[engine], _rtol(first, engine))
+        assert not differ, (
+            f"{c.id}: {spec(engine).label} and {spec(first).label} read the twin apart in {sorted(differ)}"
+        )
+    for r in c.readings:
+        if r.reads != "refuses" and _installed(r.engine) and applies(c.id, r.engine):
+            _check_against_the_twin(c, r, f"{c.id}: {spec(r.engine).label} {installed_version(r.engine)}")
 
 
 @pytest.mark.parametrize("c", CAUSES, ids=lambda c: c.id)
@@ -109,7 +201,7 @@ def test_causes_json_lists_every_cause(capsys: pytest.CaptureFixture[str]) -> No
     listed = json.loads(capsys.readouterr().out)
     assert [c["id"] for c in listed] == [c.id for c in CAUSES]
     for entry in listed:
-        assert {"id", "engines", "formats", "summary", "fixture"} <= set(entry)
+        assert {"id", "engines", "formats", "summary", "fixture", "twin", "twin_causes"} <= set(entry)
         assert entry["engines"][entry["id"].split(".")[0]]["reads"] in ("differently", "refuses")
 
 
@@ -127,6 +219,18 @@ def test_a_misdeclared_cause_is_refused() -> None:
         Cause("mujoco.mjcf.x", "c", ("mjcf",), (Reading("mujoco", "as written"),), ("mass",), "b", "", "f.xml")
     with pytest.raises(ValueError, match="expected <engine>"):
         Cause("Bad Id", "c", ("mjcf",), (Reading("mujoco", "refuses", "x"),), ("mass",), "b", "", "f.xml")
+    with pytest.raises(ValueError, match="without a twin"):
+        Cause(
+            "mujoco.mjcf.x",
+            "c",
+            ("mjcf",),
+            (Reading("mujoco", "refuses", "x"),),
+            ("mass",),
+            "b",
+            "",
+            "f.xml",
+            twin_causes=("pinocchio.mjcf.option-gravity",),
+        )
 
 
 def test_a_cause_fires_only_for_the_engine_versions_it_declares(monkeypatch: pytest.MonkeyPatch) -> None:

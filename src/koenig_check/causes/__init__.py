@@ -5,7 +5,7 @@ cause explains carries its :attr:`Cause.id`.
 """
 
 from koenig_check.causes.listing import markdown, select, table
-from koenig_check.engines.catalogue import applies, catalogue, cause, fixture_path, installed_version
+from koenig_check.engines.catalogue import applies, catalogue, cause, fixture_path, installed_version, twin_path
 from koenig_check.engines.cause import FORMATS, QUANTITIES, READS, Cause, Reading
 
 __all__ = [
@@ -22,4 +22,5 @@ __all__ = [
     "markdown",
     "select",
     "table",
+    "twin_path",
 ]

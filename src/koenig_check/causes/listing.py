@@ -63,7 +63,7 @@ def table(causes: Sequence[Cause]) -> str:
         out += [f"  {line}" for line in _reading_text(c)]
         if c.hint:
             out.append(f"  hint: {c.hint}")
-        out.append(f"  fixture: {c.fixture}")
+        out.append(f"  fixture: {c.fixture}" + (f" (twin: {c.twin})" if c.twin else ""))
     return "\n".join(out)
 
 
@@ -106,7 +106,8 @@ def markdown() -> str:
         out += [f"- {_cell(line)}" for line in _reading_text(c)]
         if c.hint:
             out += ["", f"What to do: {_cell(c.hint)}."]
-        out += ["", f"Fixture: `{c.fixture}`."]
+        twin = f"; its twin, the same robot written by hand without the construct: `{c.twin}`" if c.twin else ""
+        out += ["", f"Fixture: `{c.fixture}`{twin}."]
     return "\n".join(out) + "\n"
 
 

@@ -55,6 +55,9 @@ def _collected(declared: tuple[EngineSpec, ...]) -> tuple[Cause, ...]:
                 raise ValueError(f"cause {c.id}: readings of unknown engines {unknown}")
             found.append(c)
     ids = [c.id for c in found]
+    unknown_twin = sorted({t for c in found for t in c.twin_causes} - set(ids))
+    if unknown_twin:
+        raise ValueError(f"twin_causes name unknown causes: {', '.join(unknown_twin)}")
     twice = sorted({i for i in ids if ids.count(i) > 1})
     if twice:
         raise ValueError(f"causes declared twice: {', '.join(twice)}")
@@ -98,10 +101,30 @@ def fixture_path(c: Cause) -> Path:
     -------
     pathlib.Path
     """
-    own = Path(str(importlib.resources.files(f"{ENGINES_PACKAGE}.{c.engine}").joinpath("fixtures", c.fixture)))
+    return _shipped(c, c.fixture)
+
+
+def twin_path(c: Cause) -> Path | None:
+    """The fixture's twin (the same robot written without the construct), found as :func:`fixture_path` finds it.
+
+    Parameters
+    ----------
+    c : Cause
+
+    Returns
+    -------
+    pathlib.Path or None
+        None where the cause declares no twin.
+    """
+    return _shipped(c, c.twin) if c.twin else None
+
+
+def _shipped(c: Cause, name: str) -> Path:
+    """A file shipped for a cause: in its engine's ``fixtures/`` when there, else in the shared one."""
+    own = Path(str(importlib.resources.files(f"{ENGINES_PACKAGE}.{c.engine}").joinpath("fixtures", name)))
     if own.is_file():
         return own
-    return Path(str(importlib.resources.files("koenig_check.causes").joinpath("fixtures", c.fixture)))
+    return Path(str(importlib.resources.files("koenig_check.causes").joinpath("fixtures", name)))
 
 
 @cache

@@ -81,6 +81,15 @@ class Cause:
         File name of a minimal model in ``koenig_check/causes/fixtures/`` that shows it.
     loses_joints : bool
         The engine that departs lacks joints of the file (its findings list them under ``"joints"``).
+    twin : str
+        File name of the fixture's twin in ``koenig_check/causes/fixtures/`` (empty: none): the same robot written
+        by hand without the construct (the masses scaled, the frame folded in, the copies written out), its values
+        computed by hand in a comment.  The suite checks the engines that read the fixture as written against
+        every engine's reading of the twin, and those that read it differently depart from it: the one engine that
+        reads a construct as written is checked even where no other engine does.
+    twin_causes : tuple of str
+        Ids of the causes the twin itself is subject to (a zero gravity vector written in ``<option>``, which
+        Pinocchio does not read): the engines that depart on them are not compared on the twin.
     """
 
     id: str
@@ -92,6 +101,8 @@ class Cause:
     hint: str
     fixture: str
     loses_joints: bool = False
+    twin: str = ""
+    twin_causes: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not _ID.match(self.id):
@@ -109,6 +120,8 @@ class Cause:
             )
         if not self.brief or not self.fixture or not self.construct:
             raise ValueError(f"cause {self.id}: needs a construct, a brief form and a fixture")
+        if self.twin_causes and not self.twin:
+            raise ValueError(f"cause {self.id}: twin_causes {self.twin_causes} without a twin")
 
     @property
     def engine(self) -> str:
@@ -157,4 +170,6 @@ class Cause:
             "hint": self.hint,
             "fixture": self.fixture,
             "loses_joints": self.loses_joints,
+            "twin": self.twin,
+            "twin_causes": list(self.twin_causes),
         }

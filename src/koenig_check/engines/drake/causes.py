@@ -27,6 +27,8 @@ def _drake(
     mujoco: str = "as written",
     pinocchio: str = "",
     loses_joints: bool = False,
+    twin: str = "",
+    twin_causes: tuple[str, ...] = (),
 ) -> Cause:
     """A construct Drake's parser reads differently; Pinocchio reads it as written unless ``pinocchio`` says how."""
     other = {
@@ -50,6 +52,8 @@ def _drake(
         hint=hint,
         fixture=fixture,
         loses_joints=loses_joints,
+        twin=twin,
+        twin_causes=twin_causes,
     )
 
 
@@ -65,6 +69,7 @@ CAUSES: tuple[Cause, ...] = (
         "frame.xml",
         pinocchio="skips the element and everything inside it (pinocchio.mjcf.frame)",
         loses_joints=True,
+        twin="frame_twin.xml",
     ),
     _drake(
         "urdf.reflected-inertia",  # MJCF: a driven joint's armature is read as written (tests/engines/drake)
@@ -93,6 +98,7 @@ CAUSES: tuple[Cause, ...] = (
         "write a physically valid inertia (A + B >= C, positive moments)",
         "replaced_inertia.urdf",
         mujoco="differently",
+        twin="fusestatic_massless_inertia_twin.urdf",  # the same robot as replaced_inertia.urdf
     ),
     _drake(
         "mjcf.multi-joint-anchor",
@@ -121,6 +127,7 @@ CAUSES: tuple[Cause, ...] = (
         "write the mesh to a file (OBJ) and give the <mesh> its file=, or give the body an <inertial>",
         "inline_mesh.xml",
         pinocchio="counts a mesh-typed geom as 1 kg with unit inertia (pinocchio.mjcf.mesh-mass)",
+        twin="mesh_mass_twin.xml",
     ),
     _drake(
         "mjcf.flag-gravity-disable",
@@ -131,6 +138,8 @@ CAUSES: tuple[Cause, ...] = (
         "call plant.mutable_gravity_field().set_gravity_vector([0, 0, 0])",
         "flag_gravity_disable.xml",
         pinocchio="ignores all of <option>: gravity (0, 0, -9.81) (pinocchio.mjcf.flag-gravity-disable)",
+        twin="flag_gravity_disable_twin.xml",
+        twin_causes=("pinocchio.mjcf.option-gravity",),
     ),
     _drake(
         "mjcf.class-joint-default",

@@ -29,6 +29,7 @@ CAUSES: tuple[Cause, ...] = (
         brief="fusestatic dropped the rotational inertia of a massless link",
         hint="give the link its mass, or move its inertia to its parent",
         fixture="fusestatic_massless_inertia.urdf",
+        twin="fusestatic_massless_inertia_twin.urdf",
     ),
 )
 

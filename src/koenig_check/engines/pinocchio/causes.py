@@ -33,6 +33,7 @@ def _mjcf(
     fixture: str,
     drake: str = "",
     loses_joints: bool = False,
+    twin: str = "",
     newton: str = "",
 ) -> Cause:
     """A construct of an MJCF file Pinocchio's parser reads differently; Drake reads it as written unless ``drake``.
@@ -56,6 +57,7 @@ def _mjcf(
         hint=hint,
         fixture=fixture,
         loses_joints=loses_joints,
+        twin=twin,
     )
 
 
@@ -108,6 +110,7 @@ CAUSES: tuple[Cause, ...] = (
         "frame.xml",
         drake="skips the element and everything inside it (drake.mjcf.frame)",
         loses_joints=True,
+        twin="frame_twin.xml",
     ),
     _mjcf(
         "bare-body",
@@ -138,6 +141,7 @@ CAUSES: tuple[Cause, ...] = (
         "replicate.xml",
         drake="skips the element and everything inside it: the copies are missing",
         loses_joints=True,
+        twin="replicate_twin.xml",
         newton="skips the element and everything inside it: the copies are missing",
     ),
     _mjcf(
@@ -168,6 +172,7 @@ CAUSES: tuple[Cause, ...] = (
         "scale the masses in the file and remove settotalmass",
         "settotalmass.xml",
         drake="ignores the option (with a warning): the file's masses unscaled",
+        twin="settotalmass_twin.xml",
         newton="ignores the option too: the file's masses unscaled (model.body_mass)",
     ),
     _mjcf(
@@ -179,6 +184,7 @@ CAUSES: tuple[Cause, ...] = (
         "geoms with a mesh, weighed otherwise by Pinocchio",
         "give the body an <inertial> (mass, pos, inertia)",
         "mesh_mass.xml",  # a mesh file; one given by vertices in the file Drake ignores: drake.mjcf.inline-mesh
+        twin="mesh_mass_twin.xml",
     ),
     _mjcf(
         "visual-geoms",
@@ -198,6 +204,7 @@ CAUSES: tuple[Cause, ...] = (
         "give the geoms left out mass 0 (or density 0) and remove inertiagrouprange",
         "inertiagrouprange.xml",
         drake="ignores the option (with a warning): every geom's mass counted",
+        twin="inertiagrouprange_twin.xml",
     ),
     Cause(
         id="pinocchio.urdf.planar-axis",
@@ -217,6 +224,7 @@ CAUSES: tuple[Cause, ...] = (
         brief="URDF planar joint read about z by Pinocchio, ignoring its axis",
         hint='write <axis xyz="0 0 1"/> and turn the joint\'s <origin> so that its z is the normal',
         fixture="planar_axis.urdf",
+        twin="planar_axis_twin.xml",
     ),
     Cause(
         id="pinocchio.mjcf.option-gravity",
@@ -246,6 +254,8 @@ CAUSES: tuple[Cause, ...] = (
         brief='<flag gravity="disable"/> ignored: gravity (0, 0, -9.81)',
         hint="set pinocchio_model.gravity to zero after loading",
         fixture="flag_gravity_disable.xml",
+        twin="flag_gravity_disable_twin.xml",
+        twin_causes=("pinocchio.mjcf.option-gravity",),
     ),
     Cause(
         id="pinocchio.mjcf.welded-root-pose",
@@ -288,6 +298,7 @@ CAUSES: tuple[Cause, ...] = (
         hint="load a file with the attached bodies written out (MuJoCo's MjSpec.to_xml of the composed model)",
         fixture="attach.xml",
         loses_joints=True,
+        twin="attach_twin.xml",
     ),
 )
 
