@@ -128,6 +128,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
     from koenig_check.engines.newton.file_causes import refusal_cause
     from koenig_check.engines.newton.loader import NewtonLoadError
     from koenig_check.engines.registry import ENGINE_TEXT, not_used
+    from koenig_check.exceptions import one_line
 
     if model.options.pinocchio_model is not None:
         return None, [not_used("newton", "Pinocchio was given another file (--pinocchio-model)")]
@@ -137,7 +138,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         if err.engine_text:  # the refusal on the summary's line, Newton's own text whole beside it
             refused = not_used("newton", err.reason, **{ENGINE_TEXT: err.engine_text})
         else:
-            refused = not_used("newton", " ".join(str(err).removeprefix(f"{model.source.path}: ").split()))
+            refused = not_used("newton", one_line(err).removeprefix(f"{model.source.path}: "))
         return None, [replace(refused, cause=refusal_cause(Path(model.source.path), model.source.format))]
     except ImportError as err:  # installed but not importable
         return None, [not_used("newton", f"newton cannot be imported: {err}")]
