@@ -36,11 +36,15 @@ def test_records_equal_formulas_on_the_same_states(synthetic) -> None:
         direct = FORMULAS[name](states)
         rows = [r for r in comp.records if r["formula"] == name and r["source"] == "mujoco"]
         totals = [r for r in rows if r["scope"] == "total" and r["reference"] == "mujoco"]
-        np.testing.assert_allclose([r["value"] for r in totals], direct.sum(axis=1), rtol=1e-15)
-        np.testing.assert_allclose([r["reference_value"] for r in totals], exact_total, rtol=1e-15)
-        np.testing.assert_allclose(
-            [r["signed_error"] for r in totals], direct.sum(axis=1) - exact_total, rtol=1e-12, atol=1e-15
-        )
+        # The totals are sums of B segment energies: equal to rounding, whatever order the run adds them in.
+        bound = 4 * states.n_segments * np.finfo(float).eps * np.abs(direct).sum(axis=1)
+        ref_bound = 4 * states.n_segments * np.finfo(float).eps * np.abs(FORMULAS["exact"](states)).sum(axis=1)
+        values = np.array([r["value"] for r in totals])
+        references = np.array([r["reference_value"] for r in totals])
+        assert np.all(np.abs(values - direct.sum(axis=1)) <= bound)
+        assert np.all(np.abs(references - exact_total) <= ref_bound)
+        signed = np.array([r["signed_error"] for r in totals])
+        assert np.all(np.abs(signed - (direct.sum(axis=1) - exact_total)) <= bound + ref_bound)
         segs = [r for r in rows if r["scope"] == "segment1"]
         np.testing.assert_allclose([r["value"] for r in segs], direct[:, 1], rtol=1e-15)
     assert any("alyushin_paper:integrated: skipped" in n for n in comp.notes)

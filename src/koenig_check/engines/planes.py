@@ -35,8 +35,19 @@ def gather_planes(raw: np.ndarray, index: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (k, P, B), C-contiguous
     """
-    picked = np.take(raw, index, axis=1)  # (P, k, B): one gather over the batch, rows of B contiguous
     out = np.empty((index.shape[0], raw.shape[0], index.shape[1]))
+    n = index.shape[1]
+    if n == 0:
+        return out
+    step = int(index[0, 1] - index[0, 0]) if n > 1 else 0
+    if step >= 0 and (n == 1 or bool((np.diff(index, axis=1) == step).all())):
+        # Every component's entries are ``step`` apart: the segments are consecutive rows of the engine's array
+        # (or all the same row, step 0). One strided view per component, copied once, instead of a gather and
+        # a transposing copy.
+        for c, first in enumerate(index[:, 0].tolist()):
+            out[c] = raw[:, first : first + step * (n - 1) + 1 : step] if step else raw[:, first, None]
+        return out
+    picked = np.take(raw, index, axis=1)  # (P, k, B): one gather over the batch, rows of B contiguous
     out[...] = np.swapaxes(picked, 0, 1)
     return out
 

@@ -19,6 +19,7 @@ import numpy as np
 import pyarrow as pa
 
 from koenig_check.exceptions import RecordFileError
+from koenig_check.run.arrow_arrays import as_numpy, booleans, numbers, strings
 from koenig_check.run.stats import absolute_relative_error
 
 #: The columns of every record, in order.
@@ -78,11 +79,7 @@ def categorical(codes: np.ndarray, categories: Sequence[str], name: str) -> pa.D
     -------
     pyarrow.DictionaryArray
     """
-    index_type = _INDEX_TYPES[name]
-    return pa.DictionaryArray.from_arrays(
-        pa.array(np.asarray(codes).astype(index_type.to_pandas_dtype(), copy=False), type=index_type),
-        pa.array(list(categories), type=pa.string()),
-    )
+    return pa.DictionaryArray.from_arrays(numbers(codes, _INDEX_TYPES[name]), strings(categories))
 
 
 def derived(value: np.ndarray, reference: np.ndarray) -> dict[str, np.ndarray]:
@@ -106,7 +103,7 @@ def _decode(column: pa.ChunkedArray) -> np.ndarray:
     for chunk in column.chunks:
         if pa.types.is_dictionary(chunk.type):
             words = np.asarray(chunk.dictionary.to_pylist(), dtype=str)
-            parts.append(words[chunk.indices.to_numpy(zero_copy_only=False)] if len(words) else np.empty(0, str))
+            parts.append(words[as_numpy(chunk.indices)] if len(words) else np.empty(0, str))
         else:
             parts.append(np.asarray(chunk.to_pylist(), dtype=str))
     return np.concatenate(parts) if parts else np.empty(0, dtype=str)
@@ -137,7 +134,7 @@ class RecordTable:
             for k in TEXT_FIELDS:
                 words, codes = np.unique(np.asarray(data[k], dtype=str), return_inverse=True)
                 arrays.append(categorical(codes, words.tolist(), k))
-            arrays += [pa.array(np.asarray(data[k], dtype=float)) for k in ("value", "reference_value")]
+            arrays += [numbers(np.asarray(data[k], dtype=float)) for k in ("value", "reference_value")]
             data = pa.Table.from_arrays(arrays, schema=STORED_SCHEMA)
         elif data.schema != STORED_SCHEMA:
             data = data.select(STORED_SCHEMA.names).cast(STORED_SCHEMA)
@@ -156,7 +153,7 @@ class RecordTable:
         if name in TEXT_FIELDS:
             return _decode(self.table.column(name))
         if name in ("value", "reference_value"):
-            return self.table.column(name).to_numpy()
+            return as_numpy(self.table.column(name))
         if name in DERIVED_FIELDS:
             return derived(self["value"], self["reference_value"])[name]
         raise KeyError(f"no record column {name!r}; columns: {RECORD_FIELDS}")
@@ -211,7 +208,7 @@ class RecordTable:
             parts = []
             for chunk in self.table.column(name).chunks:
                 codes = np.flatnonzero(np.asarray(chunk.dictionary.to_pylist(), dtype=object) == value)
-                indices = chunk.indices.to_numpy(zero_copy_only=False)
+                indices = as_numpy(chunk.indices)
                 # One code (a dictionary lists each word once): a comparison, several times faster than isin.
                 parts.append(indices == codes[0] if len(codes) == 1 else np.isin(indices, codes))
             if parts:
@@ -233,7 +230,7 @@ class RecordTable:
         keep = self.mask(**equals)
         if mask is not None:
             keep &= mask
-        return RecordTable(self.table.filter(pa.array(keep)))
+        return RecordTable(self.table.filter(booleans(keep)))
 
     @staticmethod
     def concat(tables: Iterable[RecordTable]) -> RecordTable:
@@ -266,11 +263,11 @@ def with_derived(table: pa.Table) -> pa.Table:
     pyarrow.Table
         With every column of :data:`RECORD_FIELDS`.
     """
-    value = table.column("value").to_numpy()
-    ref = table.column("reference_value").to_numpy()
+    value = as_numpy(table.column("value"))
+    ref = as_numpy(table.column("reference_value"))
     cols = derived(value, ref)
     for k in DERIVED_FIELDS:
-        table = table.append_column(pa.field(k, pa.float64()), pa.array(cols[k]))
+        table = table.append_column(pa.field(k, pa.float64()), numbers(cols[k]))
     return table
 
 
