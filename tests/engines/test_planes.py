@@ -10,6 +10,7 @@ import pytest
 
 from koenig_check.engines import load_model
 from koenig_check.engines.planes import (
+    byte_view,
     cross_planes,
     entry_index,
     gather_planes,
@@ -26,14 +27,37 @@ MODELS = Path(__file__).resolve().parents[2] / "models"
 CASES = [FREE_BALL_HINGE, MODELS / "serial7.urdf", MODELS / "armature_chain.xml", "ur5", "a1"]
 
 
-def test_gather_planes_picks_every_pose_entry_by_entry(rng: np.random.Generator) -> None:
+#: Row layouts of the segments in an engine's array: scattered, consecutive (a strided view per component), one
+#: row, every segment on one row (a root shared by all), consecutive but descending, none.
+ROW_LAYOUTS = {
+    "scattered": [3, 0, 4],
+    "consecutive": [1, 2, 3, 4],
+    "one row": [2],
+    "one row repeated": [2, 2, 2],
+    "descending": [4, 3, 2],
+    "none": [],
+}
+
+
+@pytest.mark.parametrize("rows", ROW_LAYOUTS.values(), ids=ROW_LAYOUTS.keys())
+@pytest.mark.parametrize("entries", [[2, 0, 3], [0, 1, 2, 3]], ids=["some entries, reordered", "every entry"])
+def test_gather_planes_picks_every_pose_entry_by_entry(rng: np.random.Generator, rows, entries) -> None:
     raw = rng.standard_normal((7, 5 * 4))  # 7 poses, 5 rows of 4 entries
-    rows, entries = np.array([3, 0, 4]), [2, 0, 3]
-    planes = gather_planes(raw, entry_index(rows, 4, entries))
-    assert planes.shape == (3, 7, 3) and planes.flags.c_contiguous
+    planes = gather_planes(raw, entry_index(np.array(rows, dtype=int), 4, entries))
+    assert planes.shape == (len(entries), 7, len(rows)) and planes.flags.c_contiguous
     for c, e in enumerate(entries):
         for b, r in enumerate(rows):
             np.testing.assert_array_equal(planes[c, :, b], raw[:, 4 * r + e])
+
+
+def test_byte_view_writes_through_and_refuses_a_strided_array() -> None:
+    out = np.zeros((3, 4))
+    view = byte_view(out)
+    assert len(view) == out.nbytes
+    view[32:64] = byte_view(np.arange(4.0))  # row 1, as the engine loops copy a pose's row
+    np.testing.assert_array_equal(out, [[0, 0, 0, 0], [0, 1, 2, 3], [0, 0, 0, 0]])
+    with pytest.raises(ValueError, match=r"shape \(3, 2\) is not C-contiguous"):
+        byte_view(out[:, ::2])
 
 
 def test_plane_kernels_give_the_numbers_of_rotate_and_cross_bit_for_bit(rng: np.random.Generator) -> None:

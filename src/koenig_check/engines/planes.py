@@ -52,6 +52,33 @@ def gather_planes(raw: np.ndarray, index: np.ndarray) -> np.ndarray:
     return out
 
 
+def byte_view(a: np.ndarray) -> memoryview:
+    """A C-contiguous array's memory as a flat memoryview of bytes, for the engine loops' per-pose copies.
+
+    Slice assignment between byte views copies a pose's row in about 40 ns where numpy's indexed assignment
+    (``out[p] = row``) takes about 100 ns, and an engine loop makes several per pose. The view writes
+    through to the array; the caller keeps the array alive while it uses the view.
+
+    Parameters
+    ----------
+    a : ndarray
+        C-contiguous.
+
+    Returns
+    -------
+    memoryview
+        Format ``B``, ``a.nbytes`` long.
+
+    Raises
+    ------
+    ValueError
+        If ``a`` is not C-contiguous (its bytes are not one run).
+    """
+    if not a.flags.c_contiguous:
+        raise ValueError(f"byte_view: array of shape {a.shape} is not C-contiguous")
+    return memoryview(a).cast("B")
+
+
 def entry_index(rows: np.ndarray, width: int, entries: Sequence[int] | np.ndarray) -> np.ndarray:
     """The :func:`gather_planes` index of some entries of some rows of a (n, width) array.
 

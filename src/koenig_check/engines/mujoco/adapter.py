@@ -32,6 +32,7 @@ from koenig_check.engines.canonical import mujoco_joint_names
 from koenig_check.engines.mujoco.dynamics import MujocoDynamics
 from koenig_check.engines.mujoco.gravity import MujocoGravity
 from koenig_check.engines.planes import (
+    byte_view,
     entry_index,
     gather_planes,
     matrices,
@@ -194,26 +195,36 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
         the armature of the dofs whose diagonal MuJoCo precomputes at compile time).
         """
         m, d = self.model, self._data
+        qpos, qvel = np.ascontiguousarray(qpos, dtype=float), np.ascontiguousarray(qvel, dtype=float)
         P, nb = qpos.shape[0], m.nbody
         xpos, xmat = np.empty((P, nb * 3)), np.empty((P, nb * 9))
         cvel, sub = np.empty((P, nb * 6)), np.empty((P, nb * 3))
         rigid = np.empty(P)
         kinematics, com_pos, com_vel = mujoco.mj_kinematics, mujoco.mj_comPos, mujoco.mj_comVel
         make_m, energy_vel = mujoco.mj_makeM, mujoco.mj_energyVel
-        # MjData's arrays are views of its own buffers: taken once (flat), each attribute access would build a new view.
-        d_qpos, d_qvel, d_energy = d.qpos, d.qvel, d.energy
-        d_xpos, d_xmat, d_cvel, d_sub = (a.reshape(-1) for a in (d.xpos, d.xmat, d.cvel, d.subtree_com))
-        for p, (qpos_p, qvel_p) in enumerate(zip(qpos, qvel, strict=True)):
-            d_qpos[:] = qpos_p
-            d_qvel[:] = qvel_p
+        # Every per-pose copy is a slice assignment between byte views (see planes.byte_view), taken once here:
+        # MjData's arrays are views of its own buffers, each attribute access would build a new one.
+        q_in, v_in = byte_view(qpos), byte_view(qvel)
+        q_d, v_d = byte_view(d.qpos), byte_view(d.qvel)
+        sources = [byte_view(a) for a in (d.xpos, d.xmat, d.cvel, d.subtree_com)]
+        x_out, r_out, c_out, s_out = (byte_view(a) for a in (xpos, xmat, cvel, sub))
+        x_in, r_in, c_in, s_in = sources
+        nq, nv, nx, nr, nc, ns = (len(v) for v in (q_d, v_d, *sources))
+        e_in, e_out = byte_view(d.energy)[8:16], byte_view(rigid)  # energy[1]: the kinetic energy
+        for p in range(P):
+            q_d[:] = q_in[p * nq : (p + 1) * nq]
+            v_d[:] = v_in[p * nv : (p + 1) * nv]
             kinematics(m, d)
             com_pos(m, d)
             com_vel(m, d)
-            xpos[p], xmat[p], cvel[p], sub[p] = d_xpos, d_xmat, d_cvel, d_sub
+            x_out[p * nx : (p + 1) * nx] = x_in
+            r_out[p * nr : (p + 1) * nr] = r_in
+            c_out[p * nc : (p + 1) * nc] = c_in
+            s_out[p * ns : (p + 1) * ns] = s_in
             if energies:
                 make_m(m, d)
                 energy_vel(m, d)
-                rigid[p] = d_energy[1]
+                e_out[p * 8 : (p + 1) * 8] = e_in
         index = self._index
         out = {name: gather_planes(raw, index[name]) for name, raw in zip(index, (xpos, xmat, cvel, sub), strict=True)}
         out["anchor"] = rotate_constant(out["xmat"], self._anchor_local)

@@ -29,6 +29,7 @@ from koenig_check.engines.pinocchio.gravity import PinocchioGravity
 from koenig_check.engines.pinocchio.placements import motion_view, placement_view
 from koenig_check.engines.pinocchio.state_map import StateMap
 from koenig_check.engines.planes import (
+    byte_view,
     cross_planes,
     entry_index,
     gather_planes,
@@ -164,18 +165,31 @@ class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
         placements, velocities = np.empty((P, nj, 12)), np.empty((P, nj, 6))
         rigid = np.empty(P)
         placements_live, motions_live = d.oMi, d.v  # follow every pose: taken once, outside the loop
+        # The per-pose copies of the views are slice assignments between byte views (see planes.byte_view); the
+        # views follow Pinocchio's storage, so a view that is not one run of bytes is copied by numpy instead.
+        place_in = byte_view(place_view) if place_view is not None and place_view.flags.c_contiguous else None
+        motion_in = byte_view(motion) if motion is not None and motion.flags.c_contiguous else None
+        place_out, motion_out = byte_view(placements), byte_view(velocities)
+        n_place, n_motion = nj * 12 * 8, nj * 6 * 8
         for p, (q_p, v_p) in enumerate(zip(q, v, strict=True)):
             if energies:  # computeKineticEnergy(q, v) runs the kinematic pass itself: one call per pose
                 rigid[p] = kinetic(m, d, q_p, v_p)
             else:
                 kinematics(m, d, q_p, v_p)
-            if place_view is not None:
+            if place_in is not None:
+                place_out[p * n_place : (p + 1) * n_place] = place_in
+            elif place_view is not None:
                 placements[p] = place_view
             else:
                 H = np.array([M.homogeneous for M in placements_live.tolist()])
                 placements[p, :, :9] = np.swapaxes(H[:, :3, :3], -1, -2).reshape(nj, 9)  # column by column
                 placements[p, :, 9:] = H[:, :3, 3]
-            velocities[p] = motion if motion is not None else [x.vector for x in motions_live.tolist()]
+            if motion_in is not None:
+                motion_out[p * n_motion : (p + 1) * n_motion] = motion_in
+            elif motion is not None:
+                velocities[p] = motion
+            else:
+                velocities[p] = [x.vector for x in motions_live.tolist()]
         flat_placements, flat_velocities = placements.reshape(P, -1), velocities.reshape(P, -1)
         raws = {"rotation": flat_placements, "origin": flat_placements, "velocity": flat_velocities}
         out = {name: gather_planes(raws[name], index) for name, index in self._index.items()}
