@@ -147,6 +147,7 @@ def evaluate_chunk(
         seg_names = run.states.names
         seg_codes = np.array([scopes.setdefault(n, len(scopes)) for n in seg_names], dtype=np.int64)
         B = len(seg_names)
+        seg_err = np.empty(exact_seg.shape)  # each formula's |error| per segment, in turn
         for f_code, name in enumerate(names):
             try:
                 normal = (planar_normals or {}).get(source)
@@ -165,9 +166,9 @@ def evaluate_chunk(
                 pending.append((stats.group((name, source, reference)), total, ref_run.rigid))
                 if records != "none":
                     blocks.append((f_code, s_code, r_code, None, total, ref_run.rigid))
-            seg_err = np.abs(per_segment - exact_seg).ravel()
+            np.abs(np.subtract(per_segment, exact_seg, out=seg_err), out=seg_err)
             stats.worst_segments.setdefault((name, source), Extreme()).offer(
-                seg_err, lambda k, seg_names=seg_names, B=B: f"{seg_names[k % B]} @ {ids[k // B]}"
+                seg_err.ravel(), lambda k, seg_names=seg_names, B=B: f"{seg_names[k % B]} @ {ids[k // B]}"
             )
             if records == "segments":
                 blocks.append((f_code, s_code, len(engines) + s_code, seg_codes, per_segment, exact_seg))
