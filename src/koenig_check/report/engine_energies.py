@@ -13,7 +13,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pyarrow as pa
-import pyarrow.compute as pc
 
 from koenig_check.engines.specs import reference
 from koenig_check.run.records import RecordTable
@@ -56,16 +55,16 @@ def energy_chunks(records: RecordTable) -> list[EnergyChunk]:
     """
     if not len(records):
         return []
-    table = records.where(formula="exact", scope="total", source=SOURCE).table
+    totals = records.where(formula="exact", scope="total", source=SOURCE)
     out = []
-    for model in table.column("model").unique().to_pylist():
-        mine = table.filter(pc.equal(table.column("model"), model))
-        references = mine.column("reference")
+    # RecordTable's masks, not pyarrow.compute with a scalar (which imports pandas when it is installed).
+    for model in totals.table.column("model").unique().to_pylist():
+        mine = totals.where(model=model)
         energy = {
-            str(e): mine.filter(pc.equal(references, e)).column("reference_value").to_numpy()
-            for e in references.unique().to_pylist()
+            str(e): mine.where(reference=e)["reference_value"]
+            for e in mine.table.column("reference").unique().to_pylist()
         }
-        poses = mine.filter(pc.equal(references, SOURCE)).column("pose")
+        poses = mine.where(reference=SOURCE).table.column("pose")
         out.append(EnergyChunk(str(model), poses, energy))
     return out
 

@@ -23,7 +23,7 @@ from koenig_check.formulas.cache import SharedStates
 from koenig_check.run.arrow_arrays import numbers
 from koenig_check.run.engine_runs import EngineRun, VerdictPoses
 from koenig_check.run.poses import PoseSet
-from koenig_check.run.records import STORED_SCHEMA, categorical
+from koenig_check.run.records import STORED_SCHEMA, categorical, empty_records
 from koenig_check.run.stats import (
     DEFAULT_RTOL,
     Extreme,
@@ -239,7 +239,7 @@ def _chunk_table(
 ) -> pa.Table:
     """The chunk's records, pose by pose: a (P, K) matrix of values, K records per pose."""
     if not blocks:
-        return STORED_SCHEMA.empty_table()
+        return empty_records()
     values = np.concatenate([b[4].reshape(P, -1) for b in blocks], axis=1)
     refs = np.concatenate([b[5].reshape(P, -1) for b in blocks], axis=1)
     model, pose, f, s, r, sc = _record_columns(P, blocks, label, formulas, sources, references, scopes)

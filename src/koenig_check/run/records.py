@@ -82,6 +82,18 @@ def categorical(codes: np.ndarray, categories: Sequence[str], name: str) -> pa.D
     return pa.DictionaryArray.from_arrays(numbers(codes, _INDEX_TYPES[name]), strings(categories))
 
 
+def empty_records() -> pa.Table:
+    """A table of :data:`STORED_SCHEMA` without rows (``Schema.empty_table`` imports pandas when it is installed).
+
+    Returns
+    -------
+    pyarrow.Table
+    """
+    nothing = np.empty(0)
+    texts = [categorical(nothing, [], k) for k in TEXT_FIELDS]
+    return pa.Table.from_arrays([*texts, numbers(nothing), numbers(nothing)], schema=STORED_SCHEMA)
+
+
 def derived(value: np.ndarray, reference: np.ndarray) -> dict[str, np.ndarray]:
     """The error columns of records: absolute, relative (absolute value) and signed error.
 
@@ -124,7 +136,7 @@ class RecordTable:
 
     def __init__(self, data: pa.Table | dict[str, Any] | None = None) -> None:
         if data is None:
-            data = STORED_SCHEMA.empty_table()
+            data = empty_records()
         elif isinstance(data, dict):
             missing = [k for k in STORED_SCHEMA.names if k not in data]
             lengths = {len(data[k]) for k in STORED_SCHEMA.names if k in data}
