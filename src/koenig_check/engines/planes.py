@@ -76,7 +76,7 @@ def byte_view(a: np.ndarray) -> memoryview:
     """
     if not a.flags.c_contiguous:
         raise ValueError(f"byte_view: array of shape {a.shape} is not C-contiguous")
-    return memoryview(a).cast("B")
+    return a.data.cast("B")
 
 
 def entry_index(rows: np.ndarray, width: int, entries: Sequence[int] | np.ndarray) -> np.ndarray:
