@@ -20,6 +20,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from koenig_check.engines import registry
+from koenig_check.engines.catalogue import cause
 from koenig_check.engines.registry import ENGINE_TEXT, install_hint, label, not_used, optional, required, spec
 from koenig_check.engines.specs import ALL
 from koenig_check.findings import Finding, Kind
@@ -132,7 +133,9 @@ def unmade_checks(findings: Sequence[Finding], engines: Sequence[str] | None) ->
             f"{label(f.engine)} asked for (--engines) but it could not check the model: "
             + f.summary.removeprefix(f"{label(f.engine)} not used: "),
             {k: v for k, v in f.values.items() if k == ENGINE_TEXT},  # the engine's own words, whole
-            hint=f"check the model without it (--engines {','.join(required())}), or fix what it refuses",
+            hint=(f"{cause(f.cause).hint}; or " if f.cause else "")
+            + f"check the model without it (--engines {','.join(required())})"
+            + ("" if f.cause else ", or fix what it refuses"),  # the catalogue's hint: the refusal's cause is known
         )
         for f in findings
         if f.kind is Kind.ENGINE_NOT_USED and f.engine in asked

@@ -40,12 +40,21 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         reason = failed_check(exit_)
         if reason is None:
             raise
-        return None, [not_used("drake", f"Drake cannot load the model: {reason}")]
+        return None, [_refusal(model, f"Drake cannot load the model: {reason}")]
     except DrakeLoadError as err:  # Drake's reason; the model's row and label already name the file
-        return None, [not_used("drake", one_line(err).removeprefix(f"{model.source.path}: "))]
+        return None, [_refusal(model, one_line(err).removeprefix(f"{model.source.path}: "))]
     except ImportError as err:  # installed but not importable
         return None, [not_used("drake", f"pydrake cannot be imported: {one_line(err)}")]
     return engine, list(engine.findings) + armature_findings(model, engine) + _file_causes(model)
+
+
+def _refusal(model: Any, reason: str) -> Finding:
+    """Drake's refusal, with the catalogued cause whose construct the file shows (read from the file, not the text)."""
+    from dataclasses import replace
+
+    from koenig_check.engines.refusals import refusal_cause
+
+    return replace(not_used("drake", reason), cause=refusal_cause("drake", model.source.path, model.source.format))
 
 
 def _file_causes(model: Any) -> list[Finding]:

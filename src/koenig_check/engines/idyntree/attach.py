@@ -94,6 +94,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         iDynTree's load findings, or one ``ENGINE_NOT_USED`` finding with its whole reason.
     """
     from koenig_check.engines.idyntree.loader import IDynTreeLoadError
+    from koenig_check.engines.refusals import refusal_cause
 
     if model.options.pinocchio_model is not None:
         return None, [not_used("idyntree", "Pinocchio was given another file (--pinocchio-model)")]
@@ -104,6 +105,8 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
         if model.source.format not in SPEC.formats:
             refusal = replace(refusal, cause="idyntree.mjcf.no-mjcf-reader")
         refusal = replace(refusal, cause=getattr(err, "cause", refusal.cause))
+        if not refusal.cause:
+            refusal = replace(refusal, cause=refusal_cause("idyntree", model.source.path, model.source.format))
         return None, [refusal]
     except ImportError as err:
         return None, [not_used("idyntree", f"idyntree cannot be imported: {one_line(err)}")]

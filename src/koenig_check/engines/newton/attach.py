@@ -125,8 +125,8 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
     """
     from dataclasses import replace
 
-    from koenig_check.engines.newton.file_causes import refusal_cause
     from koenig_check.engines.newton.loader import NewtonLoadError
+    from koenig_check.engines.refusals import refusal_cause
     from koenig_check.engines.registry import ENGINE_TEXT, not_used
     from koenig_check.exceptions import one_line
 
@@ -139,7 +139,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
             refused = not_used("newton", err.reason, **{ENGINE_TEXT: err.engine_text})
         else:
             refused = not_used("newton", one_line(err).removeprefix(f"{model.source.path}: "))
-        return None, [replace(refused, cause=refusal_cause(Path(model.source.path), model.source.format))]
+        return None, [replace(refused, cause=refusal_cause("newton", model.source.path, model.source.format))]
     except ImportError as err:  # installed but not importable
         return None, [not_used("newton", f"newton cannot be imported: {err}")]
     return engine, list(engine.findings)

@@ -7,6 +7,8 @@ Each :class:`~koenig_check.engines.cause.Cause` is measured on its fixture by th
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -161,6 +163,28 @@ CAUSES: tuple[Cause, ...] = (
         fixture="newton_multi_joint_pos.xml",
     ),
 )
+
+
+def _mimic_in_fixed_joint(root: ET.Element) -> bool:
+    return any(j.get("type") == "fixed" and j.find("mimic") is not None for j in root.iter("joint"))
+
+
+def _solver_pgs(root: ET.Element) -> bool:
+    return any((o.get("solver") or "").lower() == "pgs" for o in root.iter("option"))
+
+
+def _box_fromto(root: ET.Element) -> bool:
+    return any(g.get("type") == "box" and g.get("fromto") is not None for g in root.iter("geom"))
+
+
+#: How the constructs that make an engine refuse a file show in the file as written (its parsed root): the sign
+#: names the cause of a refusal, whichever engine the catalogue says refuses it (:mod:`koenig_check.engines.refusals`).
+FILE_SIGNS: dict[str, Callable[[ET.Element], bool]] = {
+    MIMIC_FIXED: _mimic_in_fixed_joint,
+    SOLVER_PGS: _solver_pgs,
+    BOX_FROMTO: _box_fromto,
+}
+
 
 #: The loading option under which a cause's fixture shows it (Newton's users pass them), by fixture.
 FIXTURE_OPTIONS: dict[str, dict[str, Any]] = {

@@ -2,7 +2,7 @@
 
 Called when Newton is attached to a model: each cause is looked for in the file (its construct) or in Newton's
 model (what ``finalize()`` changed), and sized on this robot with Newton's own arrays
-(:mod:`koenig_check.engines.newton.departures`).  A construct Newton refuses gives the cause of the refusal.
+(:mod:`koenig_check.engines.newton.departures`).
 """
 
 from __future__ import annotations
@@ -170,35 +170,3 @@ def _below_precision(finding: Finding) -> Finding:
     from dataclasses import replace
 
     return replace(finding, kind=Kind.LOAD, affects_energy=False, root_cause=False)
-
-
-def refusal_cause(path: Path, fmt: str) -> str:
-    """The catalogued construct that explains why Newton refused a file, or empty.
-
-    Read from the file as written (never from Newton's message): a ``<mimic>`` in a fixed URDF joint,
-    ``<option solver="PGS">``, a box geom given by ``fromto``.
-
-    Parameters
-    ----------
-    path : Path
-    fmt : str
-
-    Returns
-    -------
-    str
-        A cause id, or ``""``.
-    """
-    from koenig_check.modelfile.validate import parse_xml
-
-    try:
-        root = parse_xml(path).getroot()
-    except Exception:  # unreadable: the engines that read it say why
-        return ""
-    if fmt == "urdf":
-        fixed = [j for j in root.iter("joint") if j.get("type") == "fixed" and j.find("mimic") is not None]
-        return ids.MIMIC_FIXED if fixed else ""
-    if any((o.get("solver") or "").lower() == "pgs" for o in root.iter("option")):
-        return ids.SOLVER_PGS
-    if any(g.get("type") == "box" and g.get("fromto") is not None for g in root.iter("geom")):
-        return ids.BOX_FROMTO
-    return ""

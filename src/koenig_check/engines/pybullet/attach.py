@@ -77,6 +77,7 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
     """
     from koenig_check.engines.pybullet.client import PyBulletLoadError
     from koenig_check.engines.pybullet.traps import inertial_findings, missing_meshes, option_findings, zeroed_findings
+    from koenig_check.engines.refusals import refusal_cause
 
     source = model.source
     if model.options.pinocchio_model is not None:
@@ -92,6 +93,8 @@ def attach(model: Any) -> tuple[Engine | None, list[Finding]]:
             refusal = replace(
                 refusal, values={**refusal.values, "missing meshes": missing}, cause="pybullet.urdf.missing-mesh"
             )
+        else:
+            refusal = replace(refusal, cause=refusal_cause("pybullet", source.path, source.format))
         return None, [refusal]
     except ImportError as err:
         return None, [not_used("pybullet", f"pybullet cannot be imported: {one_line(err)}")]
