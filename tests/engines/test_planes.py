@@ -50,6 +50,24 @@ def test_gather_planes_picks_every_pose_entry_by_entry(rng: np.random.Generator,
             np.testing.assert_array_equal(planes[c, :, b], raw[:, 4 * r + e])
 
 
+def test_gather_planes_reads_any_index_np_take_reads(rng: np.random.Generator) -> None:
+    raw = rng.standard_normal((4, 12))
+    for index in (np.array([[9, 6, 3]], dtype=np.uint64), np.array([[-3, -2, -1]]), np.array([[11, 11]])):
+        expected = np.swapaxes(np.take(raw, index.astype(np.intp), axis=1), 0, 1)
+        np.testing.assert_array_equal(gather_planes(raw, index), expected)
+    with pytest.raises(IndexError):
+        gather_planes(raw, np.array([[10, 11, 12]]))
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "pinocchio"])
+def test_a_batch_of_no_poses_gives_empty_states(engine: str) -> None:
+    eng = getattr(load_model("ur5"), engine)
+    states = eng.segment_states(np.zeros((0, eng.nq)), np.zeros((0, eng.nv)))
+    assert states.n_poses == 0 and states.com.shape == (0, len(eng.segment_names), 3)
+    _, velocities, rigid, armature = eng.sweep(np.zeros((0, eng.nq)), np.zeros((0, eng.nv)))
+    assert velocities is None and rigid.shape == armature.shape == (0,)
+
+
 def test_byte_view_writes_through_and_refuses_a_strided_array() -> None:
     out = np.zeros((3, 4))
     view = byte_view(out)
@@ -58,6 +76,7 @@ def test_byte_view_writes_through_and_refuses_a_strided_array() -> None:
     np.testing.assert_array_equal(out, [[0, 0, 0, 0], [0, 1, 2, 3], [0, 0, 0, 0]])
     with pytest.raises(ValueError, match=r"shape \(3, 2\) is not C-contiguous"):
         byte_view(out[:, ::2])
+    assert len(byte_view(np.empty((0, 4)))) == 0  # no poses: nothing to copy
 
 
 def test_plane_kernels_give_the_numbers_of_rotate_and_cross_bit_for_bit(rng: np.random.Generator) -> None:

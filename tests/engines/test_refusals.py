@@ -47,3 +47,14 @@ def test_drakes_refusal_of_a_fixed_mimic_carries_the_id_and_its_hint() -> None:
     assert [f.cause for f in refused] == [MIMIC_FIXED]  # the id once, on the refusal (the check not made: no id)
     assert len(unable) == 1 and unable[0].hint.startswith("remove the <mimic> from the fixed joint")
     assert not check.ok
+
+
+def test_a_file_with_two_refused_constructs_names_the_one_the_engine_meets_first(tmp_path) -> None:
+    """Newton reads ``<option>`` before the geoms: a box by ``fromto`` under ``solver="PGS"`` stops at the solver."""
+    box = next(c for c in catalogue() if c.id == "newton.mjcf.box-fromto")
+    text = fixture_path(box).read_text(encoding="utf-8")
+    both = tmp_path / "both.xml"
+    both.write_text(text.replace("<worldbody>", '<option solver="PGS"/>\n  <worldbody>', 1), encoding="utf-8")
+    assert 'solver="PGS"' in both.read_text(encoding="utf-8")
+    assert refusal_cause("newton", both, "mjcf") == "newton.mjcf.solver-pgs"
+    assert refusal_cause("newton", fixture_path(box), "mjcf") == box.id

@@ -11,6 +11,7 @@ import pyarrow as pa
 import pytest
 
 from koenig_check.run.arrow_arrays import as_numpy, booleans, numbers, strings
+from koenig_check.run.records import RecordTable
 
 NUMBER_TYPES = [pa.int8(), pa.int16(), pa.int32(), pa.int64(), pa.uint8(), pa.float32(), pa.float64()]
 
@@ -22,6 +23,8 @@ def test_numbers_equal_pyarrows_array_and_read_back(arrow_type: pa.DataType, rng
     assert array.equals(pa.array(values.ravel(), type=arrow_type))
     np.testing.assert_array_equal(as_numpy(array), values.ravel())
     np.testing.assert_array_equal(as_numpy(array.slice(3, 7)), values.ravel()[3:10])  # an offset into the buffer
+    with pytest.raises(ValueError, match="read-only"):
+        as_numpy(array)[0] = 1  # a view of the table's own memory
 
 
 def test_booleans_and_strings_equal_pyarrows_arrays(rng: np.random.Generator) -> None:
@@ -56,3 +59,22 @@ def test_a_run_and_its_report_import_no_pandas(tmp_path) -> None:
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=False)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.strip().splitlines()[-1] == "False", "a run imported pandas (0.1-0.2 s of every run)"
+
+
+def test_a_record_tables_columns_are_read_only() -> None:
+    table = RecordTable(
+        {
+            "model": ["m", "m"],
+            "pose": ["p0", "p1"],
+            "formula": ["exact", "exact"],
+            "source": ["mujoco", "mujoco"],
+            "reference": ["mujoco", "mujoco"],
+            "scope": ["total", "total"],
+            "value": [1.0, 2.0],
+            "reference_value": [1.0, 2.5],
+        }
+    )
+    value = table["value"]
+    with pytest.raises(ValueError, match="read-only"):
+        value[0] = 1e9
+    assert table["rel_error"][1] == pytest.approx(0.2)

@@ -39,8 +39,10 @@ def gather_planes(raw: np.ndarray, index: np.ndarray) -> np.ndarray:
     n = index.shape[1]
     if n == 0:
         return out
+    index = np.asarray(index, dtype=np.intp)
     step = int(index[0, 1] - index[0, 0]) if n > 1 else 0
-    if step >= 0 and (n == 1 or bool((np.diff(index, axis=1) == step).all())):
+    in_row = index.size and 0 <= int(index.min()) and int(index.max()) < raw.shape[1]
+    if in_row and step >= 0 and (n == 1 or bool((np.diff(index, axis=1) == step).all())):
         # Every component's entries are ``step`` apart: the segments are consecutive rows of the engine's array
         # (or all the same row, step 0). One strided view per component, copied once, instead of a gather and
         # a transposing copy.
@@ -76,6 +78,8 @@ def byte_view(a: np.ndarray) -> memoryview:
     """
     if not a.flags.c_contiguous:
         raise ValueError(f"byte_view: array of shape {a.shape} is not C-contiguous")
+    if a.size == 0:  # no bytes to copy (a batch of no poses); numpy's view of it cannot be cast
+        return memoryview(bytearray())
     return a.data.cast("B")
 
 

@@ -65,19 +65,19 @@ def refusal_cause(engine: str, path: str | Path, fmt: str) -> str:
     -------
     str
         A cause id whose catalogue reading says ``engine`` refuses it (for its installed version) and whose sign
-        the file shows; empty when none does or the file cannot be read.
+        the file shows, the first in the order the signs are declared (the order the engine meets the
+        constructs); empty when none does or the file cannot be read.
     """
     from koenig_check.modelfile.validate import parse_xml
 
     signs = file_signs()
-    candidates = [
+    refused = {
         c.id
         for c in catalogue()
-        if c.id in signs
-        and fmt in c.formats
-        and any(r.engine == engine and r.reads == "refuses" for r in c.readings)
-        and applies(c.id, engine)
-    ]
+        if fmt in c.formats and any(r.engine == engine and r.reads == "refuses" for r in c.readings)
+    }
+    # In the order the signs are declared: the order the engine meets the constructs (a file may show several).
+    candidates = [cause_id for cause_id in signs if cause_id in refused and applies(cause_id, engine)]
     if not candidates:
         return ""
     try:

@@ -112,4 +112,6 @@ def as_numpy(array: pa.Array | pa.ChunkedArray) -> np.ndarray:
     dtype = _numpy_type(array.type)
     if not len(array):
         return np.empty(0, dtype)
-    return np.frombuffer(array.buffers()[1], dtype=dtype, count=len(array), offset=array.offset * dtype.itemsize)
+    out = np.frombuffer(array.buffers()[1], dtype=dtype, count=len(array), offset=array.offset * dtype.itemsize)
+    out.flags.writeable = False  # the table's own memory: an in-place change would rewrite the records
+    return out

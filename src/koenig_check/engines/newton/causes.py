@@ -179,6 +179,7 @@ def _box_fromto(root: ET.Element) -> bool:
 
 #: How the constructs that make an engine refuse a file show in the file as written (its parsed root): the sign
 #: names the cause of a refusal, whichever engine the catalogue says refuses it (:mod:`koenig_check.engines.refusals`).
+#: In the order Newton meets them: ``<option>`` before the geoms (a file with both stops at ``solver="PGS"``).
 FILE_SIGNS: dict[str, Callable[[ET.Element], bool]] = {
     MIMIC_FIXED: _mimic_in_fixed_joint,
     SOLVER_PGS: _solver_pgs,

@@ -190,7 +190,7 @@ class PinocchioEngine(PinocchioGravity, PinocchioDynamics, Engine):
                 velocities[p] = motion
             else:
                 velocities[p] = [x.vector for x in motions_live.tolist()]
-        flat_placements, flat_velocities = placements.reshape(P, -1), velocities.reshape(P, -1)
+        flat_placements, flat_velocities = placements.reshape(P, nj * 12), velocities.reshape(P, nj * 6)
         raws = {"rotation": flat_placements, "origin": flat_placements, "velocity": flat_velocities}
         out = {name: gather_planes(raws[name], index) for name, index in self._index.items()}
         if energies:
