@@ -212,3 +212,22 @@ def test_an_engines_own_text_is_said_once_under_the_first_line() -> None:
     below = finding_lines([unable], line, width=1000)
     assert below == ["    " + w for w in words.splitlines()]  # once, whole, indented; the summary and hint not again
     assert reason.whole() == f"talos: {summary}: {' '.join(words.split())}; check it without Newton"
+
+
+def test_two_engines_refusing_one_construct_give_its_hint_once() -> None:
+    """Newton and Drake both refuse a <mimic> in a fixed joint: each says why, the cause's hint is said once."""
+    from koenig_check.diagnosis.model_reason import model_reason
+
+    hint = "remove the <mimic> from the fixed joint; or check the model without it (--engines mujoco,pinocchio)"
+    unable = [
+        Finding(
+            Kind.ENGINE_UNABLE, engine, "model", f"{engine} asked for (--engines) but it could not check it", hint=hint
+        )
+        for engine in ("drake", "newton")
+    ]
+    whole = model_reason("talos", unable).whole()
+    assert whole.count(hint) == 1 and whole.count("could not check it") == 2
+    other = Finding(
+        Kind.ENGINE_UNABLE, "pybullet", "model", "pybullet asked for (--engines) but no", hint="another hint"
+    )
+    assert model_reason("talos", [*unable, other]).whole().endswith(f"{hint}; another hint")

@@ -189,7 +189,7 @@ def model_reason(label: str, findings: Sequence[Finding], gap: str = "", limit: 
     # lines under the one-line reason give it whole, the verdict table's row after the summary, on one line.
     unmade = "; ".join(f.summary for f in unable_findings)
     unmade_whole = "; ".join(_with_engine_text(f) for f in unable_findings)
-    hints = "; ".join(f.hint for f in unable_findings if f.hint)
+    hints = "; ".join(dict.fromkeys(f.hint for f in unable_findings if f.hint))  # two engines, one cause: one hint
     unable = {f.engine for f in findings if f.kind is Kind.ENGINE_UNABLE}  # its causes are in its reason
     groups = cause_groups(f for f in ordered_causes(findings) if f.engine not in unable)
     return Reason(label, _departures(findings), tuple(groups), gap, unmade, hints, limit, unmade_whole)
