@@ -58,3 +58,11 @@ def test_a_file_with_two_refused_constructs_names_the_one_the_engine_meets_first
     assert 'solver="PGS"' in both.read_text(encoding="utf-8")
     assert refusal_cause("newton", both, "mjcf") == "newton.mjcf.solver-pgs"
     assert refusal_cause("newton", fixture_path(box), "mjcf") == box.id
+
+
+def test_a_sign_of_a_cause_the_catalogue_lacks_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    from koenig_check.engines.newton import causes
+
+    monkeypatch.setattr(causes, "FILE_SIGNS", {**causes.FILE_SIGNS, "newton.urdf.no-such-cause": lambda root: True})
+    with pytest.raises(ValueError, match=r"newton\.causes\.FILE_SIGNS names causes .*: newton\.urdf\.no-such-cause"):
+        file_signs()

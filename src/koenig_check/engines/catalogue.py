@@ -14,6 +14,7 @@ import importlib.resources
 import importlib.util
 from functools import cache
 from pathlib import Path
+from types import ModuleType
 
 from packaging.specifiers import SpecifierSet
 from packaging.version import InvalidVersion, Version
@@ -38,18 +39,30 @@ def catalogue() -> tuple[Cause, ...]:
     return _collected(specs())
 
 
+def cause_modules(declared: tuple[EngineSpec, ...]) -> list[tuple[EngineSpec, ModuleType]]:
+    """Each declared engine's ``engines/<name>/causes.py``, imported; engines without one are left out.
+
+    Parameters
+    ----------
+    declared : tuple of EngineSpec
+
+    Returns
+    -------
+    list of (EngineSpec, module)
+    """
+    names = [(s, f"{ENGINES_PACKAGE}.{s.name}.causes") for s in declared]
+    return [(s, importlib.import_module(m)) for s, m in names if importlib.util.find_spec(m) is not None]
+
+
 @cache
 def _collected(declared: tuple[EngineSpec, ...]) -> tuple[Cause, ...]:
     """The causes of the engines declared (found once per set of engines: a test may add one)."""
     found: list[Cause] = []
     engines = {s.name for s in declared}
-    for s in declared:
-        module = f"{ENGINES_PACKAGE}.{s.name}.causes"
-        if importlib.util.find_spec(module) is None:
-            continue
-        for c in importlib.import_module(module).CAUSES:
+    for s, module in cause_modules(declared):
+        for c in module.CAUSES:
             if c.engine != s.name:
-                raise ValueError(f"{module}: cause {c.id} belongs to engine {c.engine}, not {s.name}")
+                raise ValueError(f"{module.__name__}: cause {c.id} belongs to engine {c.engine}, not {s.name}")
             unknown = sorted({r.engine for r in c.readings} - engines)
             if unknown:
                 raise ValueError(f"cause {c.id}: readings of unknown engines {unknown}")

@@ -41,7 +41,7 @@ def gather_planes(raw: np.ndarray, index: np.ndarray) -> np.ndarray:
         return out
     index = np.asarray(index, dtype=np.intp)
     step = int(index[0, 1] - index[0, 0]) if n > 1 else 0
-    in_row = index.size and 0 <= int(index.min()) and int(index.max()) < raw.shape[1]
+    in_row = 0 <= int(index.min()) and int(index.max()) < raw.shape[1]
     if in_row and step >= 0 and (n == 1 or bool((np.diff(index, axis=1) == step).all())):
         # Every component's entries are ``step`` apart: the segments are consecutive rows of the engine's array
         # (or all the same row, step 0). One strided view per component, copied once, instead of a gather and

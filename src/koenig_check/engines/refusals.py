@@ -10,20 +10,16 @@ message is never read.
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import xml.etree.ElementTree as ET
 from collections.abc import Callable
-from functools import cache
 from pathlib import Path
 
-from koenig_check.engines.catalogue import applies, catalogue
-from koenig_check.engines.specs import ENGINES_PACKAGE, specs
+from koenig_check.engines.catalogue import applies, catalogue, cause_modules
+from koenig_check.engines.specs import specs
 
 
-@cache
 def file_signs() -> dict[str, Callable[[ET.Element], bool]]:
-    """Every declared sign, by cause id (each engine subpackage's ``causes.FILE_SIGNS``).
+    """Every declared sign, by cause id (each engine subpackage's ``causes.FILE_SIGNS``), in declaration order.
 
     Returns
     -------
@@ -37,14 +33,13 @@ def file_signs() -> dict[str, Callable[[ET.Element], bool]]:
     """
     known = {c.id for c in catalogue()}
     signs: dict[str, Callable[[ET.Element], bool]] = {}
-    for s in specs():
-        module = f"{ENGINES_PACKAGE}.{s.name}.causes"
-        if importlib.util.find_spec(module) is None:
-            continue
-        declared = getattr(importlib.import_module(module), "FILE_SIGNS", {})
+    for _, module in cause_modules(specs()):
+        declared = getattr(module, "FILE_SIGNS", {})
         unknown = sorted(set(declared) - known)
         if unknown:
-            raise ValueError(f"{module}.FILE_SIGNS names causes the catalogue does not declare: {', '.join(unknown)}")
+            raise ValueError(
+                f"{module.__name__}.FILE_SIGNS names causes the catalogue does not declare: {', '.join(unknown)}"
+            )
         signs.update(declared)
     return signs
 

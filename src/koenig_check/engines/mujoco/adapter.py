@@ -206,10 +206,9 @@ class MujocoEngine(MujocoGravity, MujocoDynamics, Engine):
         # MjData's arrays are views of its own buffers, each attribute access would build a new one.
         q_in, v_in = byte_view(qpos), byte_view(qvel)
         q_d, v_d = byte_view(d.qpos), byte_view(d.qvel)
-        sources = [byte_view(a) for a in (d.xpos, d.xmat, d.cvel, d.subtree_com)]
+        x_in, r_in, c_in, s_in = (byte_view(a) for a in (d.xpos, d.xmat, d.cvel, d.subtree_com))
         x_out, r_out, c_out, s_out = (byte_view(a) for a in (xpos, xmat, cvel, sub))
-        x_in, r_in, c_in, s_in = sources
-        nq, nv, nx, nr, nc, ns = (len(v) for v in (q_d, v_d, *sources))
+        nq, nv, nx, nr, nc, ns = (len(v) for v in (q_d, v_d, x_in, r_in, c_in, s_in))
         e_in, e_out = byte_view(d.energy)[8:16], byte_view(rigid)  # energy[1]: the kinetic energy
         for p in range(P):
             q_d[:] = q_in[p * nq : (p + 1) * nq]
